@@ -1,0 +1,367 @@
+/*
+** afv.c -- energy, exact analytic forces and the finite-difference check.
+**
+** Energy (paper, Eq. energy):  E = sum_i e_i,
+**     e_i = KA_i (A_i - A0_i)^2 + KP_i (P_i - P0_i)^2 + Lambda L_i.
+**
+** FORCES.  By the chain rule, with wA = 2 KA (A_i - A0), wP = 2 KP (P_i - P0)
+** and wL = Lambda,
+**     G_ij := de_i/dr_j = wA dA_i/dr_j + wP dP_i/dr_j + wL dL_i/dr_j.
+** Cell i's shape depends on r_i and on its neighbours j (|r_j - r_i| < 2l).
+** Translating all of them together translates the shape, so
+**     de_i/dr_i = - sum_j G_ij,
+** and the force on j,  F_j = -dE/dr_j = -de_j/dr_j - sum_i G_ij, becomes
+**     F_j = sum_{i in nbr(j)} (G_ji - G_ij).                           (F)
+** Every cell computes its G_ij on its own ("gather" form): no cell writes
+** another's force, and sum_j F_j = 0 exactly in exact arithmetic.
+**
+** It remains to differentiate A_i, P_i, L_i with respect to a neighbour r_j
+** (r_i fixed, cell frame centred on r_i, D = r_j - r_i, d = |D|, u = D/d,
+** t = (-u_y, u_x) the counter-clockwise direction along the edge ij, which
+** lies on the bisector line x.u = d/2).  Moving r_j moves only that line.
+**
+** Area (Reynolds transport).  The bisector is |x - r_j| = |x - r_i|; moving
+** r_j by dr moves its point x along u by (r_j - x).dr / d.  Integrating this
+** normal velocity over the edge (length ell, midpoint m):
+**     dA_i/dr_j = (ell / d) (D - m).                                    (A)
+** The arcs and the other edges do not move, so they add nothing.
+**
+** Perimeter and arc length.  Both are sums of piece lengths between the
+** vertices; moving one vertex V by dV changes the piece arriving at V by
+** t_in.dV and the piece leaving V by -t_out.dV (t_in, t_out its unit
+** tangents there; an arc keeps its circle, an edge's length is |V_b - V_a|).
+** So, for every vertex V that moves with r_j,
+**     dP_i += (dV/dr_j)^T (t_in - t_out),
+**     dL_i += (dV/dr_j)^T (t_in if an arc arrives, - t_out if one leaves).
+** Two kinds of vertex move with r_j:
+**
+** (1) Arc end: V = D/2 + sigma (s/d) R D on the circle, s = sqrt(l^2 - d^2/4)
+**     the half-chord, R the rotation by +90 degrees, sigma = -1 where the
+**     edge starts (the arc arrives), +1 where it ends.  Differentiating,
+**       (dV/dD)^T w = w/2 + sigma (s/d) R^T w - sigma l^2/(d s) (t.w) u.  (V1)
+**     The last term diverges like 1/s ~ (2l - d)^(-1/2) as the contact is
+**     about to break: the exact force does too (integrably).  The optional
+**     cap replaces 2s = sqrt(4l^2 - d^2) by max(2s, delta) there only.
+** (2) Triple junction V of cells i, j, k: the circumcentre, on the lines ij
+**     and ik.  Moving r_j slides V along line ik (direction e = t_k, which
+**     does not move) by alpha, where |V - r_j|^2 = |V - r_i|^2 requires
+**     alpha (r_i - r_j).e = (V - r_j).dr, hence
+**       (dV/dr_j)^T w = (V - D_j) (e.w) / (-D_j . e),   e = t_k,      (V2)
+**     and the same with j and k exchanged for the motion with r_k.
+**     At a triple junction both pieces are edges, so only P changes.
+** Every formula is checked against central differences of E in the tests.
+*/
+#include "afv.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *afv_strerror(int status)
+{
+  switch (status) {
+  case AFV_OK: return "success";
+  case AFV_ENOMEM: return "out of memory";
+  case AFV_EINVAL: return "parameter out of range";
+  case AFV_EBOX: return "periodic box side smaller than 4l";
+  case AFV_ENONFINITE: return "position is NaN or infinite";
+  case AFV_ECOINCIDENT: return "two cell centres coincide";
+  case AFV_EIO: return "input/output error";
+  case AFV_EFORMAT: return "malformed file";
+  default: return "unknown error";
+  }
+}
+
+void afv_params_default(afv_params *p)
+{
+  memset(p, 0, sizeof *p);
+  p->l = 1;
+  p->KA = 1;
+  p->KP = 1;
+  p->A0 = 3.14159265358979323846;
+  p->P0 = 4.8;
+  p->Lambda = 0.2;
+  p->cap = 0;
+}
+
+static int finite_array(const double *v, int n)
+{
+  int i;
+  if (!v) return 1;
+  for (i = 0; i < n; i++)
+    if (!isfinite(v[i])) return 0;
+  return 1;
+}
+
+int afv_params_check(const afv_params *p, int n)
+{
+  if (!(isfinite(p->l) && p->l > 0)) return AFV_EINVAL;
+  if (!(isfinite(p->KA) && isfinite(p->KP) && isfinite(p->A0)
+        && isfinite(p->P0) && isfinite(p->Lambda))) return AFV_EINVAL;
+  if (!(isfinite(p->cap) && p->cap >= 0)) return AFV_EINVAL;
+  if (!(finite_array(p->KA_i, n) && finite_array(p->KP_i, n)
+        && finite_array(p->A0_i, n) && finite_array(p->P0_i, n)))
+    return AFV_EINVAL;
+  return AFV_OK;
+}
+
+static int box_check(const afv_box *b, double l)
+{
+  if (!b || !b->periodic) return AFV_OK;
+  if (!(isfinite(b->Lx) && isfinite(b->Ly))) return AFV_EINVAL;
+  if (b->Lx < 4 * l || b->Ly < 4 * l) return AFV_EBOX;
+  return AFV_OK;
+}
+
+/* The moduli and targets of cell i (per-cell value if given). */
+typedef struct cell_targets {
+  double KA, KP, A0, P0;
+} cell_targets;
+
+static cell_targets targets_of(const afv_params *p, int i)
+{
+  cell_targets c;
+  c.KA = p->KA_i ? p->KA_i[i] : p->KA;
+  c.KP = p->KP_i ? p->KP_i[i] : p->KP;
+  c.A0 = p->A0_i ? p->A0_i[i] : p->A0;
+  c.P0 = p->P0_i ? p->P0_i[i] : p->P0;
+  return c;
+}
+
+double afv_cell_energy(const afv_params *p, int i, double A, double P, double L)
+{
+  cell_targets c = targets_of(p, i);
+  return c.KA * (A - c.A0) * (A - c.A0) + c.KP * (P - c.P0) * (P - c.P0)
+       + p->Lambda * L;
+}
+
+/* ---- shape derivatives -------------------------------------------------- */
+/* The edge of neighbour slot s, seen from its cell. */
+typedef struct edge {
+  double dx, dy, d;    /* D = r_j - r_i and its length */
+  double ux, uy;       /* u = D / d */
+  double tx, ty;       /* t = R u, counter-clockwise along the edge */
+} edge;
+
+static edge edge_of(const afv_geom *g, int s)
+{
+  edge E;
+  E.dx = g->nbr_d[2*s];
+  E.dy = g->nbr_d[2*s+1];
+  E.d = sqrt(E.dx * E.dx + E.dy * E.dy);
+  E.ux = E.dx / E.d;
+  E.uy = E.dy / E.d;
+  E.tx = -E.uy;
+  E.ty = E.ux;
+  return E;
+}
+
+static void add(double *v, double ax, double ay)
+{
+  v[0] += ax;
+  v[1] += ay;
+}
+
+/* (A): wA (ell/d) (D - m), m the midpoint of the edge starting at (x, y). */
+static void area_term(const edge *E, const afv_piece *pc, double wA,
+                      double *grad)
+{
+  double mx = pc->x + 0.5 * pc->length * E->tx;
+  double my = pc->y + 0.5 * pc->length * E->ty;
+  double c = wA * pc->length / E->d;
+  add(grad, c * (E->dx - mx), c * (E->dy - my));
+}
+
+/* (V1): adds (dV/dD)^T w for the arc end with side sigma of edge E. */
+static void arc_end_term(const edge *E, double l, double cap, int sigma,
+                         double wx, double wy, double *grad)
+{
+  double h = 0.5 * E->d;
+  double s = sqrt((l - h) * (l + h));      /* (l-h)(l+h): no cancellation */
+  double s_div = 2 * s < cap ? 0.5 * cap : s;
+  double tw = E->tx * wx + E->ty * wy;
+  double gx = 0.5 * wx + sigma * (s / E->d) * wy;   /* R^T w = (w_y, -w_x) */
+  double gy = 0.5 * wy - sigma * (s / E->d) * wx;
+  if (s_div > 0) {
+    double c = sigma * l * l / (E->d * s_div) * tw;
+    gx -= c * E->ux;
+    gy -= c * E->uy;
+  }
+  add(grad, gx, gy);
+}
+
+/* (V2): adds (dV/dr_j)^T w for the triple junction V on edge Ej, which
+** slides along the other edge Ek.  Parallel lines make no junction, so a
+** zero denominator only arises for a degenerate, zero-length vertex. */
+static void junction_term(const edge *Ej, const edge *Ek, double vx,
+                          double vy, double wx, double wy, double *grad)
+{
+  double den = -(Ej->dx * Ek->tx + Ej->dy * Ek->ty);
+  double c;
+  if (den == 0) return;
+  c = (Ek->tx * wx + Ek->ty * wy) / den;
+  add(grad, c * (vx - Ej->dx), c * (vy - Ej->dy));
+}
+
+/* The tangent of the circle (counter-clockwise) at the point (x, y) on it. */
+static void circle_tangent(double x, double y, double l, double *tx,
+                           double *ty)
+{
+  *tx = -y / l;
+  *ty = x / l;
+}
+
+/* Contributions of the vertex at the start of edge piece pc (previous
+** piece prev) and, if an arc follows, of its end vertex. */
+static void edge_vertex_terms(const afv_geom *g, const edge *Ep,
+                              const afv_piece *prev, const afv_piece *pc,
+                              const afv_piece *next, double l, double cap,
+                              double wP, double wL, double *grad)
+{
+  edge E = *Ep;
+  double ax, ay;
+  if (prev->nbr == AFV_ARC) {                 /* arc arrives: sigma = -1 */
+    circle_tangent(pc->x, pc->y, l, &ax, &ay);
+    arc_end_term(&E, l, cap, -1, wP * (ax - E.tx) + wL * ax,
+                 wP * (ay - E.ty) + wL * ay, grad + 2 * pc->slot);
+  } else {                                    /* triple junction (i,k,j) */
+    edge K = edge_of(g, prev->slot);
+    double wx = wP * (K.tx - E.tx), wy = wP * (K.ty - E.ty);
+    junction_term(&E, &K, pc->x, pc->y, wx, wy, grad + 2 * pc->slot);
+    junction_term(&K, &E, pc->x, pc->y, wx, wy, grad + 2 * prev->slot);
+  }
+  if (next->nbr == AFV_ARC) {                 /* arc leaves: sigma = +1 */
+    double vx = pc->x + pc->length * E.tx, vy = pc->y + pc->length * E.ty;
+    circle_tangent(vx, vy, l, &ax, &ay);
+    arc_end_term(&E, l, cap, +1, wP * (E.tx - ax) - wL * ax,
+                 wP * (E.ty - ay) - wL * ay, grad + 2 * pc->slot);
+  }
+}
+
+void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
+                             double wA, double wP, double wL, double *grad)
+{
+  const afv_piece *pieces = g->pieces + g->piece_start[i];
+  int np = g->n_pieces[i], k;
+  for (k = 0; k < np; k++) {
+    const afv_piece *pc = &pieces[k];
+    edge E;
+    if (pc->nbr == AFV_ARC) continue;
+    E = edge_of(g, pc->slot);
+    area_term(&E, pc, wA, grad + 2 * pc->slot);
+    edge_vertex_terms(g, &E, &pieces[(k + np - 1) % np], pc,
+                      &pieces[(k + 1) % np], l, cap, wP, wL, grad);
+  }
+}
+
+/* ---- the whole tissue -------------------------------------------------- */
+/* (F): F_j = sum over neighbour slots s of j of (G_js - G_rev(s)). */
+static void gather_forces(const afv_geom *g, int n, double *f)
+{
+  int j, s;
+  for (j = 0; j < n; j++) {
+    double fx = 0, fy = 0;
+    for (s = g->nbr_start[j]; s < g->nbr_start[j + 1]; s++) {
+      int t = g->nbr_rev[s];
+      fx += g->grad[2*s] - g->grad[2*t];
+      fy += g->grad[2*s+1] - g->grad[2*t+1];
+    }
+    f[2*j] = fx;
+    f[2*j+1] = fy;
+  }
+}
+
+static int check_inputs(int n, const afv_params *p, const afv_box *b)
+{
+  int st;
+  if (n < 0) return AFV_EINVAL;
+  if ((st = afv_params_check(p, n)) != AFV_OK) return st;
+  return box_check(b, p->l);
+}
+
+int afv_geometry(afv_geom *g, int n, const double *r, const afv_params *p,
+                 const afv_box *b)
+{
+  int st, i;
+  if ((st = check_inputs(n, p, b)) != AFV_OK) return st;
+  if ((st = afv_geometry_prepare(g, n, r, p->l, b)) != AFV_OK) return st;
+  g->energy = 0;
+  for (i = 0; i < n; i++) {
+    afv_cell_shape(g, i, p->l);
+    g->energy += afv_cell_energy(p, i, g->area[i], g->perim[i], g->arc[i]);
+  }
+  return AFV_OK;
+}
+
+int afv_compute(afv_geom *g, int n, const double *r, const afv_params *p,
+                const afv_box *b, double *f)
+{
+  int st, i;
+  if (!f) return afv_geometry(g, n, r, p, b);
+  if ((st = check_inputs(n, p, b)) != AFV_OK) return st;
+  if ((st = afv_geometry_prepare(g, n, r, p->l, b)) != AFV_OK) return st;
+  g->energy = 0;
+  if (n > 0)
+    memset(g->grad, 0, (size_t)g->nbr_start[n] * 2 * sizeof(double));
+  for (i = 0; i < n; i++) {
+    cell_targets c = targets_of(p, i);
+    afv_cell_shape(g, i, p->l);
+    g->energy += afv_cell_energy(p, i, g->area[i], g->perim[i], g->arc[i]);
+    afv_cell_shape_gradient(g, i, p->l, p->cap, 2 * c.KA * (g->area[i] - c.A0),
+                            2 * c.KP * (g->perim[i] - c.P0), p->Lambda,
+                            g->grad);
+  }
+  gather_forces(g, n, f);
+  return AFV_OK;
+}
+
+/* ---- finite-difference check ------------------------------------------ */
+static int energy_at(afv_geom *g, int n, const double *r, const afv_params *p,
+                     const afv_box *b, double *E)
+{
+  int st = afv_geometry(g, n, r, p, b);
+  *E = g->energy;
+  return st;
+}
+
+int afv_gradient_check(int n, const double *r, const afv_params *p,
+                       const afv_box *b, double h, afv_check_report *rep)
+{
+  afv_geom g;
+  double *f = malloc((size_t)(2 * n + 1) * sizeof(double));
+  double *rr = malloc((size_t)(2 * n + 1) * sizeof(double));
+  int st, c;
+  memset(&g, 0, sizeof g);
+  memset(rep, 0, sizeof *rep);
+  rep->worst_cell = -1;
+  if (!f || !rr) {
+    st = AFV_ENOMEM;
+    goto done;
+  }
+  if (n > 0) memcpy(rr, r, (size_t)(2 * n) * sizeof(double));
+  if ((st = afv_compute(&g, n, r, p, b, f)) != AFV_OK) goto done;
+  for (c = 0; c < 2 * n; c++)
+    if (fabs(f[c]) > rep->force_scale) rep->force_scale = fabs(f[c]);
+  for (c = 0; c < 2 * n; c++) {
+    double Ep, Em, fd, err;
+    rr[c] = r[c] + h;
+    if ((st = energy_at(&g, n, rr, p, b, &Ep)) != AFV_OK) goto done;
+    rr[c] = r[c] - h;
+    if ((st = energy_at(&g, n, rr, p, b, &Em)) != AFV_OK) goto done;
+    rr[c] = r[c];
+    fd = -(Ep - Em) / (2 * h);
+    err = fabs(fd - f[c]);
+    if (err > rep->max_abs || rep->worst_cell < 0) {
+      rep->max_abs = err;
+      rep->worst_cell = c / 2;
+      rep->worst_comp = c % 2;
+    }
+  }
+  rep->max_rel = rep->force_scale > 0 ? rep->max_abs / rep->force_scale
+                                      : rep->max_abs;
+done:
+  afv_geom_free(&g);
+  free(f);
+  free(rr);
+  return st;
+}
