@@ -159,4 +159,14 @@ typedef struct afv_check_report {
 int afv_gradient_check(int n, const double *r, const afv_params *p,
                        const afv_box *b, double h, afv_check_report *rep);
 
+/* ---- files (io.c) ----------------------------------------------------- */
+/* Reads a POINTS file: one cell "x y" per line, separated by spaces, tabs
+** or commas, '#' lines and blank lines ignored.  On success *r is a malloc'd
+** array of 2 *n coordinates (caller frees).  On failure, err holds a
+** one-line message naming the file and line. */
+int  afv_read_points(const char *path, int *n, double **r, char *err,
+                     size_t errlen);
+/* snprintf into err (if err != NULL): the library's way to explain a status. */
+void afv_errorf(char *err, size_t errlen, const char *fmt, ...);
+
 #endif /* AFV_H */

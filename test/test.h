@@ -1,0 +1,52 @@
+/*
+** test.h -- the smallest test harness that does the job.
+**
+** A test is a function; RUN(fn) calls it and counts it as passed if none of
+** its CHECKs failed.  A failing CHECK prints file:line and a message (with
+** the largest error where there is one).  SKIP(why) marks the current test
+** skipped.  The runner ends with "N passed, M failed, K skipped" and exits
+** non-zero on any failure.
+*/
+#ifndef AFV_TEST_H
+#define AFV_TEST_H
+
+#include <stdio.h>
+
+extern int test_failures_in_current; /* CHECK failures in the running test */
+extern int test_skipped_current;     /* the running test called SKIP */
+
+void test_run(const char *name, void (*fn)(void));
+void test_fail(const char *file, int line, const char *fmt, ...);
+int  test_close(double got, double want, double rtol, double atol);
+
+#define RUN(fn) test_run(#fn, fn)
+
+/* CHECK(cond, printf-style message): message printed only on failure. */
+#define CHECK(cond, ...) \
+  do { if (!(cond)) test_fail(__FILE__, __LINE__, __VA_ARGS__); } while (0)
+
+/* |got - want| <= atol + rtol |want|, reporting both values on failure. */
+#define CHECK_CLOSE(got, want, rtol, atol, what)                             \
+  do {                                                                       \
+    double got_ = (got), want_ = (want);                                     \
+    if (!test_close(got_, want_, (rtol), (atol)))                            \
+      test_fail(__FILE__, __LINE__, "%s: got %.17g, want %.17g (diff %.3e)", \
+                (what), got_, want_, got_ - want_);                          \
+  } while (0)
+
+#define SKIP(...) \
+  do { test_skipped_current = 1; printf("  skip: "); printf(__VA_ARGS__); \
+       printf("\n"); } while (0)
+
+/* Root of ../shared (for golden data); NULL-free: falls back to "../shared",
+** overridden by the environment variable AFV_SHARED. */
+const char *test_shared_dir(void);
+
+/* Test suites, one per source file. */
+void suite_core(void);
+void suite_cli(void);
+void suite_dynamics(void);
+void suite_analysis(void);
+void suite_perf(void);
+
+#endif
