@@ -17,9 +17,9 @@ CFLAGS  += -fopenmp
 LDLIBS  += -fopenmp
 endif
 
-LIB_SRC  = geom.c afv.c io.c
+LIB_SRC  = geom.c afv.c dynamics.c analysis.c svg.c io.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
-TEST_SRC = $(wildcard test/*.c)
+TEST_SRC = test/main.c $(wildcard test/test_*.c)
 
 .PHONY: all test clean
 

@@ -20,6 +20,7 @@
 #define AFV_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 /* ---- status codes ------------------------------------------------------ */
 #define AFV_OK           0  /* success */
@@ -168,5 +169,29 @@ int  afv_read_points(const char *path, int *n, double **r, char *err,
                      size_t errlen);
 /* snprintf into err (if err != NULL): the library's way to explain a status. */
 void afv_errorf(char *err, size_t errlen, const char *fmt, ...);
+
+/* Atomic output: write to the FILE from afv_atomic_open (PATH.tmp, name in
+** tmp), then afv_atomic_commit flushes, closes and renames it over PATH.
+** An interrupted writer leaves PATH as it was.  On error the .tmp is removed. */
+FILE *afv_atomic_open(const char *path, char *tmp, size_t tmplen);
+int   afv_atomic_commit(FILE *fp, const char *tmp, const char *path);
+
+/* A trajectory (format in io.c): frames of unwrapped centres and angles. */
+typedef struct afv_traj {
+  int        n;        /* cells per frame */
+  int        nframes;  /* complete frames read */
+  afv_box    box;      /* from the header line */
+  long long *step;     /* step of frame k */
+  double    *t;        /* time of frame k */
+  double    *r;        /* frame k: r[k*2n .. k*2n + 2n-1], unwrapped */
+  double    *theta;    /* frame k: theta[k*n .. k*n + n-1] */
+} afv_traj;
+
+int  afv_traj_write_header(FILE *fp, int n, const afv_box *b);
+int  afv_traj_write_frame(FILE *fp, long long step, double t, int n,
+                          const double *r, const double *theta);
+/* Reads every complete frame (a truncated last frame is dropped). */
+int  afv_traj_read(const char *path, afv_traj *tr, char *err, size_t errlen);
+void afv_traj_free(afv_traj *tr);
 
 #endif /* AFV_H */

@@ -1,0 +1,4 @@
+/* dynamics.c -- being written. */
+#include "afv.h"
+
+typedef int afv_dynamics_placeholder;
