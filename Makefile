@@ -21,7 +21,7 @@ LIB_SRC  = geom.c afv.c dynamics.c analysis.c svg.c io.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c $(wildcard test/test_*.c)
 
-.PHONY: all test clean
+.PHONY: all test run bench bench-quick clean
 
 all: afv libafv.a
 
@@ -40,5 +40,30 @@ test/run_tests: $(TEST_SRC) test/test.h libafv.a afv.h
 test: afv test/run_tests
 	./test/run_tests
 
+# The main job: a short simulation of the paper's protocol (cluster of 400
+# cells, relaxed, then active), into out/run/ (replaced on every make run).
+RUN_ARGS = --N 400 --P0 4.2 --v0 1 --steps 5000 --frame_every 100 \
+           --svg_every 1000 --checkpoint_every 1000
+
+run: afv
+	rm -rf out/run && mkdir -p out
+	./afv run $(RUN_ARGS) --out out/run
+	@echo "snapshots:   out/run/snap_*.svg, out/run/final.svg"
+	@echo "observables: out/run/observables.csv (trajectory: out/run/trajectory.dat)"
+
+# The benchmark (test/bench.c): one line per state and N, see its header.
+BENCH_STATES = random-force cluster-force
+
+test/bench: test/bench.c libafv.a afv.h
+	$(CC) $(CFLAGS) -I. -o $@ test/bench.c libafv.a $(LDLIBS)
+
+bench: test/bench
+	@for s in $(BENCH_STATES); do for n in 400 4000 40000 400000; do \
+	  ./test/bench $$s $$n || exit 1; done; done
+
+bench-quick: test/bench
+	@for s in $(BENCH_STATES); do for n in 400 40000; do \
+	  ./test/bench $$s $$n || exit 1; done; done
+
 clean:
-	rm -f *.o libafv.a afv test/run_tests
+	rm -f *.o libafv.a afv test/run_tests test/bench

@@ -57,6 +57,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* OpenMP (make OPENMP=1): see geom.c.  Empty in the plain C99 build. */
+#ifdef _OPENMP
+#define AFV_PARALLEL_FOR _Pragma("omp parallel for schedule(static)")
+#else
+#define AFV_PARALLEL_FOR
+#endif
+
 const char *afv_strerror(int status)
 {
   switch (status) {
@@ -68,6 +75,7 @@ const char *afv_strerror(int status)
   case AFV_ECOINCIDENT: return "two cell centres coincide";
   case AFV_EIO: return "input/output error";
   case AFV_EFORMAT: return "malformed file";
+  case AFV_EUNSTABLE: return "unstable step (NaN force or a move > l/2)";
   default: return "unknown error";
   }
 }
@@ -141,16 +149,21 @@ typedef struct edge {
   double dx, dy, d;    /* D = r_j - r_i and its length */
   double ux, uy;       /* u = D / d */
   double tx, ty;       /* t = R u, counter-clockwise along the edge */
+  double s;            /* half-chord sqrt(l^2 - d^2/4) */
 } edge;
 
+/* u, d and s come from the edge cache that afv_cell_shape fills (geom.c),
+** computed there once per slot with the same formulas. */
 static edge edge_of(const afv_geom *g, int s)
 {
+  const double *e = g->edge + 4 * s;
   edge E;
   E.dx = g->nbr_d[2*s];
   E.dy = g->nbr_d[2*s+1];
-  E.d = sqrt(E.dx * E.dx + E.dy * E.dy);
-  E.ux = E.dx / E.d;
-  E.uy = E.dy / E.d;
+  E.ux = e[0];
+  E.uy = e[1];
+  E.d = e[2];
+  E.s = e[3];
   E.tx = -E.uy;
   E.ty = E.ux;
   return E;
@@ -176,8 +189,7 @@ static void area_term(const edge *E, const afv_piece *pc, double wA,
 static void arc_end_term(const edge *E, double l, double cap, int sigma,
                          double wx, double wy, double *grad)
 {
-  double h = 0.5 * E->d;
-  double s = sqrt((l - h) * (l + h));      /* (l-h)(l+h): no cancellation */
+  double s = E->s;
   double s_div = 2 * s < cap ? 0.5 * cap : s;
   double tw = E->tx * wx + E->ty * wy;
   double gx = 0.5 * wx + sigma * (s / E->d) * wy;   /* R^T w = (w_y, -w_x) */
@@ -255,12 +267,15 @@ void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
 }
 
 /* ---- the whole tissue -------------------------------------------------- */
-/* (F): F_j = sum over neighbour slots s of j of (G_js - G_rev(s)). */
+/* (F): F_j = sum over neighbour slots s of j of (G_js - G_rev(s)).  Each
+** F_j is summed in its own slot order, whatever thread computes it. */
 static void gather_forces(const afv_geom *g, int n, double *f)
 {
-  int j, s;
+  int j;
+  AFV_PARALLEL_FOR
   for (j = 0; j < n; j++) {
     double fx = 0, fy = 0;
+    int s;
     for (s = g->nbr_start[j]; s < g->nbr_start[j + 1]; s++) {
       int t = g->nbr_rev[s];
       fx += g->grad[2*s] - g->grad[2*t];
@@ -279,38 +294,57 @@ static int check_inputs(int n, const afv_params *p, const afv_box *b)
   return box_check(b, p->l);
 }
 
+/* Every cell's shape and, if `gradient`, its G_ij in grad (its own slots).
+** A cell writes only its own entries, so the cells may be shared among
+** threads.  (Visiting them in cell-list order instead was measured slower
+** for cells given in random order: the per-cell arrays are in cell order.) */
+static void shape_all(afv_geom *g, int n, const afv_params *p, int gradient)
+{
+  int i;
+  AFV_PARALLEL_FOR
+  for (i = 0; i < n; i++) {
+    int s0 = g->nbr_start[i], s1 = g->nbr_start[i + 1];
+    cell_targets c = targets_of(p, i);
+    afv_cell_shape(g, i, p->l);
+    if (!gradient) continue;
+    memset(g->grad + 2 * s0, 0, (size_t)(s1 - s0) * 2 * sizeof(double));
+    afv_cell_shape_gradient(g, i, p->l, p->cap, 2 * c.KA * (g->area[i] - c.A0),
+                            2 * c.KP * (g->perim[i] - c.P0), p->Lambda,
+                            g->grad);
+  }
+}
+
+/* E summed in cell order after the parallel loop: the same bits for every
+** thread count (a reduction clause would add in a varying order). */
+static double total_energy(const afv_geom *g, int n, const afv_params *p)
+{
+  double E = 0;
+  int i;
+  for (i = 0; i < n; i++)
+    E += afv_cell_energy(p, i, g->area[i], g->perim[i], g->arc[i]);
+  return E;
+}
+
 int afv_geometry(afv_geom *g, int n, const double *r, const afv_params *p,
                  const afv_box *b)
 {
-  int st, i;
+  int st;
   if ((st = check_inputs(n, p, b)) != AFV_OK) return st;
   if ((st = afv_geometry_prepare(g, n, r, p->l, b)) != AFV_OK) return st;
-  g->energy = 0;
-  for (i = 0; i < n; i++) {
-    afv_cell_shape(g, i, p->l);
-    g->energy += afv_cell_energy(p, i, g->area[i], g->perim[i], g->arc[i]);
-  }
+  shape_all(g, n, p, 0);
+  g->energy = total_energy(g, n, p);
   return AFV_OK;
 }
 
 int afv_compute(afv_geom *g, int n, const double *r, const afv_params *p,
                 const afv_box *b, double *f)
 {
-  int st, i;
+  int st;
   if (!f) return afv_geometry(g, n, r, p, b);
   if ((st = check_inputs(n, p, b)) != AFV_OK) return st;
   if ((st = afv_geometry_prepare(g, n, r, p->l, b)) != AFV_OK) return st;
-  g->energy = 0;
-  if (n > 0)
-    memset(g->grad, 0, (size_t)g->nbr_start[n] * 2 * sizeof(double));
-  for (i = 0; i < n; i++) {
-    cell_targets c = targets_of(p, i);
-    afv_cell_shape(g, i, p->l);
-    g->energy += afv_cell_energy(p, i, g->area[i], g->perim[i], g->arc[i]);
-    afv_cell_shape_gradient(g, i, p->l, p->cap, 2 * c.KA * (g->area[i] - c.A0),
-                            2 * c.KP * (g->perim[i] - c.P0), p->Lambda,
-                            g->grad);
-  }
+  shape_all(g, n, p, 1);
+  g->energy = total_energy(g, n, p);
   gather_forces(g, n, f);
   return AFV_OK;
 }

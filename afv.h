@@ -20,6 +20,7 @@
 #define AFV_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 
 /* ---- status codes ------------------------------------------------------ */
@@ -111,8 +112,20 @@ typedef struct afv_geom {
   /* private: capacities and work space */
   int     cap_cells, cap_nbr, cap_pieces, cap_bins, cap_work;
   int    *bin_start, *bin_cell;
+  double *bin_xy;       /* centres in bin order (wrapped if periodic) */
+  int    *cand_start;   /* Verlet candidates of cell i (see geom.c):     */
+  int    *cand;         /*   cand[cand_start[i] .. cand_start[i+1]-1]    */
+  double *cand_r0;      /* centres when the candidates were built */
+  double *rw;           /* centres as the lists see them (wrapped) */
+  afv_box cand_box;     /* box and l the candidates were built for */
+  double  cand_l;
+  int     cand_n;       /* cells they were built for; 0 = none */
+  int     cap_cand, n_rebuilds;  /* n_rebuilds: candidate rebuilds so far */
+  double *edge;         /* per slot s: u = D/d (2), d, half-chord
+                        ** sqrt(l^2 - d^2/4), set by afv_cell_shape */
   double *grad;         /* per neighbour slot s: dE_i/dr_nbr[s] */
-  double *work;         /* per-cell clipping work space */
+  double *work;         /* clipping work space, one block per thread */
+  int     work_stride;  /* doubles per thread block of work */
 } afv_geom;
 
 void afv_geom_free(afv_geom *g);
@@ -193,5 +206,294 @@ int  afv_traj_write_frame(FILE *fp, long long step, double t, int n,
 /* Reads every complete frame (a truncated last frame is dropped). */
 int  afv_traj_read(const char *path, afv_traj *tr, char *err, size_t errlen);
 void afv_traj_free(afv_traj *tr);
+
+/* ---- dynamics (dynamics.c) -------------------------------------------- */
+/* Overdamped active Brownian dynamics (paper, Eqs. of motion and abp):
+**     dr_i/dt = mu F_i + v0_i n_i,  n_i = (cos th_i, sin th_i),
+**     th_i(t + dt) = th_i(t) + sqrt(2 Dr_i dt) xi_i,  xi_i standard normal,
+** integrated by Euler-Maruyama.  The noise comes from a counter-based
+** generator (Philox4x32-10) keyed by the seed, so a run depends only on
+** (seed, parameters), whatever the order cells are visited in. */
+
+/* A step that moves a cell farther than AFV_MAX_STEP_DISP * l is refused
+** (AFV_EUNSTABLE): the forces change on the scale l, so such a step is
+** outside the range where Euler's method follows the dynamics at all. */
+#define AFV_MAX_STEP_DISP 0.5
+#define AFV_EUNSTABLE    8  /* NaN/Inf force or a step > l/2: see afv_sim.bad_cell */
+
+typedef struct afv_dyn {
+  double mu;          /* mobility (inverse friction), > 0 */
+  double v0;          /* self-propulsion speed, in l per unit time */
+  double Dr;          /* rotational diffusion constant, 1/time, >= 0 */
+  double dt;          /* time step, > 0 */
+  const double *v0_i; /* optional per-cell v0 (length n), NULL = scalar v0 */
+  const double *Dr_i; /* optional per-cell Dr (length n), NULL = scalar Dr */
+  unsigned long long seed; /* key of the random streams */
+} afv_dyn;
+
+/* Paper defaults: mu 1, v0 0, Dr 0.1, dt 0.01, seed 1. */
+void afv_dyn_default(afv_dyn *d);
+
+/* A running simulation.  Zero-initialise, then afv_sim_init; free with
+** afv_sim_free.  Invariant between calls: f and geom hold the forces and
+** the geometry at r, and geom.energy the energy there. */
+typedef struct afv_sim {
+  int        n;        /* number of cells */
+  long long  step;     /* steps taken since the start of the active run */
+  double     t;        /* simulated time, step * dt after a step */
+  double    *r;        /* 2n centres, UNWRAPPED (minimum image inside) */
+  double    *theta;    /* n polarity angles (radians, not reduced) */
+  double    *f;        /* 2n forces -dE/dr at r */
+  afv_params par;      /* model; per-cell arrays point into own[] */
+  afv_box    box;      /* boundary */
+  afv_dyn    dyn;      /* dynamics; per-cell arrays point into own[] */
+  afv_geom   geom;     /* geometry at r (energy, areas, contacts, ...) */
+  int        bad_cell; /* on AFV_EUNSTABLE: the offending cell, else -1 */
+  double     bad_disp; /* on AFV_EUNSTABLE: its step length / l (NaN if
+                       ** the force was not finite) */
+  double    *own;      /* private: one block holding r, theta, f and the
+                       ** copies of the per-cell parameter arrays */
+} afv_sim;
+
+/* Copies r (2n), theta (n; NULL = all 0), the parameters and their per-cell
+** arrays, and computes the forces.  Status as afv_compute, or AFV_EINVAL. */
+int  afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
+                  const afv_params *p, const afv_box *b, const afv_dyn *d);
+/* One Euler-Maruyama step: r += dt (mu F + v0 n); th += sqrt(2 Dr dt) xi;
+** then the forces at the new r.  Allocation-free once the geometry buffers
+** have grown.  AFV_EUNSTABLE (state unchanged) if some cell would move more
+** than AFV_MAX_STEP_DISP l or its force is not finite. */
+int  afv_sim_step(afv_sim *s);
+void afv_sim_free(afv_sim *s);
+/* Largest |F_i| over the cells (0 if n = 0). */
+double afv_sim_max_force(const afv_sim *s);
+
+/* Relaxation at zero activity (v0 = 0, no noise) by FIRE (Bitzek et al.,
+** PRL 97, 170201, 2006) with one guard: a step that raises the energy (by
+** more than its rounding, slack below) is undone and FIRE restarts with
+** half the time step, so the energy never increases.  Stops when
+** max_i |F_i| <= tol, after max_iter steps, or when E stalls (stalled). */
+#define AFV_RELAX_SLACK 1e-13  /* rounding of E, relative to sum_i |e_i| */
+typedef struct afv_relax_report {
+  long   iterations;   /* accepted + rejected steps taken */
+  long   rejected;     /* steps undone because the energy rose */
+  double max_force;    /* max_i |F_i| at the end */
+  double energy0;      /* energy before */
+  double energy;       /* energy after */
+  double slack;        /* allowed rise per step: AFV_RELAX_SLACK sum|e_i| */
+  int    converged;    /* 1 if max_force <= tol */
+  int    stalled;      /* 1 if stopped because E no longer decreased (a
+                       ** minimum on a kink of E: see dynamics.c) */
+} afv_relax_report;
+/* Optional observer, called after every accepted step (may be NULL). */
+typedef void (*afv_relax_monitor)(void *ctx, long iter, double energy,
+                                  double max_force);
+/* Moves s->r (step, t and theta unchanged); s->f and s->geom end at the
+** final r.  Status as afv_compute, or AFV_ENOMEM. */
+int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
+              afv_relax_monitor mon, void *ctx);
+
+/* ---- initial configurations -------------------------------------------- */
+/* Compact cluster: the n sites of a triangular lattice of spacing a nearest
+** to the centre of the box (the origin in open space); a is reduced if the
+** disk would not fit in the periodic box.  r has 2n entries.  Returns
+** AFV_OK, or AFV_ENOMEM (temporary list of lattice sites). */
+int  afv_init_cluster(int n, double a, const afv_box *b, double *r);
+/* Uniform random centres in [0, Lx) x [0, Ly) (open space: in a square of
+** side side centred on the origin), from the streams of seed. */
+void afv_init_random(int n, unsigned long long seed, const afv_box *b,
+                     double side, double *r);
+/* Uniform random angles in [0, 2 pi) from the streams of seed. */
+void afv_init_angles(int n, unsigned long long seed, double *theta);
+
+/* ---- random numbers ---------------------------------------------------- */
+/* Philox4x32-10 (Salmon et al., SC'11; Random123): out = bijection of the
+** 128-bit counter ctr under the 64-bit key. */
+void afv_philox4x32(const uint32_t ctr[4], const uint32_t key[2],
+                    uint32_t out[4]);
+/* Streams: counter = (cell, step low 32 bits, step high 32 bits, purpose),
+** key = seed.  One call yields 2 uniforms with 53 random bits each. */
+enum { AFV_RNG_NOISE = 1, AFV_RNG_INIT_POS = 2, AFV_RNG_INIT_ANGLE = 3 };
+/* Two uniforms in (0, 1] (multiples of 2^-53) for (seed, cell, step, purpose). */
+void afv_rng_uniform2(unsigned long long seed, uint32_t cell,
+                      unsigned long long step, unsigned purpose, double u[2]);
+/* One standard normal (Box-Muller, cosine branch) for the same stream. */
+double afv_rng_normal(unsigned long long seed, uint32_t cell,
+                      unsigned long long step, unsigned purpose);
+
+/* ---- run files (io.c): per-cell values and checkpoints ----------------- */
+/* Columns of a CELLS file (format in io.c), by index. */
+enum { AFV_COL_X, AFV_COL_Y, AFV_COL_THETA, AFV_COL_V0, AFV_COL_DR,
+       AFV_COL_KA, AFV_COL_KP, AFV_COL_A0, AFV_COL_P0, AFV_NCOLS };
+extern const char *const afv_cell_columns[AFV_NCOLS]; /* "x", "y", ... */
+
+typedef struct afv_cells {
+  int     n;                /* number of cells (rows) */
+  int     has[AFV_NCOLS];   /* 1 if the file has that column */
+  double *col[AFV_NCOLS];   /* col[k][i]: column k of cell i (NULL if absent) */
+} afv_cells;
+
+/* Reads a CELLS file; on failure err names file:line. */
+int  afv_read_cells(const char *path, afv_cells *c, char *err, size_t errlen);
+/* Writes c in the CELLS format (%.17g, so it reads back exactly). */
+int  afv_write_cells(FILE *fp, const afv_cells *c);
+void afv_cells_free(afv_cells *c);
+
+/* The append-only outputs whose sizes a checkpoint records: on resume they
+** are cut back to these sizes, so they match the checkpointed state. */
+#define AFV_CKPT_FILES 3
+extern const char *const afv_checkpoint_files[AFV_CKPT_FILES];
+
+/* Everything needed to continue a run beside its parameters (exact). */
+typedef struct afv_checkpoint {
+  int        n;      /* cells */
+  long long  step;   /* steps taken */
+  double     t;      /* simulated time */
+  unsigned long long seed;         /* generator key (also in params.txt) */
+  long long  bytes[AFV_CKPT_FILES]; /* sizes of afv_checkpoint_files[k] */
+  double    *r;      /* 2n unwrapped centres */
+  double    *theta;  /* n angles */
+} afv_checkpoint;
+
+/* Writes (atomically) / reads a checkpoint file (format in io.c). */
+int  afv_checkpoint_write(const char *path, const afv_checkpoint *c);
+int  afv_checkpoint_read(const char *path, afv_checkpoint *c, char *err,
+                         size_t errlen);
+void afv_checkpoint_free(afv_checkpoint *c);
+
+/* ---- analysis (analysis.c) --------------------------------------------- */
+/* Contacts, clusters and confluency of one configuration (paper: clustering
+** and EMT sections).  A contact is a straight edge longer than
+** AFV_CONTACT_TOL l (the longer of the two cells' views, so both agree);
+** a cluster is a connected set of cells under contact.  A cluster that
+** winds around the periodic box is one cluster, its cells counted once.
+** Zero-initialise; free with afv_clusters_free. */
+typedef struct afv_clusters {
+  int     n;            /* cells */
+  int     count;        /* number of clusters (isolated cells included) */
+  int     giant;        /* N_GC: cells in the largest cluster */
+  double  omega;        /* Omega = sum_j N_j omega_j / N (0 if n = 0) */
+  int     n_pairs;      /* |C|: contacting pairs, each once */
+  int    *pairs;        /* C, sorted: pairs[2k] < pairs[2k+1] */
+  int     n_junctions;  /* triple junctions (tissue vertices), each once */
+  double *junction;     /* their positions, interleaved, wrapped into box */
+  int    *label;        /* label[i] in [0, count): cluster of cell i */
+  int    *size;         /* size[c] = N_c, cells of cluster c */
+  int    *ec;           /* ec[c] = Ec_c, contacting edges of cluster c */
+  int    *v3;           /* v3[c] = V3_c, triple junctions of cluster c */
+  int    *wraps;        /* wraps[c] = 1 if cluster c winds around the box */
+  double *omega_c;      /* omega_c[c] = V3 / max(Ec - N + 1 - wraps, 1) */
+  int    *contact;      /* per piece q of the geom: 1 if a contacting edge */
+  int    *partner;      /* per piece: the same edge in the other cell, -1 */
+  /* private: capacities and work space */
+  int     cap_pairs, cap_junctions, cap_cells, cap_pieces;
+  int    *parent, *root_label, *vparent;
+  double *off;
+} afv_clusters;
+
+/* Clusters, Omega and junctions of the configuration r whose geometry g
+** has been computed (afv_geometry) with cell radius l and box b. */
+int  afv_clusters_compute(afv_clusters *c, const afv_geom *g, const double *r,
+                          double l, const afv_box *b);
+void afv_clusters_free(afv_clusters *c);
+
+/* Generalised T1 count (paper, glassy dynamics section):
+** T1(t) = |C(t) symmetric-difference C(0)| / 2. */
+typedef struct afv_t1 {
+  int  n_pairs0;        /* |C(0)| */
+  int *pairs0;          /* C(0), sorted as afv_clusters.pairs */
+} afv_t1;
+int    afv_t1_start(afv_t1 *t, const afv_clusters *c);  /* C(0) := c's C */
+double afv_t1_count(const afv_t1 *t, const afv_clusters *c);
+void   afv_t1_free(afv_t1 *t);
+
+/* Mean-squared displacement on log-spaced lags, plain and relative to the
+** contacting neighbours at the time origin (a cell with none: plain). */
+typedef struct afv_msd {
+  int     nlags;        /* number of lags */
+  int    *lag;          /* lag k in frames, increasing */
+  double *dt;           /* its mean length in time */
+  double *msd;          /* plain MSD */
+  double *msd_rel;      /* relative MSD */
+  long   *samples;      /* (origin, cell) pairs averaged */
+} afv_msd;
+/* Makes a trajectory continuous: each frame-to-frame displacement becomes
+** its minimum image.  A no-op on unwrapped trajectories whose cells move
+** less than half a box per frame; needed for wrapped ones. */
+void afv_traj_unwrap(afv_traj *tr);
+/* MSD over time origins first .. nframes-2 (frames equally spaced in time);
+** tr must be unwrapped. */
+int  afv_msd_compute(afv_msd *m, const afv_traj *tr, int first, double l);
+int  afv_msd_lag_index(const afv_msd *m, double lag);  /* nearest lag */
+void afv_msd_free(afv_msd *m);
+
+/* Integrated autocorrelation time 1 + 2 sum_t rho(t), in samples, Sokal's
+** window c = 5; HUGE_VAL for a constant series.  *reliable (may be NULL)
+** is 0 when the series is too short for the window. */
+double afv_autocorr_time(const double *x, int n, int *reliable);
+
+/* Hexagonal mean-field E/M point (paper, EMT section; units l = KA = 1):
+** the P0 below which the honeycomb closes its gaps.  5.732 for the paper's
+** Lambda = 0.2, A0 = pi, KP = 1. */
+double afv_meanfield_p0(double Lambda, double A0, double KP);
+/* Energy of one cell of the gapped honeycomb, contact half-angle theta. */
+double afv_meanfield_energy(double theta, double Lambda, double A0, double KP,
+                            double P0);
+
+/* Everything `afv analyze` reports for a trajectory. */
+typedef struct afv_analysis {
+  int     n;            /* cells */
+  int     nframes;      /* frames analysed */
+  int     first;        /* first frame of the steady part */
+  double *t;            /* time of frame k */
+  double *ngc_frac;     /* N_GC / N at frame k */
+  double *n_clusters;   /* number of clusters at frame k */
+  double *omega;        /* Omega at frame k */
+  double *t1;           /* T1 at frame k, from frame 0 */
+  double *csd;          /* csd[s], s = 1..n: p(s), fraction of the clusters
+                        ** of the steady frames that have s cells */
+  afv_msd msd;          /* from the steady frames (nlags 0 if < 2) */
+  double  mean[3], sd[3]; /* steady means, standard deviations of
+                        ** N_GC/N, number of clusters, Omega */
+  double  t1_final;     /* T1 at the last frame */
+  double  ds, ds_lag;   /* D_s = MSD_rel / (4 lag) at the lag used */
+  double  ds_plain;     /* same from the plain MSD */
+  double  d0, deff;     /* D_0 = v0^2 / (2 Dr), D_eff = D_s / D_0 */
+  double  tau_ngc;      /* autocorrelation time of N_GC (time units) */
+  int     tau_reliable; /* 0 if the series was too short for the window */
+} afv_analysis;
+/* Analyses every frame of tr (unwrapped); steady part: t >= steady_from;
+** D_s at the computed lag nearest to `lag`. */
+int  afv_analyze(afv_analysis *a, const afv_traj *tr, double l, double v0,
+                 double Dr, double steady_from, double lag);
+/* Writes msd.csv, csd.csv, series.csv, summary.txt and the SVG plots into
+** the existing directory dir, each atomically. */
+int  afv_analysis_write(const afv_analysis *a, const char *dir, char *err,
+                        size_t errlen);
+void afv_analysis_free(afv_analysis *a);
+
+/* ---- drawing (svg.c) ---------------------------------------------------- */
+/* Draws the configuration r (geometry g computed for it) like the paper's
+** Fig. 1: red centres, blue contact edges, pink arcs (SVG arc commands),
+** hollow purple triple junctions, cyan polarity arrows (theta may be NULL),
+** the periodic box in black.  Elements carry class="centre", "edge", "arc",
+** "junction", "polarity". */
+int afv_svg_write(FILE *out, const afv_geom *g, int n, const double *r,
+                  const double *theta, const afv_params *p, const afv_box *b);
+
+/* A small line-plot helper for analysis figures. */
+typedef struct afv_plot {
+  const char *title, *xlabel, *ylabel;  /* texts (escaped on output) */
+  int         logx, logy;  /* 1: log10 axis with decade ticks */
+  double      ymin, ymax;  /* fixed y range if ymin < ymax, else fitted */
+} afv_plot;
+typedef struct afv_plot_series {
+  const double *x, *y;  /* n points; non-positive values skipped on log axes */
+  int           n;
+  const char   *label;  /* legend text (NULL: none) */
+  const char   *color;  /* SVG colour, e.g. "#1f77b4" */
+} afv_plot_series;
+int afv_svg_plot(FILE *out, const afv_plot *pl, const afv_plot_series *s,
+                 int ns);
 
 #endif /* AFV_H */

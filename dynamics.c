@@ -1,4 +1,471 @@
-/* dynamics.c -- being written. */
+/*
+** dynamics.c -- active Brownian dynamics, relaxation, initial states, noise.
+**
+** Equation of motion (paper, Sec. Model), integrated by Euler-Maruyama:
+**     r_i  <- r_i + dt (mu F_i + v0_i n_i),      n_i = (cos th_i, sin th_i)
+**     th_i <- th_i + sqrt(2 Dr_i dt) xi_i,       xi_i ~ N(0, 1)
+**     F    <- -grad E at the new r.
+** Both updates use the state at the start of the step (Ito).  Positions stay
+** unwrapped, so r_i(t) - r_i(0) is the true displacement (for the MSD); the
+** geometry applies the minimum image itself.
+**
+** Invariant of afv_sim between calls: f, geom and geom.energy describe r.
+**
+** RANDOM NUMBERS.  Philox4x32-10 (Salmon, Moraes, Dror, Shaw, "Parallel
+** random numbers: as easy as 1, 2, 3", SC'11), a counter-based generator:
+** each output is a keyed bijection of a 128-bit counter, with no state to
+** carry.  The normal for cell i at step s is drawn from the counter
+** (i, s mod 2^32, s div 2^32, purpose) under the key seed.  So a run depends
+** only on (seed, parameters): not on the order in which cells are visited
+** (any number of threads gives the same bits), and a resumed run needs only
+** the step count to continue the same streams.  Philox passes BigCrush and
+** costs 10 multiply rounds: a few nanoseconds, nothing beside the geometry.
+** Normals come from the Box-Muller transform (cosine branch): it is exact,
+** and it takes a fixed number of uniforms per normal, so each (cell, step)
+** uses exactly one counter; a rejection method (polar, ziggurat) would need
+** a variable number and break the one-counter-per-draw bookkeeping.  The
+** uniforms have 53 random bits and lie in (0, 1], so log(u) is finite and
+** |xi| <= sqrt(2 * 53 ln 2) = 8.57.  Bit-for-bit equality across machines
+** relies on the C library's log, cos and sin returning the same bits.
+*/
 #include "afv.h"
 
-typedef int afv_dynamics_placeholder;
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define TWO_PI 6.28318530717958647692
+
+/* OpenMP (make OPENMP=1, see geom.c): the per-cell loops of a step touch
+** only their own cell, and the noise is drawn per (cell, step), so every
+** thread count gives the same bits.  Empty in the plain C99 build. */
+#ifdef _OPENMP
+#define AFV_PARALLEL_FOR _Pragma("omp parallel for schedule(static)")
+#define AFV_PARALLEL_FOR_FIRST_BAD \
+  _Pragma("omp parallel for schedule(static) reduction(min:bad)")
+#else
+#define AFV_PARALLEL_FOR
+#define AFV_PARALLEL_FOR_FIRST_BAD
+#endif
+
+/* ---- Philox4x32-10 ----------------------------------------------------- */
+/* Multipliers and Weyl key increments from Random123 (philox.h). */
+#define PHILOX_M0 0xD2511F53u
+#define PHILOX_M1 0xCD9E8D57u
+#define PHILOX_W0 0x9E3779B9u  /* golden ratio */
+#define PHILOX_W1 0xBB67AE85u  /* sqrt(3) - 1 */
+#define PHILOX_ROUNDS 10
+
+void afv_philox4x32(const uint32_t ctr[4], const uint32_t key[2],
+                    uint32_t out[4])
+{
+  uint32_t c0 = ctr[0], c1 = ctr[1], c2 = ctr[2], c3 = ctr[3];
+  uint32_t k0 = key[0], k1 = key[1];
+  int round;
+  for (round = 0; round < PHILOX_ROUNDS; round++) {
+    uint64_t p0 = (uint64_t)PHILOX_M0 * c0, p1 = (uint64_t)PHILOX_M1 * c2;
+    if (round > 0) {          /* the key is bumped between rounds */
+      k0 += PHILOX_W0;
+      k1 += PHILOX_W1;
+    }
+    c0 = (uint32_t)(p1 >> 32) ^ c1 ^ k0;
+    c1 = (uint32_t)p1;
+    c2 = (uint32_t)(p0 >> 32) ^ c3 ^ k1;
+    c3 = (uint32_t)p0;
+  }
+  out[0] = c0; out[1] = c1; out[2] = c2; out[3] = c3;
+}
+
+/* 53 bits from two words -> (0, 1]: (k + 1) 2^-53, k in [0, 2^53). */
+static double unit53(uint32_t hi, uint32_t lo)
+{
+  double k = (double)(hi >> 5) * 67108864.0 + (double)(lo >> 6);
+  return (k + 1.0) * (1.0 / 9007199254740992.0);
+}
+
+void afv_rng_uniform2(unsigned long long seed, uint32_t cell,
+                      unsigned long long step, unsigned purpose, double u[2])
+{
+  uint32_t ctr[4], key[2], out[4];
+  ctr[0] = cell;
+  ctr[1] = (uint32_t)(step & 0xffffffffu);
+  ctr[2] = (uint32_t)(step >> 32);
+  ctr[3] = (uint32_t)purpose;
+  key[0] = (uint32_t)(seed & 0xffffffffu);
+  key[1] = (uint32_t)(seed >> 32);
+  afv_philox4x32(ctr, key, out);
+  u[0] = unit53(out[0], out[1]);
+  u[1] = unit53(out[2], out[3]);
+}
+
+double afv_rng_normal(unsigned long long seed, uint32_t cell,
+                      unsigned long long step, unsigned purpose)
+{
+  double u[2];
+  afv_rng_uniform2(seed, cell, step, purpose, u);
+  return sqrt(-2.0 * log(u[0])) * cos(TWO_PI * u[1]);
+}
+
+/* ---- the simulation ---------------------------------------------------- */
+void afv_dyn_default(afv_dyn *d)
+{
+  memset(d, 0, sizeof *d);
+  d->mu = 1;
+  d->v0 = 0;
+  d->Dr = 0.1;
+  d->dt = 0.01;
+  d->seed = 1;
+}
+
+static int dyn_check(const afv_dyn *d, int n)
+{
+  int i;
+  if (!(isfinite(d->mu) && d->mu > 0 && isfinite(d->dt) && d->dt > 0
+        && isfinite(d->v0) && isfinite(d->Dr) && d->Dr >= 0))
+    return AFV_EINVAL;
+  for (i = 0; i < n; i++) {
+    if (d->v0_i && !isfinite(d->v0_i[i])) return AFV_EINVAL;
+    if (d->Dr_i && !(isfinite(d->Dr_i[i]) && d->Dr_i[i] >= 0))
+      return AFV_EINVAL;
+  }
+  return AFV_OK;
+}
+
+/* Copies a caller's per-cell array into *next (advancing it), or NULL. */
+static const double *own_copy(const double *src, int n, double **next)
+{
+  double *dst = *next;
+  if (!src) return NULL;
+  memcpy(dst, src, (size_t)n * sizeof(double));
+  *next += n;
+  return dst;
+}
+
+void afv_sim_free(afv_sim *s)
+{
+  afv_geom_free(&s->geom);
+  free(s->own);
+  memset(s, 0, sizeof *s);
+}
+
+int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
+                 const afv_params *p, const afv_box *b, const afv_dyn *d)
+{
+  double *next;
+  int st;
+  afv_sim_free(s);
+  if (n < 0 || dyn_check(d, n) != AFV_OK) return AFV_EINVAL;
+  /* r, f (2n each), theta (n), six optional per-cell arrays (n each) */
+  s->own = malloc((size_t)(11 * n + 1) * sizeof(double));
+  if (!s->own) return AFV_ENOMEM;
+  s->n = n;
+  s->r = s->own;
+  s->f = s->own + 2 * n;
+  s->theta = s->own + 4 * n;
+  next = s->own + 5 * n;
+  memcpy(s->r, r, (size_t)(2 * n) * sizeof(double));
+  if (theta) memcpy(s->theta, theta, (size_t)n * sizeof(double));
+  else memset(s->theta, 0, (size_t)n * sizeof(double));
+  s->par = *p;
+  s->par.KA_i = own_copy(p->KA_i, n, &next);
+  s->par.KP_i = own_copy(p->KP_i, n, &next);
+  s->par.A0_i = own_copy(p->A0_i, n, &next);
+  s->par.P0_i = own_copy(p->P0_i, n, &next);
+  s->dyn = *d;
+  s->dyn.v0_i = own_copy(d->v0_i, n, &next);
+  s->dyn.Dr_i = own_copy(d->Dr_i, n, &next);
+  s->box = b ? *b : s->box;
+  s->step = 0;
+  s->t = 0;
+  s->bad_cell = -1;
+  s->bad_disp = 0;
+  st = afv_compute(&s->geom, n, s->r, &s->par, &s->box, s->f);
+  if (st != AFV_OK) afv_sim_free(s);
+  return st;
+}
+
+double afv_sim_max_force(const afv_sim *s)
+{
+  double m2 = 0;
+  int i;
+  for (i = 0; i < s->n; i++) {
+    double q = s->f[2*i] * s->f[2*i] + s->f[2*i+1] * s->f[2*i+1];
+    if (!(q <= m2)) m2 = q;   /* a NaN wins, so it is seen */
+  }
+  return sqrt(m2);
+}
+
+/* Displacement of cell i over one step, dt (mu F_i + v0_i n_i). */
+static void step_of(const afv_sim *s, int i, double *dx, double *dy)
+{
+  double v0 = s->dyn.v0_i ? s->dyn.v0_i[i] : s->dyn.v0;
+  double th = s->theta[i], dt = s->dyn.dt, mu = s->dyn.mu;
+  *dx = dt * (mu * s->f[2*i] + v0 * cos(th));
+  *dy = dt * (mu * s->f[2*i+1] + v0 * sin(th));
+}
+
+int afv_sim_step(afv_sim *s)
+{
+  double lim = AFV_MAX_STEP_DISP * s->par.l;
+  unsigned long long seed = s->dyn.seed, step = (unsigned long long)s->step;
+  int i, bad = s->n;
+  /* Check every move before making any: a refused step changes nothing.
+  ** The test is written so that a NaN fails it.  bad = the first offending
+  ** cell (a min reduction: the same whatever the OpenMP thread count). */
+  AFV_PARALLEL_FOR_FIRST_BAD
+  for (i = 0; i < s->n; i++) {
+    double dx, dy;
+    step_of(s, i, &dx, &dy);
+    if (!(dx * dx + dy * dy <= lim * lim) && i < bad) bad = i;
+  }
+  if (bad < s->n) {
+    double dx, dy;
+    step_of(s, bad, &dx, &dy);
+    s->bad_cell = bad;
+    s->bad_disp = sqrt(dx * dx + dy * dy) / s->par.l;
+    return AFV_EUNSTABLE;
+  }
+  AFV_PARALLEL_FOR
+  for (i = 0; i < s->n; i++) {
+    double dx, dy, Dr = s->dyn.Dr_i ? s->dyn.Dr_i[i] : s->dyn.Dr;
+    step_of(s, i, &dx, &dy);
+    s->r[2*i] += dx;
+    s->r[2*i+1] += dy;
+    if (Dr > 0)
+      s->theta[i] += sqrt(2 * Dr * s->dyn.dt)
+                     * afv_rng_normal(seed, (uint32_t)i, step, AFV_RNG_NOISE);
+  }
+  s->step++;
+  s->t = (double)s->step * s->dyn.dt;   /* no drift from summing dt */
+  return afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
+}
+
+/* ---- relaxation (FIRE with an energy guard) ----------------------------- */
+/* FIRE constants as recommended by Bitzek et al. (2006). */
+#define FIRE_NMIN     5     /* downhill steps before the time step may grow */
+#define FIRE_FINC     1.1   /* time step growth factor */
+#define FIRE_FDEC     0.5   /* time step cut on uphill motion or rejection */
+#define FIRE_ALPHA0   0.1   /* initial velocity mixing */
+#define FIRE_FALPHA   0.99  /* mixing decay */
+/* Our scales (unit mass, forces ~ KA l^3): the start and largest time steps,
+** and the largest move per step, which keeps FIRE within the range where
+** the neighbour structure changes little in one step. */
+#define FIRE_DT0      0.02
+#define FIRE_DTMAX    0.2
+#define FIRE_MAX_MOVE 0.1   /* in units of l */
+/* This many rejections in a row means no step lowers E in floating point:
+** the minimum is reached to rounding, whatever the tolerance says. */
+#define FIRE_MAX_REJECT 60
+/* Stall: E fell by less than FIRE_STALL_DROP sum_i |e_i| over the last
+** FIRE_STALL_WINDOW steps.  This happens when the minimum lies on a kink of
+** E, where the force is discontinuous and does not vanish: E has a kink
+** wherever a triple junction crosses a cell's circle (a gap opens), and
+** above P0* ~ 5.7 the relaxed tissue sits exactly there. */
+#define FIRE_STALL_WINDOW 1000
+#define FIRE_STALL_DROP   1e-12
+/* E sums N terms e_i, each good to ~1e-16 relative: near the minimum a
+** step lowers E by h |F|^2, below that rounding, and comparing computed
+** energies there is comparing noise.  So "E rose" means: by more than
+** AFV_RELAX_SLACK * sum_i |e_i| (about 500 ulps of the energy scale). */
+
+typedef struct fire {
+  double *v, *r_old, *f_old;  /* velocity; state before the trial step */
+  double h, alpha;            /* time step and mixing */
+  int npos;                   /* downhill steps in a row */
+} fire;
+
+static void fire_restart(fire *F, int n)
+{
+  memset(F->v, 0, (size_t)(2 * n) * sizeof(double));
+  F->h *= FIRE_FDEC;
+  F->alpha = FIRE_ALPHA0;
+  F->npos = 0;
+}
+
+static double dot2n(const double *a, const double *b, int n)
+{
+  double s = 0;
+  int k;
+  for (k = 0; k < 2 * n; k++) s += a[k] * b[k];
+  return s;
+}
+
+/* The FIRE velocity update: mixing towards F when going downhill. */
+static void fire_velocity(fire *F, const double *f, int n)
+{
+  double P = dot2n(f, F->v, n), vn, fn;
+  int k;
+  if (P <= 0) {
+    fire_restart(F, n);
+  } else {
+    vn = sqrt(dot2n(F->v, F->v, n));
+    fn = sqrt(dot2n(f, f, n));
+    for (k = 0; k < 2 * n; k++)
+      F->v[k] = (1 - F->alpha) * F->v[k] + F->alpha * vn * f[k] / fn;
+    if (++F->npos > FIRE_NMIN) {
+      F->h = F->h * FIRE_FINC < FIRE_DTMAX ? F->h * FIRE_FINC : FIRE_DTMAX;
+      F->alpha *= FIRE_FALPHA;
+    }
+  }
+  for (k = 0; k < 2 * n; k++) F->v[k] += F->h * f[k];
+}
+
+/* Moves r by h v, scaled down so that no cell moves more than the cap. */
+static void fire_move(fire *F, double *r, int n, double l)
+{
+  double m2 = 0, scale = 1, cap = FIRE_MAX_MOVE * l;
+  int i, k;
+  for (i = 0; i < n; i++) {
+    double q = F->v[2*i] * F->v[2*i] + F->v[2*i+1] * F->v[2*i+1];
+    if (q > m2) m2 = q;
+  }
+  if (F->h * sqrt(m2) > cap) scale = cap / (F->h * sqrt(m2));
+  for (k = 0; k < 2 * n; k++) r[k] += scale * F->h * F->v[k];
+}
+
+/* sum_i |e_i|: the scale of the rounding error of E. */
+static double energy_scale(const afv_sim *s)
+{
+  const afv_geom *g = &s->geom;
+  double sum = 0;
+  int i;
+  for (i = 0; i < s->n; i++)
+    sum += fabs(afv_cell_energy(&s->par, i, g->area[i], g->perim[i],
+                                g->arc[i]));
+  return sum;
+}
+
+int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
+              afv_relax_monitor mon, void *ctx)
+{
+  size_t bytes = (size_t)(2 * s->n + 1) * sizeof(double);
+  fire F;
+  int n = s->n, st = AFV_OK, reject_run = 0;
+  double E, E_window, scale;
+  memset(rep, 0, sizeof *rep);
+  F.v = calloc(1, bytes);
+  F.r_old = malloc(bytes);
+  F.f_old = malloc(bytes);
+  F.h = FIRE_DT0;
+  F.alpha = FIRE_ALPHA0;
+  F.npos = 0;
+  E = E_window = rep->energy0 = s->geom.energy;
+  scale = energy_scale(s);
+  rep->slack = AFV_RELAX_SLACK * scale;
+  if (!F.v || !F.r_old || !F.f_old) st = AFV_ENOMEM;
+  while (st == AFV_OK && afv_sim_max_force(s) > tol
+         && rep->iterations < max_iter && !rep->stalled) {
+    fire_velocity(&F, s->f, n);
+    memcpy(F.r_old, s->r, bytes - sizeof(double));
+    memcpy(F.f_old, s->f, bytes - sizeof(double));
+    fire_move(&F, s->r, n, s->par.l);
+    rep->iterations++;
+    st = afv_compute(&s->geom, n, s->r, &s->par, &s->box, s->f);
+    if (st == AFV_OK && s->geom.energy <= E + rep->slack) {
+      E = s->geom.energy;
+      reject_run = 0;
+      if (mon) mon(ctx, rep->iterations, E, afv_sim_max_force(s));
+    } else if (st == AFV_OK || st == AFV_ECOINCIDENT) {
+      memcpy(s->r, F.r_old, bytes - sizeof(double));  /* undo */
+      memcpy(s->f, F.f_old, bytes - sizeof(double));
+      rep->rejected++;
+      reject_run++;
+      fire_restart(&F, n);
+      st = AFV_OK;
+    }
+    if (reject_run >= FIRE_MAX_REJECT) rep->stalled = 1;
+    if (rep->iterations % FIRE_STALL_WINDOW == 0) {
+      if (E_window - E <= FIRE_STALL_DROP * scale) rep->stalled = 1;
+      E_window = E;
+    }
+  }
+  /* restore the invariant: geometry and forces at the final r */
+  if (st == AFV_OK) st = afv_compute(&s->geom, n, s->r, &s->par, &s->box, s->f);
+  rep->energy = s->geom.energy;
+  rep->max_force = afv_sim_max_force(s);
+  rep->converged = rep->max_force <= tol;
+  free(F.v);
+  free(F.r_old);
+  free(F.f_old);
+  return st;
+}
+
+/* ---- initial configurations -------------------------------------------- */
+/* A triangular-lattice site (i, j): position a (i + j/2, j sqrt(3)/2), and
+** squared distance from the origin a^2 (i^2 + i j + j^2), exact in integers. */
+typedef struct site {
+  long d2;   /* i^2 + i j + j^2 */
+  int i, j;  /* lattice indices */
+} site;
+
+static int site_cmp(const void *pa, const void *pb)
+{
+  const site *a = pa, *b = pb;
+  if (a->d2 != b->d2) return a->d2 < b->d2 ? -1 : 1;
+  if (a->j != b->j) return a->j < b->j ? -1 : 1;
+  return (a->i > b->i) - (a->i < b->i);
+}
+
+int afv_init_cluster(int n, double a, const afv_box *b, double *r)
+{
+  /* the n nearest sites lie within radius sqrt(n / pi * sqrt(3)/2) + 2 */
+  int R = (int)ceil(sqrt(n * 0.8660254037844386 / 3.14159265358979) + 2);
+  int m = 0, i, j, k;
+  long maxd2 = 0;
+  double cx = 0, cy = 0;
+  site *S = malloc((size_t)(2 * R + 1) * (size_t)(2 * R + 1) * sizeof *S);
+  if (!S) return AFV_ENOMEM;
+  for (j = -R; j <= R; j++)
+    for (i = -2 * R; i <= 2 * R; i++) {
+      long d2 = (long)i * i + (long)i * j + (long)j * j;
+      if (d2 > (long)R * R) continue;
+      S[m].d2 = d2;
+      S[m].i = i;
+      S[m].j = j;
+      m++;
+    }
+  qsort(S, (size_t)m, sizeof *S, site_cmp);
+  for (k = 0; k < n; k++)
+    if (S[k].d2 > maxd2) maxd2 = S[k].d2;
+  if (b && b->periodic) {
+    /* keep a gap of a between the cluster and its periodic images */
+    double side = b->Lx < b->Ly ? b->Lx : b->Ly;
+    double amax = side / (2 * sqrt((double)maxd2) + 1);
+    if (a > amax) a = amax;
+    cx = 0.5 * b->Lx;
+    cy = 0.5 * b->Ly;
+  }
+  for (k = 0; k < n; k++) {
+    r[2*k] = cx + a * (S[k].i + 0.5 * S[k].j);
+    r[2*k+1] = cy + a * 0.8660254037844386 * S[k].j;
+  }
+  free(S);
+  return AFV_OK;
+}
+
+void afv_init_random(int n, unsigned long long seed, const afv_box *b,
+                     double side, double *r)
+{
+  int i;
+  for (i = 0; i < n; i++) {
+    double u[2];
+    afv_rng_uniform2(seed, (uint32_t)i, 0, AFV_RNG_INIT_POS, u);
+    if (b && b->periodic) {          /* 1 - u lies in [0, 1) */
+      r[2*i] = b->Lx * (1 - u[0]);
+      r[2*i+1] = b->Ly * (1 - u[1]);
+    } else {
+      r[2*i] = side * (0.5 - u[0]);
+      r[2*i+1] = side * (0.5 - u[1]);
+    }
+  }
+}
+
+void afv_init_angles(int n, unsigned long long seed, double *theta)
+{
+  int i;
+  for (i = 0; i < n; i++) {
+    double u[2];
+    afv_rng_uniform2(seed, (uint32_t)i, 0, AFV_RNG_INIT_ANGLE, u);
+    theta[i] = TWO_PI * (1 - u[0]);
+  }
+}

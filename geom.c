@@ -24,6 +24,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #define PI     3.14159265358979323846
 #define TWO_PI 6.28318530717958647692
@@ -38,6 +41,16 @@
 /* Open space: at most this many bins per cell; wider bins if the points are
 ** spread out, so that memory stays O(N) however far apart they are. */
 #define OPEN_BINS_PER_CELL 2
+
+/* OpenMP (make OPENMP=1): the per-cell loops marked AFV_PARALLEL_FOR write
+** only their own cell's entries, so any thread count gives the same bits.
+** Static schedule: each thread gets one contiguous, spatially coherent
+** block.  Without OpenMP the macro is empty and the file is plain C99. */
+#ifdef _OPENMP
+#define AFV_PARALLEL_FOR _Pragma("omp parallel for schedule(static)")
+#else
+#define AFV_PARALLEL_FOR
+#endif
 
 /* ---- small vector helpers ---------------------------------------------- */
 static double dot(double ax, double ay, double bx, double by)
@@ -80,11 +93,15 @@ static int grow_cells(afv_geom *g, int n)
   if (grow((void **)&g->nbr_start, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
   c = cap;
   if (grow((void **)&g->bin_cell, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
+  if (grow((void **)&g->bin_xy, &c, n + 1, 2 * sizeof(double)))
+    return AFV_ENOMEM;
   g->cap_cells = c;
   return AFV_OK;
 }
 
-/* Neighbour slot arrays: nbr and nbr_rev (ints), nbr_d and grad (pairs). */
+/* Neighbour slot arrays: nbr and nbr_rev (ints), nbr_d and grad (pairs),
+** edge (quadruples). */
 static int grow_nbr(afv_geom *g, int need)
 {
   int cap = g->cap_nbr, c;
@@ -97,6 +114,8 @@ static int grow_nbr(afv_geom *g, int need)
   if (grow((void **)&g->nbr_d, &c, need, 2 * sizeof(double))) return AFV_ENOMEM;
   c = cap;
   if (grow((void **)&g->grad, &c, need, 2 * sizeof(double))) return AFV_ENOMEM;
+  c = cap;
+  if (grow((void **)&g->edge, &c, need, 4 * sizeof(double))) return AFV_ENOMEM;
   g->cap_nbr = c;
   return AFV_OK;
 }
@@ -106,7 +125,8 @@ void afv_geom_free(afv_geom *g)
   free(g->area); free(g->perim); free(g->arc); free(g->contacts);
   free(g->piece_start); free(g->n_pieces); free(g->pieces);
   free(g->nbr_start); free(g->nbr); free(g->nbr_d); free(g->nbr_rev);
-  free(g->bin_start); free(g->bin_cell); free(g->grad); free(g->work);
+  free(g->bin_start); free(g->bin_cell); free(g->bin_xy); free(g->edge);
+  free(g->grad); free(g->work);
   memset(g, 0, sizeof *g);
 }
 
@@ -135,10 +155,11 @@ void afv_wrap(const afv_box *b, double *x, double *y)
 
 /* ---- cell list --------------------------------------------------------- */
 /* The grid of bins: nbx x nby bins of side wx x wy (each >= 2l), whose
-** lower-left corner is (x0, y0). */
+** lower-left corner is (x0, y0).  Periodic: the box is Lx x Ly. */
 typedef struct grid {
   int nbx, nby, periodic;
   double x0, y0, wx, wy;
+  double Lx, Ly;
 } grid;
 
 static void grid_periodic(grid *G, const afv_box *b, double l)
@@ -151,11 +172,14 @@ static void grid_periodic(grid *G, const afv_box *b, double l)
   G->x0 = G->y0 = 0;
   G->wx = b->Lx / G->nbx;
   G->wy = b->Ly / G->nby;
+  G->Lx = b->Lx;
+  G->Ly = b->Ly;
 }
 
 static void grid_open(grid *G, int n, const double *r, double l)
 {
   double xmin = r[0], xmax = r[0], ymin = r[1], ymax = r[1], w = 2 * l;
+  double hx, hy;
   int i;
   for (i = 1; i < n; i++) {
     if (r[2*i] < xmin) xmin = r[2*i];
@@ -163,51 +187,85 @@ static void grid_open(grid *G, int n, const double *r, double l)
     if (r[2*i+1] < ymin) ymin = r[2*i+1];
     if (r[2*i+1] > ymax) ymax = r[2*i+1];
   }
+  /* half spans: xmax - xmin itself overflows for coordinates near
+  ** +-DBL_MAX; and w must stay finite (inf / inf in bin_of is NaN) */
+  hx = 0.5 * xmax - 0.5 * xmin;
+  hy = 0.5 * ymax - 0.5 * ymin;
   /* widen the bins until there are at most OPEN_BINS_PER_CELL per cell */
-  while (((xmax - xmin) / w + 1) * ((ymax - ymin) / w + 1)
-         > (double)OPEN_BINS_PER_CELL * n + 16)
+  while ((2 * (hx / w) + 1) * (2 * (hy / w) + 1)
+         > (double)OPEN_BINS_PER_CELL * n + 16 && isfinite(4 * w))
     w *= 2;
   G->periodic = 0;
   G->x0 = xmin;
   G->y0 = ymin;
   G->wx = G->wy = w;
-  G->nbx = (int)floor((xmax - xmin) / w) + 1;
-  G->nby = (int)floor((ymax - ymin) / w) + 1;
+  G->nbx = (int)floor(2 * (hx / w)) + 1;
+  G->nby = (int)floor(2 * (hy / w)) + 1;
+  G->Lx = G->Ly = 0;
+}
+
+/* The position of cell i as the cell list sees it: wrapped into the box
+** when periodic, so that the displacement of two such positions is less
+** than a box side in each component (see fold). */
+static void list_position(const grid *G, const double *r, int i, double *x,
+                          double *y)
+{
+  *x = r[2*i];
+  *y = r[2*i+1];
+  if (G->periodic) {
+    *x = wrap1(*x, G->Lx);
+    *y = wrap1(*y, G->Ly);
+  }
 }
 
 static int bin_of(const grid *G, double x, double y)
 {
-  int bx, by;
-  if (G->periodic) {
-    x = wrap1(x, G->wx * G->nbx);
-    y = wrap1(y, G->wy * G->nby);
-  }
-  bx = (int)floor((x - G->x0) / G->wx);
-  by = (int)floor((y - G->y0) / G->wy);
-  if (bx < 0) bx = 0;
-  if (bx >= G->nbx) bx = G->nbx - 1;
-  if (by < 0) by = 0;
-  if (by >= G->nby) by = G->nby - 1;
+  /* clamp before the conversion to int: x - x0 overflows to inf for
+  ** coordinates near +-DBL_MAX, and (int)inf is undefined */
+  double fx = floor((x - G->x0) / G->wx), fy = floor((y - G->y0) / G->wy);
+  int bx = !(fx > 0) ? 0 : fx >= G->nbx ? G->nbx - 1 : (int)fx;
+  int by = !(fy > 0) ? 0 : fy >= G->nby ? G->nby - 1 : (int)fy;
   return by * G->nbx + bx;
 }
 
 /* Counting sort of the cells into bins: bin b holds
-** bin_cell[bin_start[b] .. bin_start[b+1]-1], in increasing cell order. */
+** bin_cell[bin_start[b] .. bin_start[b+1]-1], in increasing cell order, and
+** bin_xy holds their list positions in the same order, so that a bin scan
+** reads consecutive memory. */
 static int fill_bins(afv_geom *g, const grid *G, int n, const double *r)
 {
   int nb = G->nbx * G->nby, i, b;
+  double x, y;
   if (grow((void **)&g->bin_start, &g->cap_bins, nb + 1, sizeof(int)))
     return AFV_ENOMEM;
   memset(g->bin_start, 0, (size_t)(nb + 1) * sizeof(int));
-  for (i = 0; i < n; i++) g->bin_start[bin_of(G, r[2*i], r[2*i+1]) + 1]++;
+  for (i = 0; i < n; i++) {
+    list_position(G, r, i, &x, &y);
+    g->bin_start[bin_of(G, x, y) + 1]++;
+  }
   for (b = 0; b < nb; b++) g->bin_start[b + 1] += g->bin_start[b];
   for (i = 0; i < n; i++) {
-    b = bin_of(G, r[2*i], r[2*i+1]);
-    g->bin_cell[g->bin_start[b]++] = i;
+    int k;
+    list_position(G, r, i, &x, &y);
+    k = g->bin_start[bin_of(G, x, y)]++;
+    g->bin_cell[k] = i;
+    g->bin_xy[2*k] = x;
+    g->bin_xy[2*k+1] = y;
   }
   for (b = nb; b > 0; b--) g->bin_start[b] = g->bin_start[b - 1];
   g->bin_start[0] = 0;
   return AFV_OK;
+}
+
+/* Minimum image of a component dx of the displacement of two wrapped
+** positions (|dx| < L): one fold suffices, and replaces the division and
+** round() of afv_min_image in the innermost loop.  It is exactly odd
+** (fold(-dx) = -fold(dx)), so neighbour lists stay symmetric. */
+static double fold(double dx, double L)
+{
+  if (dx > 0.5 * L) return dx - L;
+  if (dx < -0.5 * L) return dx + L;
+  return dx;
 }
 
 /* The bin offsets to visit along one axis of nb bins: -1..1, except that
@@ -222,46 +280,113 @@ static void stencil(int nb, int periodic, int *lo, int *hi)
   }
 }
 
-/* Appends to cell i's list every j in bin (bx, by) closer than 2l. */
-static int scan_bin(afv_geom *g, const grid *G, const double *r,
-                    const afv_box *b, double l, int i, int bx, int by,
-                    int *count)
+/* Bin coordinate c (one off the grid at most) on an axis of nb bins:
+** wrapped if periodic, -1 if it lies outside an open grid.  *shift is the
+** displacement of the image of that bin next to the cell's own bin: with
+** 3 or more periodic bins, the image of a cell within 2l lies in the bin
+** column (row) c unwrapped, so r_j + shift - r_i is its minimum image
+** (the same sum fold would form).  *shift = 0 when there is nothing to do
+** or when fold must decide (fewer than 3 bins). */
+static int bin_coord(int c, int nb, int periodic, double L, double *shift)
 {
-  int k, bin;
-  if (G->periodic) {
-    bx = (bx + G->nbx) % G->nbx;
-    by = (by + G->nby) % G->nby;
-  } else if (bx < 0 || by < 0 || bx >= G->nbx || by >= G->nby) {
-    return AFV_OK;
+  *shift = 0;
+  if (c >= 0 && c < nb) return c;
+  if (!periodic) return -1;
+  if (nb >= 3) *shift = c < 0 ? -L : L;
+  return c < 0 ? c + nb : c - nb;
+}
+
+/* The neighbours (centres closer than 2l) of the cell at bin-order
+** position k, in bin (bx, by): visits the bins around it in a fixed order
+** (rows, then columns, then increasing cell number).  If nbr != NULL, writes
+** them and their displacements D = r_j - r_i to nbr[] and nbr_d[].
+** Returns their number, or -1 - m if the cell at bin-order position m has
+** the same centre. */
+static int scan_cell(const afv_geom *g, const grid *G, int k, int bx, int by,
+                     double l, int *nbr, double *nbr_d)
+{
+  double xi = g->bin_xy[2*k], yi = g->bin_xy[2*k+1], range2 = 4 * l * l;
+  int count = 0, xlo, xhi, ylo, yhi, ox, oy, m;
+  int small = G->periodic && (G->nbx < 3 || G->nby < 3);
+  stencil(G->nbx, G->periodic, &xlo, &xhi);
+  stencil(G->nby, G->periodic, &ylo, &yhi);
+  for (oy = ylo; oy <= yhi; oy++) {
+    double sy, sx;
+    int cy = bin_coord(by + oy, G->nby, G->periodic, G->Ly, &sy);
+    if (cy < 0) continue;
+    for (ox = xlo; ox <= xhi; ox++) {
+      int cx = bin_coord(bx + ox, G->nbx, G->periodic, G->Lx, &sx), bin;
+      int end;
+      if (cx < 0) continue;
+      bin = cy * G->nbx + cx;
+      end = g->bin_start[bin + 1];
+      for (m = g->bin_start[bin]; m < end; m++) {
+        double dx = g->bin_xy[2*m] - xi + sx, dy = g->bin_xy[2*m+1] - yi + sy;
+        double d2;
+        if (small) {
+          dx = fold(dx, G->Lx);
+          dy = fold(dy, G->Ly);
+        }
+        d2 = dx * dx + dy * dy;
+        if (d2 >= range2 || m == k) continue;
+        if (d2 == 0) return -1 - m;
+        if (nbr) {
+          nbr[count] = g->bin_cell[m];
+          nbr_d[2*count] = dx;
+          nbr_d[2*count+1] = dy;
+        }
+        count++;
+      }
+    }
   }
-  bin = by * G->nbx + bx;
-  for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++) {
-    int j = g->bin_cell[k];
-    double dx = r[2*j] - r[2*i], dy = r[2*j+1] - r[2*i+1], d2;
-    if (j == i) continue;
-    afv_min_image(b, &dx, &dy);
-    d2 = dx * dx + dy * dy;
-    if (d2 == 0) {
+  return count;
+}
+
+/* Runs scan_cell for every cell, bin by bin (neighbouring cells are then
+** visited together, which keeps the scanned bins in cache).  Counting pass
+** (fill = 0): nbr_start[i+1] = count of cell i (or the negative code of a
+** coincidence).  Filling pass: the lists, at nbr_start[i].  Each cell
+** writes only its own entries, so the bins may be shared among threads. */
+static void scan_all(afv_geom *g, const grid *G, double l, int fill)
+{
+  int nb = G->nbx * G->nby, b;
+  AFV_PARALLEL_FOR
+  for (b = 0; b < nb; b++) {
+    int k;
+    for (k = g->bin_start[b]; k < g->bin_start[b + 1]; k++) {
+      int i = g->bin_cell[k], s = fill ? g->nbr_start[i] : 0;
+      int c = scan_cell(g, G, k, b % G->nbx, b / G->nbx, l,
+                        fill ? g->nbr + s : NULL,
+                        fill ? g->nbr_d + 2 * s : NULL);
+      if (!fill) g->nbr_start[i + 1] = c;
+    }
+  }
+}
+
+/* After a counting pass: names the coincident pair with the smallest cell
+** number (deterministic whatever the thread count), or returns AFV_OK. */
+static int find_coincident(afv_geom *g, int n)
+{
+  int i;
+  for (i = 0; i < n; i++)
+    if (g->nbr_start[i + 1] < 0) {
+      int j = g->bin_cell[-1 - g->nbr_start[i + 1]];
       g->bad_i = i < j ? i : j;
       g->bad_j = i < j ? j : i;
       return AFV_ECOINCIDENT;
     }
-    if (d2 >= 4 * l * l) continue;
-    if (grow_nbr(g, *count + 1)) return AFV_ENOMEM;
-    g->nbr[*count] = j;
-    g->nbr_d[2 * *count] = dx;
-    g->nbr_d[2 * *count + 1] = dy;
-    (*count)++;
-  }
   return AFV_OK;
 }
 
 /* nbr_rev[s]: the slot of i in the list of j = nbr[s].  The lists are
-** symmetric (same minimum-image distance both ways), so it exists. */
+** symmetric (same minimum-image distance both ways), so it exists.  Cells
+** are visited in bin order, where the lists of j are likely in cache. */
 static void link_reverse_slots(afv_geom *g, int n)
 {
-  int i, s, t;
-  for (i = 0; i < n; i++)
+  int k;
+  AFV_PARALLEL_FOR
+  for (k = 0; k < n; k++) {
+    int i = g->bin_cell[k], s, t;
     for (s = g->nbr_start[i]; s < g->nbr_start[i + 1]; s++) {
       int j = g->nbr[s];
       g->nbr_rev[s] = -1;
@@ -271,13 +396,16 @@ static void link_reverse_slots(afv_geom *g, int n)
           break;
         }
     }
+  }
 }
 
+/* Two passes over the cell list (count, then fill) let every cell write its
+** list in place, in parallel, at the cost of scanning the bins twice. */
 int afv_neighbours(afv_geom *g, int n, const double *r, double l,
                    const afv_box *b)
 {
   grid G;
-  int i, count = 0, xlo, xhi, ylo, yhi, st;
+  int i, st;
   if (grow_cells(g, n)) return AFV_ENOMEM;
   g->n = n;
   g->nbr_start[0] = 0;
@@ -285,17 +413,11 @@ int afv_neighbours(afv_geom *g, int n, const double *r, double l,
   if (b && b->periodic) grid_periodic(&G, b, l);
   else grid_open(&G, n, r, l);
   if ((st = fill_bins(g, &G, n, r)) != AFV_OK) return st;
-  stencil(G.nbx, G.periodic, &xlo, &xhi);
-  stencil(G.nby, G.periodic, &ylo, &yhi);
-  for (i = 0; i < n; i++) {
-    int cell = bin_of(&G, r[2*i], r[2*i+1]);
-    int bx = cell % G.nbx, by = cell / G.nbx, ox, oy;
-    for (oy = ylo; oy <= yhi; oy++)
-      for (ox = xlo; ox <= xhi; ox++)
-        if ((st = scan_bin(g, &G, r, b, l, i, bx + ox, by + oy, &count)))
-          return st;
-    g->nbr_start[i + 1] = count;
-  }
+  scan_all(g, &G, l, 0);
+  if ((st = find_coincident(g, n)) != AFV_OK) return st;
+  for (i = 0; i < n; i++) g->nbr_start[i + 1] += g->nbr_start[i];
+  if (grow_nbr(g, g->nbr_start[n] + 1)) return AFV_ENOMEM;
+  scan_all(g, &G, l, 1);
   link_reverse_slots(g, n);
   return AFV_OK;
 }
@@ -310,19 +432,39 @@ typedef struct pvert {
 
 /* The line of neighbour slot s, in the cell's frame: x.u = h, with
 ** u = D/d the unit vector to the neighbour, h = d/2, and t = (-u_y, u_x)
-** the counter-clockwise direction along it. */
+** the counter-clockwise direction along it; sc = sqrt(l^2 - h^2) is half
+** the chord it cuts from the disk. */
 typedef struct bisector {
-  double ux, uy, h, d;
+  double ux, uy, h, d, sc;
 } bisector;
+
+/* The edge cache of cell i (g->edge, 4 doubles per slot: u, d, sc):
+** the clipping, the boundary assembly and the forces (afv.c) all need these,
+** and computing them once per slot saves two square roots and two
+** divisions each time. */
+static void fill_edge_cache(afv_geom *g, int i, double l)
+{
+  int s;
+  for (s = g->nbr_start[i]; s < g->nbr_start[i + 1]; s++) {
+    double dx = g->nbr_d[2*s], dy = g->nbr_d[2*s+1], *e = g->edge + 4 * s;
+    double d = sqrt(dx * dx + dy * dy), h = 0.5 * d;
+    e[0] = dx / d;
+    e[1] = dy / d;
+    e[2] = d;
+    e[3] = sqrt((l - h) * (l + h));   /* (l-h)(l+h) is exact where l*l - h*h
+                                      ** would cancel for h near l */
+  }
+}
 
 static bisector bisector_of(const afv_geom *g, int s)
 {
+  const double *e = g->edge + 4 * s;
   bisector B;
-  double dx = g->nbr_d[2*s], dy = g->nbr_d[2*s+1];
-  B.d = sqrt(dx * dx + dy * dy);
-  B.ux = dx / B.d;
-  B.uy = dy / B.d;
-  B.h = 0.5 * B.d;
+  B.ux = e[0];
+  B.uy = e[1];
+  B.d = e[2];
+  B.h = 0.5 * e[2];
+  B.sc = e[3];
   return B;
 }
 
@@ -333,10 +475,10 @@ static bisector bisector_of(const afv_geom *g, int s)
 static int clip_polygon(const pvert *in, int m, pvert *out, bisector B, int s)
 {
   int k, o = 0;
-  for (k = 0; k < m; k++) {
-    const pvert *P = &in[k], *Q = &in[(k + 1) % m];
-    double sp = dot(P->x, P->y, B.ux, B.uy) - B.h;
-    double sq = dot(Q->x, Q->y, B.ux, B.uy) - B.h;
+  double s0 = dot(in[0].x, in[0].y, B.ux, B.uy) - B.h, sp = s0, sq;
+  for (k = 0; k < m; k++, sp = sq) {   /* sp: signed distance of in[k] */
+    const pvert *P = &in[k], *Q = &in[k + 1 < m ? k + 1 : 0];
+    sq = k + 1 < m ? dot(Q->x, Q->y, B.ux, B.uy) - B.h : s0;
     if (sp <= 0) {
       out[o] = *P;
       if (sq > 0) {                      /* leaving: the new side starts */
@@ -395,13 +537,11 @@ typedef struct segment {
 ** in_p, in_q say whether P and Q are in the closed disk; they are computed
 ** once per vertex so that the two sides sharing a vertex agree on it. */
 static int keep_inside(const pvert *P, const pvert *Q, int in_p, int in_q,
-                       bisector B, double l, segment *seg)
+                       bisector B, segment *seg)
 {
   double tx = -B.uy, ty = B.ux;
   double ta = dot(P->x, P->y, tx, ty), tb = dot(Q->x, Q->y, tx, ty);
-  /* half-chord of the line in the disk; (l-h)(l+h) is exact where
-  ** l*l - h*h would cancel for h near l */
-  double sc = sqrt((l - B.h) * (l + B.h));
+  double sc = B.sc;   /* half-chord of the line in the disk */
   seg->slot = P->slot;
   seg->start_on_circle = !in_p;
   seg->end_on_circle = !in_q;
@@ -412,9 +552,11 @@ static int keep_inside(const pvert *P, const pvert *Q, int in_p, int in_q,
   return 1;
 }
 
-static double angle_of(bisector B, double tau)
+/* The point at parameter tau on the line of B (cell frame). */
+static void point_on(bisector B, double tau, double *x, double *y)
 {
-  return atan2(B.h * B.uy + tau * B.ux, B.h * B.ux - tau * B.uy);
+  *x = B.h * B.ux - tau * B.uy;
+  *y = B.h * B.uy + tau * B.ux;
 }
 
 static void store_piece(afv_geom *g, int i, int slot, double x, double y,
@@ -428,15 +570,19 @@ static void store_piece(afv_geom *g, int i, int slot, double x, double y,
   pc->length = length;
 }
 
-/* The arc from the end of segment a to the start of segment b (counter-
-** clockwise), as an angle in [0, 2 pi); `single` if a and b are the same. */
-static double gap_angle(const afv_geom *g, const segment *a, const segment *b,
-                        int single)
+/* The arc from (ax, ay), the end of a segment, to the start of segment b
+** (counter-clockwise), as an angle in [0, 2 pi); `single` if b is that same
+** segment. */
+static double gap_angle(const afv_geom *g, double ax, double ay,
+                        const segment *b, int single)
 {
-  double phi = angle_of(bisector_of(g, b->slot), b->tau0)
-             - angle_of(bisector_of(g, a->slot), a->tau1);
-  while (phi < 0) phi += TWO_PI;
-  while (phi >= TWO_PI) phi -= TWO_PI;
+  double bx, by, phi;
+  point_on(bisector_of(g, b->slot), b->tau0, &bx, &by);
+  /* the angle from a to b as one atan2 of (cross, dot): half the cost of
+  ** two polar angles, and as accurate */
+  phi = atan2(ax * by - ay * bx, ax * bx + ay * by);
+  if (phi < 0) phi += TWO_PI;
+  if (phi >= TWO_PI) phi -= TWO_PI;
   if (single && phi == 0) phi = TWO_PI;
   if (!single && phi > TWO_PI - ANGLE_TOL) phi = 0;
   return phi;
@@ -461,15 +607,17 @@ static void assemble_boundary(afv_geom *g, int i, double l, const segment *seg,
     const segment *S = &seg[k];
     bisector B = bisector_of(g, S->slot);
     double len = S->tau1 - S->tau0;
-    store_piece(g, i, S->slot, B.h * B.ux - S->tau0 * B.uy,
-                B.h * B.uy + S->tau0 * B.ux, len);
+    double x, y;
+    point_on(B, S->tau0, &x, &y);
+    store_piece(g, i, S->slot, x, y, len);
     A += 0.5 * B.h * len;
     P += len;
     if (len > AFV_CONTACT_TOL * l) g->contacts[i]++;
     if (S->end_on_circle) {
-      const segment *next = &seg[(k + 1) % ns];
-      double phi = gap_angle(g, S, next, ns == 1);
-      double x = B.h * B.ux - S->tau1 * B.uy, y = B.h * B.uy + S->tau1 * B.ux;
+      const segment *next = &seg[k + 1 < ns ? k + 1 : 0];
+      double phi;
+      point_on(B, S->tau1, &x, &y);
+      phi = gap_angle(g, x, y, next, ns == 1);
       store_piece(g, i, -1, x, y, l * phi);
       A += 0.5 * l * l * phi;
       L += l * phi;
@@ -480,24 +628,36 @@ static void assemble_boundary(afv_geom *g, int i, double l, const segment *seg,
   g->arc[i] = L;
 }
 
+/* The work block of the calling thread (afv_geometry_prepare reserves one
+** per OpenMP thread), so that different cells may be shaped in parallel. */
+static double *thread_work(const afv_geom *g)
+{
+#ifdef _OPENMP
+  return g->work + (size_t)g->work_stride * omp_get_thread_num();
+#else
+  return g->work;
+#endif
+}
+
 void afv_cell_shape(afv_geom *g, int i, double l)
 {
   int nn = g->nbr_start[i + 1] - g->nbr_start[i];
-  pvert *buf = (pvert *)g->work, *spare = buf + (nn + 4), *poly, *flags;
+  pvert *buf = (pvert *)thread_work(g), *spare = buf + (nn + 4), *poly, *flags;
   segment *seg = (segment *)(spare + (nn + 4));
   int m, k, ns = 0;
   g->n_pieces[i] = 0;
   g->contacts[i] = 0;
+  fill_edge_cache(g, i, l);
   poly = clipped_polygon(g, i, l, buf, spare, &m);
   /* the other buffer is free again: it holds the "in the disk" flags */
   flags = poly == buf ? spare : buf;
   for (k = 0; k < m; k++)
     flags[k].slot = poly[k].x * poly[k].x + poly[k].y * poly[k].y <= l * l;
   for (k = 0; k < m; k++) {
-    int b = (k + 1) % m;
+    int b = k + 1 < m ? k + 1 : 0;
     if (poly[k].slot < 0) continue;
     if (keep_inside(&poly[k], &poly[b], flags[k].slot, flags[b].slot,
-                    bisector_of(g, poly[k].slot), l, &seg[ns]))
+                    bisector_of(g, poly[k].slot), &seg[ns]))
       ns++;
   }
   if (ns == 0) isolated_cell(g, i, l);
@@ -505,12 +665,18 @@ void afv_cell_shape(afv_geom *g, int i, double l)
 }
 
 /* Work space for one cell with up to max_nn neighbours: two polygons of at
-** most max_nn + 4 vertices and max_nn + 4 segments. */
+** most max_nn + 4 vertices and max_nn + 4 segments; one such block per
+** OpenMP thread. */
 static int reserve_work(afv_geom *g, int max_nn)
 {
   size_t bytes = (size_t)(max_nn + 4) * (2 * sizeof(pvert) + sizeof(segment));
-  int doubles = (int)(bytes / sizeof(double)) + 1;
-  return grow((void **)&g->work, &g->cap_work, doubles, sizeof(double));
+  int threads = 1;
+#ifdef _OPENMP
+  threads = omp_get_max_threads();
+#endif
+  g->work_stride = (int)(bytes / sizeof(double)) + 1;
+  return grow((void **)&g->work, &g->cap_work, g->work_stride * threads,
+              sizeof(double));
 }
 
 /* Piece storage: cell i with k neighbours has at most 2k + 1 pieces (an

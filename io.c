@@ -296,3 +296,229 @@ int afv_traj_read(const char *path, afv_traj *tr, char *err, size_t errlen)
   if (st != AFV_OK) afv_traj_free(tr);
   return st;
 }
+
+/* ---- per-cell files ---------------------------------------------------- */
+/* CELLS format (text): the first non-blank line is a header naming the
+** columns, e.g. "# x y theta v0 P0"; names from afv_cell_columns, each at
+** most once, x and y together or not at all.  Then one line per cell with
+** one number per column (spaces, tabs or commas), '#' lines ignored. */
+const char *const afv_cell_columns[AFV_NCOLS] = {
+  "x", "y", "theta", "v0", "Dr", "KA", "KP", "A0", "P0"
+};
+
+void afv_cells_free(afv_cells *c)
+{
+  int k;
+  for (k = 0; k < AFV_NCOLS; k++) free(c->col[k]);
+  memset(c, 0, sizeof *c);
+}
+
+/* Parses the header's names into order[] (column index of each field). */
+static int parse_cells_header(char *line, afv_cells *c, int *order,
+                              int *nf, char *name, size_t namelen)
+{
+  char *tok = strtok(line + strspn(line, " \t#"), " \t,\r\n");
+  *nf = 0;
+  for (; tok; tok = strtok(NULL, " \t,\r\n")) {
+    int k;
+    for (k = 0; k < AFV_NCOLS; k++)
+      if (strcmp(tok, afv_cell_columns[k]) == 0) break;
+    snprintf(name, namelen, "%s", tok);
+    if (k == AFV_NCOLS || c->has[k] || *nf >= AFV_NCOLS) return 0;
+    c->has[k] = 1;
+    order[(*nf)++] = k;
+  }
+  name[0] = 0;
+  return *nf > 0 && c->has[AFV_COL_X] == c->has[AFV_COL_Y];
+}
+
+static int cells_push(afv_cells *c, const int *order, int nf,
+                      const double *v, int *cap)
+{
+  int k;
+  if (c->n >= *cap) {
+    int nc = *cap ? 2 * *cap : POINTS_INITIAL_CAP;
+    for (k = 0; k < nf; k++) {
+      double *q = realloc(c->col[order[k]], (size_t)nc * sizeof(double));
+      if (!q) return AFV_ENOMEM;
+      c->col[order[k]] = q;
+    }
+    *cap = nc;
+  }
+  for (k = 0; k < nf; k++) c->col[order[k]][c->n] = v[k];
+  c->n++;
+  return AFV_OK;
+}
+
+int afv_read_cells(const char *path, afv_cells *c, char *err, size_t errlen)
+{
+  FILE *fp = fopen(path, "r");
+  char line[4096], text[40];
+  double v[AFV_NCOLS];
+  int order[AFV_NCOLS], nf = -1, lineno = 0, cap = 0, st = AFV_OK, k;
+  memset(c, 0, sizeof *c);
+  if (!fp) {
+    afv_errorf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+    return AFV_EIO;
+  }
+  while (st == AFV_OK && fgets(line, sizeof line, fp)) {
+    char *bad = NULL;
+    int fields;
+    lineno++;
+    if (line[strspn(line, " \t\r\n")] == 0) continue;
+    if (nf < 0) {                             /* the header */
+      if (line[strspn(line, " \t")] != '#'
+          || !parse_cells_header(line, c, order, &nf, text, sizeof text)) {
+        afv_errorf(err, errlen, "%s:%d: expected a header '# x y [theta] "
+                   "[v0] [Dr] [KA] [KP] [A0] [P0]' (columns in any order, "
+                   "x and y together)%s%s", path, lineno,
+                   text[0] && nf >= 0 ? "; bad column " : "", text);
+        st = AFV_EFORMAT;
+      }
+      continue;
+    }
+    if (line[strspn(line, " \t")] == '#') continue;
+    fields = parse_fields(line, v, nf, &bad);
+    if (fields < 0) {
+      field_text(bad, text, sizeof text);
+      afv_errorf(err, errlen, "%s:%d: '%s' is not a number", path, lineno,
+                 text);
+      st = AFV_EFORMAT;
+    } else if (fields != nf) {
+      afv_errorf(err, errlen, "%s:%d: expected %d columns, found %d", path,
+                 lineno, nf, fields);
+      st = AFV_EFORMAT;
+    } else {
+      for (k = 0; k < nf; k++)
+        if (!isfinite(v[k])) break;
+      if (k < nf) {
+        afv_errorf(err, errlen, "%s:%d: %s is not finite", path, lineno,
+                   afv_cell_columns[order[k]]);
+        st = AFV_EFORMAT;
+      } else if ((st = cells_push(c, order, nf, v, &cap)) != AFV_OK) {
+        afv_errorf(err, errlen, "%s: out of memory", path);
+      }
+    }
+  }
+  fclose(fp);
+  if (st == AFV_OK && c->n == 0) {
+    afv_errorf(err, errlen, "%s: no cells (a header line and at least one "
+               "cell line are needed)", path);
+    st = AFV_EFORMAT;
+  }
+  if (st != AFV_OK) afv_cells_free(c);
+  return st;
+}
+
+int afv_write_cells(FILE *fp, const afv_cells *c)
+{
+  int i, k, first = 1;
+  fputs("#", fp);
+  for (k = 0; k < AFV_NCOLS; k++)
+    if (c->has[k]) fprintf(fp, " %s", afv_cell_columns[k]);
+  fputs("\n", fp);
+  for (i = 0; i < c->n; i++) {
+    first = 1;
+    for (k = 0; k < AFV_NCOLS; k++)
+      if (c->has[k]) {
+        fprintf(fp, first ? "%.17g" : " %.17g", c->col[k][i]);
+        first = 0;
+      }
+    fputs("\n", fp);
+  }
+  return ferror(fp) ? AFV_EIO : AFV_OK;
+}
+
+/* ---- checkpoints ------------------------------------------------------- */
+/* CHECKPOINT format (text, exact):
+**   # afv checkpoint 1
+**   cells N / step S / time T / seed SEED
+**   bytes NAME B      (one line per append-only output file)
+**   x y theta         N lines, C99 hex floats (%a): exact doubles
+**   end
+** The final "end" line marks a complete file; afv_atomic_open/commit make
+** sure a reader never sees a file without it anyway. */
+void afv_checkpoint_free(afv_checkpoint *c)
+{
+  free(c->r);
+  free(c->theta);
+  memset(c, 0, sizeof *c);
+}
+
+int afv_checkpoint_write(const char *path, const afv_checkpoint *c)
+{
+  char tmp[4096];
+  FILE *fp = afv_atomic_open(path, tmp, sizeof tmp);
+  int i;
+  if (!fp) return AFV_EIO;
+  fprintf(fp, "# afv checkpoint 1\ncells %d\nstep %lld\ntime %a\nseed %llu\n",
+          c->n, c->step, c->t, c->seed);
+  for (i = 0; i < AFV_CKPT_FILES; i++)
+    fprintf(fp, "bytes %s %lld\n", afv_checkpoint_files[i], c->bytes[i]);
+  for (i = 0; i < c->n; i++)
+    fprintf(fp, "%a %a %a\n", c->r[2*i], c->r[2*i+1], c->theta[i]);
+  fputs("end\n", fp);
+  return afv_atomic_commit(fp, tmp, path);
+}
+
+const char *const afv_checkpoint_files[AFV_CKPT_FILES] = {
+  "trajectory.dat", "observables.csv", "trajectory.xyz"
+};
+
+static int ckpt_fail(const char *path, int lineno, const char *what,
+                     char *err, size_t errlen)
+{
+  afv_errorf(err, errlen, "%s:%d: %s", path, lineno, what);
+  return AFV_EFORMAT;
+}
+
+int afv_checkpoint_read(const char *path, afv_checkpoint *c, char *err,
+                        size_t errlen)
+{
+  FILE *fp = fopen(path, "r");
+  char line[512], name[64], *bad;
+  double v[3];
+  int lineno = 0, i, st = AFV_OK, k;
+  memset(c, 0, sizeof *c);
+  if (!fp) {
+    afv_errorf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+    return AFV_EIO;
+  }
+#define NEXT_LINE() (lineno++, fgets(line, sizeof line, fp) != NULL)
+  if (!NEXT_LINE() || strcmp(line, "# afv checkpoint 1\n") != 0)
+    st = ckpt_fail(path, lineno, "not an afv checkpoint", err, errlen);
+  if (st == AFV_OK && !(NEXT_LINE() && sscanf(line, "cells %d", &c->n) == 1
+                        && c->n >= 0))
+    st = ckpt_fail(path, lineno, "expected 'cells N'", err, errlen);
+  if (st == AFV_OK && !(NEXT_LINE() && sscanf(line, "step %lld", &c->step) == 1))
+    st = ckpt_fail(path, lineno, "expected 'step S'", err, errlen);
+  if (st == AFV_OK && !(NEXT_LINE() && strncmp(line, "time ", 5) == 0
+                        && parse_fields(line + 5, &c->t, 1, &bad) == 1))
+    st = ckpt_fail(path, lineno, "expected 'time T'", err, errlen);
+  if (st == AFV_OK && !(NEXT_LINE() && sscanf(line, "seed %llu", &c->seed) == 1))
+    st = ckpt_fail(path, lineno, "expected 'seed SEED'", err, errlen);
+  for (k = 0; st == AFV_OK && k < AFV_CKPT_FILES; k++)
+    if (!(NEXT_LINE() && sscanf(line, "bytes %63s %lld", name, &c->bytes[k]) == 2
+          && strcmp(name, afv_checkpoint_files[k]) == 0 && c->bytes[k] >= 0))
+      st = ckpt_fail(path, lineno, "expected 'bytes FILE SIZE'", err, errlen);
+  if (st == AFV_OK) {
+    c->r = malloc((size_t)(2 * c->n + 1) * sizeof(double));
+    c->theta = malloc((size_t)(c->n + 1) * sizeof(double));
+    if (!c->r || !c->theta) st = AFV_ENOMEM;
+  }
+  for (i = 0; st == AFV_OK && i < c->n; i++)
+    if (NEXT_LINE() && parse_fields(line, v, 3, &bad) == 3) {
+      c->r[2*i] = v[0];
+      c->r[2*i+1] = v[1];
+      c->theta[i] = v[2];
+    } else {
+      st = ckpt_fail(path, lineno, "expected 'x y theta'", err, errlen);
+    }
+  if (st == AFV_OK && !(NEXT_LINE() && strcmp(line, "end\n") == 0))
+    st = ckpt_fail(path, lineno, "missing 'end' (incomplete file)", err,
+                   errlen);
+#undef NEXT_LINE
+  fclose(fp);
+  if (st != AFV_OK) afv_checkpoint_free(c);
+  return st;
+}

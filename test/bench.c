@@ -1,0 +1,182 @@
+/*
+** bench.c -- the afv benchmark (make bench, make bench-quick).
+**
+**   test/bench STATE N [STEPS]
+**
+** prints one line
+**   bench state=STATE N=N steps=S us_per_cell_step=X peak_rss_kb=K threads=T
+** where X is the median over REPEATS timed repeats (after one untimed
+** warm-up repeat) of  (wall time of S steps) / (S N),  in microseconds,
+** K is the peak resident memory of this process (VmHWM), and T the number
+** of OpenMP threads (1 in the serial build).
+**
+** States (periodic, packing fraction N pi l^2 / (Lx Ly) = 0.5, l = 1, the
+** paper's KA = KP = 1, A0 = pi, Lambda = 0.2, Dr = 0.1, dt = 0.01, mu = 1,
+** and afv run's contact cap 0.1, without which Euler steps of 0.01 are
+** unstable where contacts break):
+**   random   afv_init_random centres, P0 = 4.8, v0 = 1;
+**   cluster  afv_init_cluster (spacing CLUSTER_SPACING), P0 = 4, v0 = 0.1.
+** Both are first relaxed at v0 = 0 by afv_relax, as afv run does (to
+** max |F| <= RELAX_TOL, or RELAX_BUDGET cell-steps but at least
+** RELAX_MIN_STEPS: the large states are only partly relaxed).
+** A step is one afv_sim_step: the move of every cell, then neighbour
+** search, shapes, energy and forces.  The states random-force and
+** cluster-force time afv_compute alone (one force evaluation per "step")
+** on the same starting configurations.
+** Each measurement runs in its own process so that the peak memory is that
+** of one N.  POSIX (clock_gettime, /proc) is fine here: this is not the
+** library.
+*/
+#define _POSIX_C_SOURCE 200809L
+#include "afv.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#define PI 3.14159265358979323846
+#define PHI 0.5            /* packing fraction N pi l^2 / (Lx Ly) */
+#define REPEATS 5          /* timed repeats; the median is printed */
+#define SEED 1             /* of the random centres and angles */
+#define CLUSTER_SPACING 1.8  /* lattice constant of the initial cluster, in l
+                             ** (afv run's default) */
+#define RELAX_TOL 1e-6     /* afv run's default relaxation tolerance */
+#define RELAX_BUDGET 2e6   /* relaxation cell-steps: keeps make bench short */
+#define RELAX_MIN_STEPS 20
+#define CELL_STEPS_PER_REPEAT 200000.0  /* sizes a repeat (about 0.1 s) */
+
+/* ---- states ------------------------------------------------------------ */
+/* The starting simulation of a state; 0 on success, else a status. */
+static int make_state(afv_sim *s, int cluster, int n)
+{
+  afv_params p;
+  afv_box b;
+  afv_dyn d;
+  afv_relax_report rep;
+  double *r = malloc((size_t)n * 2 * sizeof *r);
+  double *th = malloc((size_t)n * sizeof *th);
+  int st = AFV_ENOMEM;
+  if (!r || !th) goto done;
+  afv_params_default(&p);
+  afv_dyn_default(&d);
+  d.seed = SEED;
+  d.v0 = 0;
+  b.periodic = 1;
+  b.Lx = b.Ly = sqrt(n * PI / PHI);
+  afv_init_angles(n, SEED, th);
+  p.cap = 0.1;
+  p.P0 = cluster ? 4.0 : 4.8;
+  st = AFV_OK;
+  if (cluster) st = afv_init_cluster(n, CLUSTER_SPACING, &b, r);
+  else afv_init_random(n, SEED, &b, 0, r);
+  if (st == AFV_OK) st = afv_sim_init(s, n, r, th, &p, &b, &d);
+  if (st == AFV_OK)
+    st = afv_relax(s, RELAX_TOL, (long)fmax(RELAX_MIN_STEPS, RELAX_BUDGET / n),
+                   &rep, NULL, NULL);
+  s->dyn.v0 = cluster ? 0.1 : 1.0;
+done:
+  free(r);
+  free(th);
+  return st;
+}
+
+/* ---- measurement ------------------------------------------------------- */
+static double now_seconds(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+/* Peak resident set in kB: VmHWM from /proc, else getrusage (kB on Linux). */
+static long peak_rss_kb(void)
+{
+  char line[256];
+  long kb = -1;
+  FILE *fp = fopen("/proc/self/status", "r");
+  if (fp) {
+    while (fgets(line, sizeof line, fp))
+      if (strncmp(line, "VmHWM:", 6) == 0) kb = strtol(line + 6, NULL, 10);
+    fclose(fp);
+  }
+  if (kb < 0) {
+    struct rusage ru;
+    if (getrusage(RUSAGE_SELF, &ru) == 0) kb = ru.ru_maxrss;
+  }
+  return kb;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+  double x = *(const double *)a, y = *(const double *)b;
+  return x < y ? -1 : x > y;
+}
+
+static int threads(void)
+{
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+/* Times `steps` steps (force evaluations only if force_only); returns
+** seconds, or -1 on a library error. */
+static double time_steps(afv_sim *s, int force_only, int steps)
+{
+  double t0 = now_seconds();
+  int k, st = AFV_OK;
+  for (k = 0; k < steps && st == AFV_OK; k++)
+    st = force_only ? afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f)
+                    : afv_sim_step(s);
+  if (st != AFV_OK) {
+    fprintf(stderr, "bench: %s\n", afv_strerror(st));
+    return -1;
+  }
+  return now_seconds() - t0;
+}
+
+int main(int argc, char **argv)
+{
+  static const char *states[] = {"random", "cluster", "random-force",
+                                 "cluster-force"};
+  afv_sim sim;
+  double t[REPEATS];
+  int n, steps, k, state = -1, st;
+  if (argc >= 2)
+    for (k = 0; k < 4; k++)
+      if (strcmp(argv[1], states[k]) == 0) state = k;
+  if (argc < 3 || argc > 4 || state < 0) {
+    fprintf(stderr, "usage: bench random|cluster|random-force|cluster-force "
+            "N [STEPS]\n");
+    return 2;
+  }
+  n = atoi(argv[2]);
+  if (n < 2) {
+    fprintf(stderr, "bench: N must be >= 2\n");
+    return 2;
+  }
+  steps = argc > 3 ? atoi(argv[3]) : (int)ceil(CELL_STEPS_PER_REPEAT / n);
+  if (steps < 1) steps = 1;
+  memset(&sim, 0, sizeof sim);
+  if ((st = make_state(&sim, state % 2, n)) != AFV_OK) {
+    fprintf(stderr, "bench: %s\n", afv_strerror(st));
+    return 1;
+  }
+  if (time_steps(&sim, state >= 2, steps) < 0) return 1;   /* warm-up */
+  for (k = 0; k < REPEATS; k++)
+    if ((t[k] = time_steps(&sim, state >= 2, steps)) < 0) return 1;
+  qsort(t, REPEATS, sizeof t[0], cmp_double);
+  printf("bench state=%s N=%d steps=%d us_per_cell_step=%.4g "
+         "peak_rss_kb=%ld threads=%d\n", argv[1], n, steps,
+         1e6 * t[REPEATS / 2] / ((double)steps * n), peak_rss_kb(), threads());
+  afv_sim_free(&sim);
+  return 0;
+}
