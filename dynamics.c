@@ -114,12 +114,14 @@ void afv_dyn_default(afv_dyn *d)
   d->v0 = 0;
   d->Dr = 0.1;
   d->dt = 0.01;
+  d->max_move = 0.05;
   d->seed = 1;
 }
 
 static int dyn_check(const afv_dyn *d, int n)
 {
   int i;
+  if (!(isfinite(d->max_move) && d->max_move >= 0)) return AFV_EINVAL;
   if (!(isfinite(d->mu) && d->mu > 0 && isfinite(d->dt) && d->dt > 0
         && isfinite(d->v0) && isfinite(d->Dr) && d->Dr >= 0))
     return AFV_EINVAL;
@@ -155,14 +157,17 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   int st;
   afv_sim_free(s);
   if (n < 0 || dyn_check(d, n) != AFV_OK) return AFV_EINVAL;
-  /* r, f (2n each), theta (n), six optional per-cell arrays (n each) */
-  s->own = malloc((size_t)(11 * n + 1) * sizeof(double));
+  /* r, f, r_start (2n each), theta, move_len (n each), six optional
+  ** per-cell arrays (n each) */
+  s->own = malloc((size_t)(14 * n + 1) * sizeof(double));
   if (!s->own) return AFV_ENOMEM;
   s->n = n;
   s->r = s->own;
   s->f = s->own + 2 * n;
   s->theta = s->own + 4 * n;
-  next = s->own + 5 * n;
+  s->r_start = s->own + 5 * n;
+  s->move_len = s->own + 7 * n;
+  next = s->own + 8 * n;
   memcpy(s->r, r, (size_t)(2 * n) * sizeof(double));
   if (theta) memcpy(s->theta, theta, (size_t)n * sizeof(double));
   else memset(s->theta, 0, (size_t)n * sizeof(double));
@@ -177,6 +182,7 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   s->box = b ? *b : s->box;
   s->step = 0;
   s->t = 0;
+  s->substeps = 0;
   s->bad_cell = -1;
   s->bad_disp = 0;
   st = afv_compute(&s->geom, n, s->r, &s->par, &s->box, s->f);
@@ -195,49 +201,126 @@ double afv_sim_max_force(const afv_sim *s)
   return sqrt(m2);
 }
 
-/* Displacement of cell i over one step, dt (mu F_i + v0_i n_i). */
-static void step_of(const afv_sim *s, int i, double *dx, double *dy)
+/* Displacement of cell i over a time h: h (mu F_i + v0_i n_i). */
+static void move_of(const afv_sim *s, int i, double h, double *dx, double *dy)
 {
   double v0 = s->dyn.v0_i ? s->dyn.v0_i[i] : s->dyn.v0;
-  double th = s->theta[i], dt = s->dyn.dt, mu = s->dyn.mu;
-  *dx = dt * (mu * s->f[2*i] + v0 * cos(th));
-  *dy = dt * (mu * s->f[2*i+1] + v0 * sin(th));
+  double th = s->theta[i], mu = s->dyn.mu;
+  *dx = h * (mu * s->f[2*i] + v0 * cos(th));
+  *dy = h * (mu * s->f[2*i+1] + v0 * sin(th));
+}
+
+/* The cell with the largest move over a time h (the first such cell; a
+** NaN wins), that move's length in *len.  With force_only, the move
+** counted is the force-driven part h mu F_i alone. */
+static int largest_move(afv_sim *s, double h, int force_only, double *len)
+{
+  double *m = s->move_len, best = -1;
+  int i, worst = 0;
+  AFV_PARALLEL_FOR
+  for (i = 0; i < s->n; i++) {
+    double dx, dy;
+    if (force_only) {
+      dx = h * s->dyn.mu * s->f[2*i];
+      dy = h * s->dyn.mu * s->f[2*i+1];
+    } else {
+      move_of(s, i, h, &dx, &dy);
+    }
+    m[i] = sqrt(dx * dx + dy * dy);
+  }
+  for (i = 0; i < s->n; i++)
+    if (!(m[i] <= best)) {
+      best = m[i];
+      worst = i;
+      if (isnan(best)) break;
+    }
+  *len = best;
+  return worst;
+}
+
+static int unstable(afv_sim *s, int cell, double len)
+{
+  s->bad_cell = cell;
+  s->bad_disp = len / s->par.l;
+  return AFV_EUNSTABLE;
+}
+
+/* SUB-STEPS.  The exact force diverges like (2l - d)^(-1/2) as a contact
+** is about to break (afv.c, (V1)): one Euler step of dt = 0.01 taken from
+** within ~1e-5 l of detachment throws a cell across half its radius.  Over
+** one step the polarity n_i is fixed, so the position equation has no noise
+** inside the step and may be integrated more finely: while the force would
+** move some cell more than max_move l (mu |F_i| h > max_move l), the
+** interval is halved, forces recomputed in between, at most
+** AFV_MAX_HALVINGS times.  Steps in which no force moves a cell that far --
+** nearly all of them -- are exactly the paper's Euler steps.  As max_move
+** goes to 0 the result converges to the exact trajectory of the step (a
+** test shows it); max_move bounds the kick a cell can get from landing
+** next to detachment, it does not resolve the singularity by itself.
+** Advances r (and f) by a time h; AFV_EUNSTABLE if a force is not finite or
+** a whole move is still longer than AFV_MAX_STEP_DISP l. */
+static int advance(afv_sim *s, double h, int halvings)
+{
+  double len, split = s->dyn.max_move * s->par.l;
+  int i, cell = largest_move(s, h, 1, &len), st;
+  if (isnan(len)) return unstable(s, cell, len);
+  if (split > 0 && len > split && halvings < AFV_MAX_HALVINGS) {
+    s->substeps++;
+    if ((st = advance(s, 0.5 * h, halvings + 1)) != AFV_OK) return st;
+    return advance(s, 0.5 * h, halvings + 1);
+  }
+  cell = largest_move(s, h, 0, &len);
+  if (!(len <= AFV_MAX_STEP_DISP * s->par.l)) return unstable(s, cell, len);
+  AFV_PARALLEL_FOR
+  for (i = 0; i < s->n; i++) {
+    double dx, dy;
+    move_of(s, i, h, &dx, &dy);
+    s->r[2*i] += dx;
+    s->r[2*i+1] += dy;
+  }
+  return afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
+}
+
+/* Self-propulsion alone moves cell i by v0_i dt in a step, sub-steps or
+** not: a step where that exceeds AFV_MAX_STEP_DISP l is refused. */
+static int too_fast(afv_sim *s)
+{
+  int i;
+  for (i = 0; i < s->n; i++) {
+    double v0 = s->dyn.v0_i ? s->dyn.v0_i[i] : s->dyn.v0;
+    if (fabs(v0) * s->dyn.dt > AFV_MAX_STEP_DISP * s->par.l)
+      return unstable(s, i, fabs(v0) * s->dyn.dt);
+  }
+  return AFV_OK;
 }
 
 int afv_sim_step(afv_sim *s)
 {
-  double lim = AFV_MAX_STEP_DISP * s->par.l;
   unsigned long long seed = s->dyn.seed, step = (unsigned long long)s->step;
-  int i, bad = s->n;
-  /* Check every move before making any: a refused step changes nothing.
-  ** The test is written so that a NaN fails it.  bad = the first offending
-  ** cell (a min reduction: the same whatever the OpenMP thread count). */
-  AFV_PARALLEL_FOR_FIRST_BAD
-  for (i = 0; i < s->n; i++) {
-    double dx, dy;
-    step_of(s, i, &dx, &dy);
-    if (!(dx * dx + dy * dy <= lim * lim) && i < bad) bad = i;
-  }
-  if (bad < s->n) {
-    double dx, dy;
-    step_of(s, bad, &dx, &dy);
-    s->bad_cell = bad;
-    s->bad_disp = sqrt(dx * dx + dy * dy) / s->par.l;
-    return AFV_EUNSTABLE;
+  long long substeps = s->substeps;
+  size_t bytes = (size_t)(2 * s->n) * sizeof(double);
+  int i, st;
+  if ((st = too_fast(s)) != AFV_OK) return st;
+  memcpy(s->r_start, s->r, bytes);
+  if ((st = advance(s, s->dyn.dt, 0)) != AFV_OK) {
+    /* a refused step leaves the state as it was, sub-steps included */
+    s->substeps = substeps;
+    if (memcmp(s->r_start, s->r, bytes) != 0) {
+      memcpy(s->r, s->r_start, bytes);
+      afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
+    }
+    return st;
   }
   AFV_PARALLEL_FOR
   for (i = 0; i < s->n; i++) {
-    double dx, dy, Dr = s->dyn.Dr_i ? s->dyn.Dr_i[i] : s->dyn.Dr;
-    step_of(s, i, &dx, &dy);
-    s->r[2*i] += dx;
-    s->r[2*i+1] += dy;
+    double Dr = s->dyn.Dr_i ? s->dyn.Dr_i[i] : s->dyn.Dr;
     if (Dr > 0)
       s->theta[i] += sqrt(2 * Dr * s->dyn.dt)
                      * afv_rng_normal(seed, (uint32_t)i, step, AFV_RNG_NOISE);
   }
   s->step++;
   s->t = (double)s->step * s->dyn.dt;   /* no drift from summing dt */
-  return afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
+  return AFV_OK;
 }
 
 /* ---- relaxation (FIRE with an energy guard) ----------------------------- */

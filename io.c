@@ -1,5 +1,7 @@
 /*
-** io.c -- file formats: reading cell centres.
+** io.c -- file formats: cell centres (POINTS), atomic writes, trajectories,
+** per-cell values (CELLS) and checkpoints.  Each format is described where
+** it is read or written.
 **
 ** POINTS format: one cell per line, columns "x y" separated by spaces, tabs
 ** or commas; blank lines and lines starting with '#' are ignored.  Errors

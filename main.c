@@ -300,7 +300,7 @@ typedef struct run_cfg {
   double phi;             /* packing fraction N pi l^2 / L^2 */
   char box[16];           /* "periodic" or "open" */
   double l, KA, KP, A0, P0, Lambda, cap;       /* model (afv_params) */
-  double mu, v0, Dr, dt;                       /* dynamics (afv_dyn) */
+  double mu, v0, Dr, dt, max_move;             /* dynamics (afv_dyn) */
   long long steps;        /* active steps in the whole run */
   unsigned long long seed;/* noise and random starts */
   char init[16];          /* "cluster", "random" or "file" */
@@ -340,16 +340,20 @@ static const run_key run_keys[] = {
   RK("P0", K_REAL, P0, "4.8", "l", "preferred perimeter (main knob)"),
   RK("Lambda", K_REAL, Lambda, "0.2", "energy/l", "extra tension of the "
      "free (arc) boundary"),
-  RK("cap", K_REAL, cap, "0.1", "l", "contact cap delta: near detachment "
+  RK("cap", K_REAL, cap, "0", "l", "contact cap delta: near detachment "
      "(4l^2-d^2 < delta^2) the force uses sqrt(4l^2-d^2) >= delta, so it "
-     "stays bounded; 0 = exact -grad E, whose 1/sqrt divergence makes Euler "
-     "steps of dt 0.01 unstable"),
+     "stays bounded but is NOT -grad E (the peers' regularisation); 0 = "
+     "exact -grad E"),
   RK("mu", K_REAL, mu, "1", "l/(time force)", "mobility"),
   RK("v0", K_REAL, v0, "0.5", "l/time", "self-propulsion speed (main "
      "knob)"),
   RK("Dr", K_REAL, Dr, "0.1", "1/time", "rotational diffusion of the "
      "polarity"),
   RK("dt", K_REAL, dt, "0.01", "time", "time step (Euler-Maruyama)"),
+  RK("max_move", K_REAL, max_move, "0.05", "l", "sub-step threshold: a "
+     "step in which the force would move some cell farther is integrated "
+     "in halves (at most 20), which tames the exact force's divergence at "
+     "contact breaking; 0 = plain Euler steps"),
   RK("steps", K_INT, steps, "10000", "steps", "active steps of the whole "
      "run (main knob)"),
   RK("seed", K_SEED, seed, "1", "-", "random seed (0 .. 2^64-1): noise, "
@@ -577,6 +581,7 @@ static int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
   if (c->mu <= 0) BAD("mu: must be > 0 (got %g)", c->mu);
   if (c->Dr < 0) BAD("Dr: must be >= 0 (got %g)", c->Dr);
   if (c->dt <= 0) BAD("dt: must be > 0 (got %g)", c->dt);
+  if (c->max_move < 0) BAD("max_move: must be >= 0 (got %g)", c->max_move);
   if (c->steps < 0) BAD("steps: must be >= 0 (got %lld)", c->steps);
   if (c->spacing <= 0) BAD("spacing: must be > 0 (got %g)", c->spacing);
   if (c->relax_tol <= 0) BAD("relax_tol: must be > 0 (got %g)", c->relax_tol);
@@ -751,6 +756,7 @@ static void cfg_model(const run_cfg *c, const afv_cells *cl, afv_params *p,
   b->Lx = b->Ly = box_side(c);
   afv_dyn_default(d);
   d->mu = c->mu; d->v0 = c->v0; d->Dr = c->Dr; d->dt = c->dt;
+  d->max_move = c->max_move;
   d->seed = c->seed;
   d->v0_i = cl->col[AFV_COL_V0];
   d->Dr_i = cl->col[AFV_COL_DR];
@@ -1012,11 +1018,19 @@ static int run_loop(run_state *R)
             R->progress ? "\n" : "", s->step + 1, s->t, i, s->bad_disp,
             AFV_MAX_STEP_DISP,
             isfinite(s->bad_disp) ? "" : " (its force is not finite)",
-            s->dyn.dt, R->cfg.cap > 0 ? "" : " (or two cells are losing "
-            "contact, where the exact force diverges: try cap 0.1)",
+            s->dyn.dt, R->cfg.max_move > 0 ? "" : " (or two cells are "
+            "losing contact, where the exact force diverges: try max_move "
+            "0.05 or cap 0.1)",
             R->dir, R->ckpt_step);
     if (R->log) fprintf(R->log, "stopped: unstable step %lld, cell %d\n",
                         s->step + 1, i);
+    return EXIT_UNSTABLE;
+  }
+  if (st == AFV_ECOINCIDENT || st == AFV_ENONFINITE) {   /* after a step */
+    fprintf(stderr, "afv run: step %lld: %s (cells %d and %d): the time "
+            "step dt = %g is probably too large; last good checkpoint: "
+            "%s/checkpoint.txt (step %lld)\n", s->step, afv_strerror(st),
+            s->geom.bad_i, s->geom.bad_j, s->dyn.dt, R->dir, R->ckpt_step);
     return EXIT_UNSTABLE;
   }
   if (st != AFV_OK) {
@@ -1036,9 +1050,10 @@ static int run_loop(run_state *R)
     double w = wall_seconds() - R->wall0;
     long long k = s->step - R->start_step;
     run_log(R, "%d cells, steps %lld..%lld (t = %.6g) in %.3g s (%.0f "
-            "steps/s); outputs in %s/: observables.csv, trajectory.dat, "
-            "snapshots snap_*.svg and final.svg\n", s->n, R->start_step,
-            s->step, s->t, w, w > 0 ? (double)k / w : 0.0, R->dir);
+            "steps/s, %lld sub-step halvings); outputs in %s/: "
+            "observables.csv, trajectory.dat, snapshots snap_*.svg and "
+            "final.svg\n", s->n, R->start_step, s->step, s->t, w,
+            w > 0 ? (double)k / w : 0.0, s->substeps, R->dir);
   }
   return 0;
 }
@@ -1188,7 +1203,7 @@ static int make_out_dir(const char *dir)
 
 static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
 {
-  char err[2 * RUN_PATH_MAX];
+  char err[2 * RUN_PATH_MAX] = "";
   int set[N_RUN_KEYS], st;
   memset(set, 0, sizeof set);
   if (strlen(a->out) > RUN_PATH_MAX - 64) return bad_input("--out: path too long");
@@ -1253,6 +1268,12 @@ static int run_resume(run_state *R, const run_args *a)
     return bad_input(err);
   }
   snprintf(path, sizeof path, "%s/checkpoint.txt", R->dir);
+  if (access(path, F_OK) != 0) {
+    fprintf(stderr, "afv run: %s has no checkpoint.txt: the run stopped "
+            "before its first checkpoint (during the relaxation); remove "
+            "the directory and start again\n", R->dir);
+    return EXIT_BAD_INPUT;
+  }
   if (afv_checkpoint_read(path, &ck, err, sizeof err) != AFV_OK)
     return bad_input(err);
   if (ck.n != R->cfg.N || ck.seed != R->cfg.seed) {

@@ -15,7 +15,8 @@
 ** and afv run's contact cap 0.1, without which Euler steps of 0.01 are
 ** unstable where contacts break):
 **   random   afv_init_random centres, P0 = 4.8, v0 = 1;
-**   cluster  afv_init_cluster (spacing CLUSTER_SPACING), P0 = 4, v0 = 0.1.
+**   cluster  afv_init_cluster (spacing CLUSTER_SPACING), P0 = 4, v0 = 0.1;
+** in both the cells are then numbered in afv_spatial_order.
 ** Both are first relaxed at v0 = 0 by afv_relax, as afv run does (to
 ** max |F| <= RELAX_TOL, or RELAX_BUDGET cell-steps but at least
 ** RELAX_MIN_STEPS: the large states are only partly relaxed).
@@ -44,14 +45,37 @@
 #define PHI 0.5            /* packing fraction N pi l^2 / (Lx Ly) */
 #define REPEATS 5          /* timed repeats; the median is printed */
 #define SEED 1             /* of the random centres and angles */
-#define CLUSTER_SPACING 1.8  /* lattice constant of the initial cluster, in l
-                             ** (afv run's default) */
+#define CLUSTER_SPACING 1.43 /* lattice constant of the initial cluster, in
+                             ** l: the bulk spacing of the relaxed N = 400
+                             ** cluster at P0 = 4 (measured), so that the
+                             ** budgeted relaxation of large N gets close */
 #define RELAX_TOL 1e-6     /* afv run's default relaxation tolerance */
-#define RELAX_BUDGET 2e6   /* relaxation cell-steps: keeps make bench short */
+#define RELAX_BUDGET 1e7   /* relaxation cell-steps: keeps make bench short */
 #define RELAX_MIN_STEPS 20
 #define CELL_STEPS_PER_REPEAT 200000.0  /* sizes a repeat (about 0.1 s) */
+#define MIN_STEPS 10       /* per repeat: the occasional rebuild of the
+                           ** neighbour candidates (geom.c) is then included */
 
 /* ---- states ------------------------------------------------------------ */
+/* Renumbers the cells in the order of afv_spatial_order, so that neighbours
+** are close in memory (the order a simulation should give its cells). */
+static int spatial_order(int n, double *r, const afv_box *b)
+{
+  int *perm = malloc((size_t)n * sizeof *perm), k, st;
+  double *copy = malloc((size_t)n * 2 * sizeof *copy);
+  st = perm && copy ? afv_spatial_order(n, r, 1.0, b, perm) : AFV_ENOMEM;
+  if (st == AFV_OK) {
+    memcpy(copy, r, (size_t)n * 2 * sizeof *copy);
+    for (k = 0; k < n; k++) {
+      r[2*k] = copy[2*perm[k]];
+      r[2*k+1] = copy[2*perm[k]+1];
+    }
+  }
+  free(perm);
+  free(copy);
+  return st;
+}
+
 /* The starting simulation of a state; 0 on success, else a status. */
 static int make_state(afv_sim *s, int cluster, int n)
 {
@@ -75,6 +99,7 @@ static int make_state(afv_sim *s, int cluster, int n)
   st = AFV_OK;
   if (cluster) st = afv_init_cluster(n, CLUSTER_SPACING, &b, r);
   else afv_init_random(n, SEED, &b, 0, r);
+  if (st == AFV_OK) st = spatial_order(n, r, &b);
   if (st == AFV_OK) st = afv_sim_init(s, n, r, th, &p, &b, &d);
   if (st == AFV_OK)
     st = afv_relax(s, RELAX_TOL, (long)fmax(RELAX_MIN_STEPS, RELAX_BUDGET / n),
@@ -164,7 +189,7 @@ int main(int argc, char **argv)
     return 2;
   }
   steps = argc > 3 ? atoi(argv[3]) : (int)ceil(CELL_STEPS_PER_REPEAT / n);
-  if (steps < 1) steps = 1;
+  if (steps < MIN_STEPS) steps = MIN_STEPS;
   memset(&sim, 0, sizeof sim);
   if ((st = make_state(&sim, state % 2, n)) != AFV_OK) {
     fprintf(stderr, "bench: %s\n", afv_strerror(st));

@@ -139,7 +139,7 @@ static void test_no_allocation_when_repeated(void)
   int n = 2000, i, st;
   double *r = malloc((size_t)(2 * n) * sizeof(double));
   double *f = malloc((size_t)(2 * n) * sizeof(double));
-  int cap[5];
+  int cap[6];
   CHECK(r && f, "out of memory");
   if (!r || !f) goto done;
   memset(&g, 0, sizeof g);
@@ -148,24 +148,146 @@ static void test_no_allocation_when_repeated(void)
   st = afv_compute(&g, n, r, &p, &b, f);
   CHECK(st == AFV_OK, "afv_compute: %s", afv_strerror(st));
   cap[0] = g.cap_cells; cap[1] = g.cap_nbr; cap[2] = g.cap_pieces;
-  cap[3] = g.cap_bins; cap[4] = g.cap_work;
+  cap[3] = g.cap_bins; cap[4] = g.cap_work; cap[5] = g.cap_cand;
   for (i = 0; i < 2 * n; i++) r[i] += 1e-4 * (uniform01() - 0.5);
   st = afv_compute(&g, n, r, &p, &b, f);
   CHECK(st == AFV_OK, "afv_compute: %s", afv_strerror(st));
   CHECK(cap[0] == g.cap_cells && cap[1] == g.cap_nbr && cap[2] == g.cap_pieces
-        && cap[3] == g.cap_bins && cap[4] == g.cap_work,
+        && cap[3] == g.cap_bins && cap[4] == g.cap_work
+        && cap[5] == g.cap_cand,
         "a buffer grew in a repeated evaluation: capacities cells %d->%d "
-        "slots %d->%d pieces %d->%d bins %d->%d work %d->%d", cap[0],
-        g.cap_cells, cap[1], g.cap_nbr, cap[2], g.cap_pieces, cap[3],
-        g.cap_bins, cap[4], g.cap_work);
+        "slots %d->%d pieces %d->%d bins %d->%d work %d->%d cand %d->%d",
+        cap[0], g.cap_cells, cap[1], g.cap_nbr, cap[2], g.cap_pieces, cap[3],
+        g.cap_bins, cap[4], g.cap_work, cap[5], g.cap_cand);
 done:
   afv_geom_free(&g);
   free(r);
   free(f);
 }
 
+/* Largest |a - b| over n entries, and the number of entries that differ
+** in any bit. */
+static double max_diff(const double *a, const double *b, int n, int *nbits)
+{
+  double worst = 0;
+  int i;
+  *nbits = 0;
+  for (i = 0; i < n; i++) {
+    if (memcmp(&a[i], &b[i], sizeof a[i]) != 0) (*nbits)++;
+    if (fabs(a[i] - b[i]) > worst) worst = fabs(a[i] - b[i]);
+  }
+  return worst;
+}
+
+/* The Verlet candidates (geom.c) are only a shortcut: a geometry whose
+** candidates were built at earlier positions gives the same bits as a fresh
+** one, both while they are reused (moves below half the skin) and after a
+** rebuild (larger moves), in a dense periodic tissue where many pairs are
+** near 2l. */
+static void test_candidates_change_nothing(void)
+{
+  afv_params p;
+  afv_box b;
+  afv_geom kept, fresh;
+  int n = 1500, i, round, nbits, rebuilds;
+  double *r = malloc((size_t)(2 * n) * sizeof(double));
+  double *f1 = malloc((size_t)(2 * n) * sizeof(double));
+  double *f2 = malloc((size_t)(2 * n) * sizeof(double));
+  static const double move[] = {0.02, 0.05, 0.12, 0.4};  /* in l, per step */
+  CHECK(r && f1 && f2, "out of memory");
+  if (!r || !f1 || !f2) goto done;
+  memset(&kept, 0, sizeof kept);
+  afv_params_default(&p);
+  random_tissue(n, 1.0, r, &b);
+  CHECK(afv_compute(&kept, n, r, &p, &b, f1) == AFV_OK, "first evaluation");
+  for (round = 0; round < 4; round++) {
+    double worst;
+    rebuilds = kept.n_rebuilds;
+    for (i = 0; i < 2 * n; i++) r[i] += move[round] * (uniform01() - 0.5);
+    memset(&fresh, 0, sizeof fresh);
+    CHECK(afv_compute(&kept, n, r, &p, &b, f1) == AFV_OK, "kept geometry");
+    CHECK(afv_compute(&fresh, n, r, &p, &b, f2) == AFV_OK, "fresh geometry");
+    worst = max_diff(f1, f2, 2 * n, &nbits);
+    CHECK(nbits == 0, "moves of %g l: %d force components differ from a "
+          "fresh evaluation (largest difference %.3e)", move[round], nbits,
+          worst);
+    CHECK(memcmp(&kept.energy, &fresh.energy, sizeof kept.energy) == 0,
+          "moves of %g l: energy %.17g, fresh %.17g", move[round],
+          kept.energy, fresh.energy);
+    CHECK(kept.nbr_start[n] == fresh.nbr_start[n], "moves of %g l: %d "
+          "neighbour pairs, fresh %d", move[round], kept.nbr_start[n],
+          fresh.nbr_start[n]);
+    /* half-diagonal moves up to 0.7 move: a rebuild exactly when needed */
+    if (move[round] * 0.71 < 0.15)
+      CHECK(kept.n_rebuilds == rebuilds, "moves of %g l rebuilt the "
+            "candidates", move[round]);
+    else
+      CHECK(kept.n_rebuilds == rebuilds + 1, "moves of %g l did not rebuild "
+            "the candidates", move[round]);
+    afv_geom_free(&fresh);
+  }
+  afv_geom_free(&kept);
+done:
+  free(r);
+  free(f1);
+  free(f2);
+}
+
+/* afv_spatial_order is a permutation, and renumbering the cells by it
+** changes no cell's shape or force in any bit: a list is ordered by the
+** directions of the neighbours, not by their numbers. */
+static void test_spatial_order_renumbering(void)
+{
+  afv_params p;
+  afv_box b;
+  afv_geom g1, g2;
+  int n = 2000, i, bad = 0, *perm = malloc((size_t)n * sizeof(int));
+  int *seen = calloc((size_t)n, sizeof(int));
+  double *r = malloc((size_t)(2 * n) * sizeof(double));
+  double *q = malloc((size_t)(2 * n) * sizeof(double));
+  double *f1 = malloc((size_t)(2 * n) * sizeof(double));
+  double *f2 = malloc((size_t)(2 * n) * sizeof(double));
+  CHECK(perm && seen && r && q && f1 && f2, "out of memory");
+  if (!perm || !seen || !r || !q || !f1 || !f2) goto done;
+  memset(&g1, 0, sizeof g1);
+  memset(&g2, 0, sizeof g2);
+  afv_params_default(&p);
+  random_tissue(n, 0.8, r, &b);
+  CHECK(afv_spatial_order(n, r, 1.0, &b, perm) == AFV_OK, "status");
+  for (i = 0; i < n; i++)
+    if (perm[i] < 0 || perm[i] >= n || seen[perm[i]]++) bad++;
+  CHECK(bad == 0, "not a permutation: %d bad entries", bad);
+  if (bad) goto done;
+  for (i = 0; i < n; i++) {
+    q[2*i] = r[2*perm[i]];
+    q[2*i+1] = r[2*perm[i]+1];
+  }
+  CHECK(afv_compute(&g1, n, r, &p, &b, f1) == AFV_OK, "status");
+  CHECK(afv_compute(&g2, n, q, &p, &b, f2) == AFV_OK, "status");
+  for (i = 0; i < n; i++) {
+    int j = perm[i];
+    if (memcmp(&g1.area[j], &g2.area[i], sizeof(double))
+        || memcmp(&g1.perim[j], &g2.perim[i], sizeof(double))
+        || memcmp(&f1[2*j], &f2[2*i], 2 * sizeof(double)))
+      bad++;
+  }
+  CHECK(bad == 0, "%d of %d cells changed by the renumbering", bad, n);
+  CHECK_CLOSE(g2.energy, g1.energy, 1e-12, 0, "energy");
+  afv_geom_free(&g1);
+  afv_geom_free(&g2);
+done:
+  free(perm);
+  free(seen);
+  free(r);
+  free(q);
+  free(f1);
+  free(f2);
+}
+
 void suite_perf(void)
 {
   RUN(test_threads_bit_identical);
   RUN(test_no_allocation_when_repeated);
+  RUN(test_candidates_change_nothing);
+  RUN(test_spatial_order_renumbering);
 }
