@@ -358,34 +358,30 @@ static int energy_at(afv_geom *g, int n, const double *r, const afv_params *p,
   return st;
 }
 
-int afv_gradient_check(int n, const double *r, const afv_params *p,
-                       const afv_box *b, double h, afv_check_report *rep)
+int afv_force_check(int n, const double *r, const afv_params *p,
+                    const afv_box *b, double h, const double *f,
+                    afv_check_report *rep)
 {
   afv_geom g;
-  double *f = malloc((size_t)(2 * n + 1) * sizeof(double));
   double *rr = malloc((size_t)(2 * n + 1) * sizeof(double));
-  int st, c;
+  int st = AFV_OK, c;
   memset(&g, 0, sizeof g);
   memset(rep, 0, sizeof *rep);
   rep->worst_cell = -1;
-  if (!f || !rr) {
-    st = AFV_ENOMEM;
-    goto done;
-  }
+  if (!rr) return AFV_ENOMEM;
   if (n > 0) memcpy(rr, r, (size_t)(2 * n) * sizeof(double));
-  if ((st = afv_compute(&g, n, r, p, b, f)) != AFV_OK) goto done;
   for (c = 0; c < 2 * n; c++)
     if (fabs(f[c]) > rep->force_scale) rep->force_scale = fabs(f[c]);
   for (c = 0; c < 2 * n; c++) {
     double Ep, Em, fd, err;
     rr[c] = r[c] + h;
-    if ((st = energy_at(&g, n, rr, p, b, &Ep)) != AFV_OK) goto done;
+    if ((st = energy_at(&g, n, rr, p, b, &Ep)) != AFV_OK) break;
     rr[c] = r[c] - h;
-    if ((st = energy_at(&g, n, rr, p, b, &Em)) != AFV_OK) goto done;
+    if ((st = energy_at(&g, n, rr, p, b, &Em)) != AFV_OK) break;
     rr[c] = r[c];
     fd = -(Ep - Em) / (2 * h);
     err = fabs(fd - f[c]);
-    if (err > rep->max_abs || rep->worst_cell < 0) {
+    if (!(err <= rep->max_abs) || rep->worst_cell < 0) {  /* NaN counts */
       rep->max_abs = err;
       rep->worst_cell = c / 2;
       rep->worst_comp = c % 2;
@@ -393,9 +389,24 @@ int afv_gradient_check(int n, const double *r, const afv_params *p,
   }
   rep->max_rel = rep->force_scale > 0 ? rep->max_abs / rep->force_scale
                                       : rep->max_abs;
-done:
   afv_geom_free(&g);
-  free(f);
   free(rr);
+  return st;
+}
+
+int afv_gradient_check(int n, const double *r, const afv_params *p,
+                       const afv_box *b, double h, afv_check_report *rep)
+{
+  afv_geom g;
+  double *f = malloc((size_t)(2 * n + 1) * sizeof(double));
+  int st;
+  memset(&g, 0, sizeof g);
+  memset(rep, 0, sizeof *rep);
+  rep->worst_cell = -1;
+  if (!f) return AFV_ENOMEM;
+  st = afv_compute(&g, n, r, p, b, f);
+  afv_geom_free(&g);
+  if (st == AFV_OK) st = afv_force_check(n, r, p, b, h, f, rep);
+  free(f);
   return st;
 }

@@ -178,10 +178,15 @@ typedef struct afv_check_report {
   int    worst_comp;  /* 0 = x, 1 = y */
 } afv_check_report;
 
-/* Central differences of the total energy with step h (in units of l):
+/* Central differences of the total energy with step h (a length):
 ** compares -dE/dr from E(r +- h) with afv_compute's forces. */
 int afv_gradient_check(int n, const double *r, const afv_params *p,
                        const afv_box *b, double h, afv_check_report *rep);
+/* The same comparison for forces f supplied by the caller (2n values):
+** lets a test prove that the check catches a wrong force. */
+int afv_force_check(int n, const double *r, const afv_params *p,
+                    const afv_box *b, double h, const double *f,
+                    afv_check_report *rep);
 
 /* ---- files (io.c) ----------------------------------------------------- */
 /* Reads a POINTS file: one cell "x y" per line, separated by spaces, tabs

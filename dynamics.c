@@ -41,11 +41,8 @@
 ** thread count gives the same bits.  Empty in the plain C99 build. */
 #ifdef _OPENMP
 #define AFV_PARALLEL_FOR _Pragma("omp parallel for schedule(static)")
-#define AFV_PARALLEL_FOR_FIRST_BAD \
-  _Pragma("omp parallel for schedule(static) reduction(min:bad)")
 #else
 #define AFV_PARALLEL_FOR
-#define AFV_PARALLEL_FOR_FIRST_BAD
 #endif
 
 /* ---- Philox4x32-10 ----------------------------------------------------- */
@@ -491,14 +488,17 @@ static int site_cmp(const void *pa, const void *pb)
 
 int afv_init_cluster(int n, double a, const afv_box *b, double *r)
 {
-  /* the n nearest sites lie within radius sqrt(n / pi * sqrt(3)/2) + 2 */
+  /* the n nearest sites lie within radius sqrt(n / pi * sqrt(3)/2) + 2;
+  ** site (i, j) is at distance^2 i^2 + ij + j^2 >= 3 j^2 / 4, so the rows
+  ** that reach the disk have |j| <= J = 2R / sqrt(3) */
   int R = (int)ceil(sqrt(n * 0.8660254037844386 / 3.14159265358979) + 2);
+  int J = (int)ceil(2 * R / 1.7320508075688772);
   int m = 0, i, j, k;
   long maxd2 = 0;
   double cx = 0, cy = 0;
-  site *S = malloc((size_t)(2 * R + 1) * (size_t)(2 * R + 1) * sizeof *S);
+  site *S = malloc((size_t)(4 * R + 1) * (size_t)(2 * J + 1) * sizeof *S);
   if (!S) return AFV_ENOMEM;
-  for (j = -R; j <= R; j++)
+  for (j = -J; j <= J; j++)
     for (i = -2 * R; i <= 2 * R; i++) {
       long d2 = (long)i * i + (long)i * j + (long)j * j;
       if (d2 > (long)R * R) continue;
@@ -507,6 +507,10 @@ int afv_init_cluster(int n, double a, const afv_box *b, double *r)
       S[m].j = j;
       m++;
     }
+  if (m < n) {                 /* cannot happen: the disk holds >= n sites */
+    free(S);
+    return AFV_EINVAL;
+  }
   qsort(S, (size_t)m, sizeof *S, site_cmp);
   for (k = 0; k < n; k++)
     if (S[k].d2 > maxd2) maxd2 = S[k].d2;

@@ -167,12 +167,16 @@ void afv_wrap(const afv_box *b, double *x, double *y)
 }
 
 /* ---- cell list --------------------------------------------------------- */
-/* The grid of bins: nbx x nby bins of side wx x wy (each >= 2l), whose
-** lower-left corner is (x0, y0).  Periodic: the box is Lx x Ly. */
+/* The grid of bins.  Bins have sides >= 2l for the argument l of
+** grid_periodic / grid_open (the candidates pass half their search range
+** (2 + SKIN) l there), so a scan of the 3 x 3 bins around a cell finds
+** every cell within that range. */
 typedef struct grid {
-  int nbx, nby, periodic;
-  double x0, y0, wx, wy;
-  double Lx, Ly;
+  int nbx, nby;     /* bins along x and y (>= 1) */
+  int periodic;     /* 1: the bins tile the periodic box */
+  double x0, y0;    /* lower-left corner of bin (0, 0) */
+  double wx, wy;    /* bin sides */
+  double Lx, Ly;    /* periodic box sides (0 in open space) */
 } grid;
 
 static void grid_periodic(grid *G, const afv_box *b, double l)
@@ -557,7 +561,11 @@ static void link_reverse_slots(afv_geom *g, int n)
   }
 }
 
-/* The exact lists from the candidates: count, then fill in place. */
+/* The exact lists from the candidates, in one filtering pass: cell i
+** writes its list at its candidate offset cand_start[i] (an upper bound)
+** into nbr_rev (cells) and grad (displacements), which serve as scratch
+** here -- both are rewritten before they are read -- and is then copied to
+** its place nbr_start[i].  Each cell writes only its own entries. */
 int afv_neighbours(afv_geom *g, int n, const double *r, double l,
                    const afv_box *b)
 {
@@ -569,17 +577,21 @@ int afv_neighbours(afv_geom *g, int n, const double *r, double l,
   if (!candidates_valid(g, n, r, l, b)
       && (st = build_candidates(g, n, r, l, b)) != AFV_OK)
     return st;
+  if (grow_nbr(g, g->cand_start[n] + 1)) return AFV_ENOMEM;
   wrap_all(g, n, r, b);
   AFV_PARALLEL_FOR
-  for (i = 0; i < n; i++)
-    g->nbr_start[i + 1] = filter_cell(g, i, l, b, NULL, NULL);
+  for (i = 0; i < n; i++) {
+    int c = g->cand_start[i];
+    g->nbr_start[i + 1] = filter_cell(g, i, l, b, g->nbr_rev + c,
+                                      g->grad + 2 * c);
+  }
   if ((st = find_coincident(g, g->nbr_start + 1, n)) != AFV_OK) return st;
   for (i = 0; i < n; i++) g->nbr_start[i + 1] += g->nbr_start[i];
-  if (grow_nbr(g, g->nbr_start[n] + 1)) return AFV_ENOMEM;
   AFV_PARALLEL_FOR
   for (i = 0; i < n; i++) {
-    int s = g->nbr_start[i];
-    filter_cell(g, i, l, b, g->nbr + s, g->nbr_d + 2 * s);
+    int s = g->nbr_start[i], m = g->nbr_start[i + 1] - s, c = g->cand_start[i];
+    memcpy(g->nbr + s, g->nbr_rev + c, (size_t)m * sizeof(int));
+    memcpy(g->nbr_d + 2 * s, g->grad + 2 * c, (size_t)m * 2 * sizeof(double));
   }
   link_reverse_slots(g, n);
   return AFV_OK;

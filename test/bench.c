@@ -12,8 +12,8 @@
 **
 ** States (periodic, packing fraction N pi l^2 / (Lx Ly) = 0.5, l = 1, the
 ** paper's KA = KP = 1, A0 = pi, Lambda = 0.2, Dr = 0.1, dt = 0.01, mu = 1,
-** and afv run's contact cap 0.1, without which Euler steps of 0.01 are
-** unstable where contacts break):
+** and afv run's defaults: exact forces (no cap) with sub-steps where the
+** force would move a cell more than max_move = 0.05 l, see dynamics.c):
 **   random   afv_init_random centres, P0 = 4.8, v0 = 1;
 **   cluster  afv_init_cluster (spacing CLUSTER_SPACING), P0 = 4, v0 = 0.1;
 ** in both the cells are then numbered in afv_spatial_order.
@@ -94,7 +94,6 @@ static int make_state(afv_sim *s, int cluster, int n)
   b.periodic = 1;
   b.Lx = b.Ly = sqrt(n * PI / PHI);
   afv_init_angles(n, SEED, th);
-  p.cap = 0.1;
   p.P0 = cluster ? 4.0 : 4.8;
   st = AFV_OK;
   if (cluster) st = afv_init_cluster(n, CLUSTER_SPACING, &b, r);

@@ -626,6 +626,32 @@ static void test_gradient_check_can_fail(void)
         "max rel error %.3e", rep.max_rel);
 }
 
+/* The fault injected by hand: the exact forces with one component nudged
+** by 1e-4 of the force scale must fail afv_force_check at that very place,
+** while the untouched forces pass it. */
+static void test_force_check_catches_one_wrong_component(void)
+{
+  enum { N = 30, BAD = 17 };
+  double r[2 * N], f[2 * N];
+  afv_params p;
+  afv_box b;
+  afv_geom g;
+  afv_check_report rep;
+  memset(&g, 0, sizeof g);
+  rng_seed(6);
+  afv_params_default(&p);
+  b = random_config(N, 1.0, 0.6, 0, 1e-3, r);
+  CHECK(afv_compute(&g, N, r, &p, &b, f) == AFV_OK, "compute");
+  CHECK(afv_force_check(N, r, &p, &b, 1e-6, f, &rep) == AFV_OK
+        && rep.max_rel <= GRAD_RTOL, "exact forces: %.3e", rep.max_rel);
+  f[2 * BAD + 1] += 1e-4 * rep.force_scale;
+  CHECK(afv_force_check(N, r, &p, &b, 1e-6, f, &rep) == AFV_OK, "status");
+  CHECK(rep.max_rel > 5e-5 && rep.worst_cell == BAD && rep.worst_comp == 1,
+        "nudged force: max rel %.3e at cell %d comp %d", rep.max_rel,
+        rep.worst_cell, rep.worst_comp);
+  afv_geom_free(&g);
+}
+
 /* ========================================================================
 ** 4. The cell list against all pairs
 ** ======================================================================== */
@@ -1301,6 +1327,7 @@ void suite_core(void)
   RUN(test_gradient_random);
   RUN(test_gradient_near_detachment);
   RUN(test_gradient_check_can_fail);
+  RUN(test_force_check_catches_one_wrong_component);
   RUN(test_cell_list_vs_all_pairs);
   RUN(test_total_force_and_torque);
   RUN(test_translation_rotation_permutation);

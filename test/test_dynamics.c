@@ -475,6 +475,34 @@ static void test_cluster_start(void)
     CHECK(hypot(r[2*i] - 15, r[2*i+1] - 15) < 15, "cell %d outside", i);
 }
 
+/* A large cluster gets N distinct sites (an early version generated only
+** the lattice rows |j| <= R and left ~0.1% of the cells of N = 40000 on
+** top of each other): the geometry accepts it, and every cell has a
+** neighbour at exactly the lattice spacing. */
+static void test_large_cluster_start(void)
+{
+  enum { N = 40000 };
+  afv_box b = {0, 0, 0};
+  afv_geom g;
+  double *r = malloc(2 * N * sizeof(double));
+  int i, st, far = 0;
+  memset(&g, 0, sizeof g);
+  CHECK(r && afv_init_cluster(N, 1.8, &b, r) == AFV_OK, "init");
+  st = r ? afv_neighbours(&g, N, r, 1.0, &b) : AFV_ENOMEM;
+  CHECK(st == AFV_OK, "neighbours: %s (cells %d, %d)", afv_strerror(st),
+        g.bad_i, g.bad_j);
+  for (i = 0; st == AFV_OK && i < N; i++) {
+    double dmin = 1e9;
+    int s;
+    for (s = g.nbr_start[i]; s < g.nbr_start[i + 1]; s++)
+      dmin = fmin(dmin, hypot(g.nbr_d[2*s], g.nbr_d[2*s+1]));
+    if (fabs(dmin - 1.8) > 1e-9) far++;
+  }
+  CHECK(far == 0, "%d cells without a neighbour at the spacing", far);
+  afv_geom_free(&g);
+  free(r);
+}
+
 /* ---- the afv run job --------------------------------------------------- */
 static char tmpdir[256];
 
@@ -828,6 +856,7 @@ void suite_dynamics(void)
   RUN(test_relax_energy_never_increases);
   RUN(test_relax_stops_at_kink);
   RUN(test_cluster_start);
+  RUN(test_large_cluster_start);
   if (mkdir(tmpdir, 0777) != 0) {
     printf("  cannot create %s\n", tmpdir);
     return;
