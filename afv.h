@@ -519,6 +519,7 @@ typedef struct afv_plot_series {
   int           n;
   const char   *label;  /* legend text (NULL: none) */
   const char   *color;  /* SVG colour, e.g. "#1f77b4" */
+  int           points; /* 1: a marker per point and no line (scatter) */
 } afv_plot_series;
 int afv_svg_plot(FILE *out, const afv_plot *pl, const afv_plot_series *s,
                  int ns);

@@ -818,6 +818,7 @@ static void plot_msd(FILE *fp, const afv_analysis *a)
   s[1].y = a->msd.msd;
   s[1].label = "MSD";
   s[1].color = "#1f77b4";
+  s[0].points = s[1].points = 0;
   afv_svg_plot(fp, &pl, s, 2);
 }
 
@@ -834,6 +835,7 @@ static void plot_series(FILE *fp, const afv_analysis *a)
   s[1].y = a->omega;
   s[1].label = "Omega";
   s[1].color = "#9467bd";
+  s[0].points = s[1].points = 0;
   afv_svg_plot(fp, &pl, s, 2);
 }
 
@@ -851,6 +853,7 @@ static void plot_csd(FILE *fp, const afv_analysis *a)
   s.n = a->n;
   s.label = "p(n)";
   s.color = "#2ca02c";
+  s.points = 1;            /* a distribution: one marker per size */
   afv_svg_plot(fp, &pl, &s, 1);
   free(x);
 }

@@ -341,20 +341,23 @@ static void draw_axes(FILE *out, const axis *ax, const axis *ay)
   }
 }
 
+/* A polyline through the usable points (unless s->points), and a marker on
+** each point when there are few of them or when asked to (scatter). */
 static void draw_series(FILE *out, const axis *ax, const axis *ay,
                         const afv_plot_series *s)
 {
   double x0 = PLOT_L, x1 = PLOT_W - PLOT_R, y0 = PLOT_H - PLOT_B, y1 = PLOT_T;
   int i, used = 0;
-  fprintf(out, "<polyline class=\"series\" fill=\"none\" stroke=\"%s\" "
-          "stroke-width=\"1.5\" points=\"", s->color);
-  for (i = 0; i < s->n; i++)
-    if (usable(ax, s->x[i]) && usable(ay, s->y[i])) {
-      fprintf(out, "%s%.2f,%.2f", used++ ? " " : "",
-              to_px(ax, s->x[i], x0, x1), to_px(ay, s->y[i], y0, y1));
-    }
-  fprintf(out, "\"/>\n");
-  if (s->n > 60) return;   /* few points: mark each one */
+  if (!s->points) {
+    fprintf(out, "<polyline class=\"series\" fill=\"none\" stroke=\"%s\" "
+            "stroke-width=\"1.5\" points=\"", s->color);
+    for (i = 0; i < s->n; i++)
+      if (usable(ax, s->x[i]) && usable(ay, s->y[i]))
+        fprintf(out, "%s%.2f,%.2f", used++ ? " " : "",
+                to_px(ax, s->x[i], x0, x1), to_px(ay, s->y[i], y0, y1));
+    fprintf(out, "\"/>\n");
+    if (s->n > 60) return;
+  }
   for (i = 0; i < s->n; i++)
     if (usable(ax, s->x[i]) && usable(ay, s->y[i]))
       fprintf(out, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"2.5\" fill=\"%s\"/>\n",

@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #define PI 3.14159265358979323846
@@ -767,6 +768,7 @@ static void svg_plot_well_formed(void)
   s.n = 5;
   s.label = "a < b & c";
   s.color = "#123456";
+  s.points = 0;
   if (!fp) return;
   CHECK(afv_svg_plot(fp, &loglog, &s, 1) == AFV_OK, "plot");
   CHECK(afv_svg_plot(fp, &linear, &s, 1) == AFV_OK, "plot");
@@ -853,7 +855,6 @@ static int smoke_run(double P0, double *ngc_min, double *om_min,
   int k, st;
   afv_params_default(&p);
   p.P0 = P0;
-  p.cap = 0.1;          /* afv run's default: bounded force at detachment */
   afv_dyn_default(&d);
   d.v0 = 0.1;
   memset(&s, 0, sizeof s);
@@ -893,6 +894,61 @@ static void smoke_mesenchymal_cluster(void)
   CHECK(hi < 0.5, "P0 8.8, v0 0.1: max Omega %g, want < 0.5", hi);
 }
 
+/* ---- the commands, end to end -------------------------------------------- */
+/* Exit status of a shell command (-1 if it did not exit normally). */
+static int run_status(const char *cmd)
+{
+  int st = system(cmd);
+  return st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* afv run (short), then afv analyze and afv draw on its output; and the
+** bad inputs of the three commands, each exit status 2. */
+static void commands_end_to_end(void)
+{
+  char dir[64], cmd[512], path[128];
+  FILE *fp;
+  char line[512];
+  int found = 0;
+  if (access("./afv", X_OK) != 0) {
+    SKIP("./afv not built");
+    return;
+  }
+  snprintf(dir, sizeof dir, "/tmp/afv_analysis_cli_%ld", (long)getpid());
+  snprintf(cmd, sizeof cmd, "./afv run --out %s --N 30 --steps 400 "
+           "--frame_every 50 --sample_every 100 --svg_every 0 --quiet", dir);
+  CHECK(run_status(cmd) == 0, "%s failed", cmd);
+  snprintf(path, sizeof path, "%s/observables.csv", dir);
+  fp = fopen(path, "r");
+  CHECK(fp && fgets(line, sizeof line, fp)
+        && strstr(line, "ngc_frac,n_clusters,omega,t1") != NULL,
+        "observables.csv lacks the analysis columns");
+  if (fp) fclose(fp);
+  snprintf(cmd, sizeof cmd, "./afv analyze %s --lag 2 > /dev/null", dir);
+  CHECK(run_status(cmd) == 0, "%s failed", cmd);
+  snprintf(path, sizeof path, "%s/analysis/summary.txt", dir);
+  fp = fopen(path, "r");
+  while (fp && fgets(line, sizeof line, fp)) found += !strncmp(line, "D_eff ", 6);
+  if (fp) fclose(fp);
+  CHECK(found == 1, "summary.txt has no D_eff line");
+  snprintf(cmd, sizeof cmd, "./afv draw %s/trajectory.dat --frame 2 > "
+           "%s/f2.svg", dir, dir);
+  CHECK(run_status(cmd) == 0, "%s failed", cmd);
+  snprintf(cmd, sizeof cmd, "./afv draw %s/trajectory.dat --frame 99 > "
+           "/dev/null 2>&1", dir);
+  CHECK(run_status(cmd) == 2, "draw of a missing frame: not exit 2");
+  CHECK(run_status("./afv draw /nonexistent.xy > /dev/null 2>&1") == 2,
+        "draw of a missing file: not exit 2");
+  CHECK(run_status("./afv analyze /nonexistent_dir > /dev/null 2>&1") == 2,
+        "analyze of a missing run: not exit 2");
+  CHECK(run_status("./afv meanfield --KP 0 > /dev/null 2>&1") == 2,
+        "meanfield --KP 0: not exit 2");
+  CHECK(run_status("./afv meanfield --bogus 1 > /dev/null 2>&1") == 2,
+        "meanfield --bogus: not exit 2");
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  CHECK(run_status(cmd) == 0, "cleanup of %s", dir);
+}
+
 void suite_analysis(void)
 {
   RUN(clusters_two_separate);
@@ -920,4 +976,5 @@ void suite_analysis(void)
   RUN(analyze_synthetic_run);
   RUN(smoke_epithelial_cluster);
   RUN(smoke_mesenchymal_cluster);
+  RUN(commands_end_to_end);
 }
