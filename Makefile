@@ -19,7 +19,7 @@ endif
 
 LIB_SRC  = geom.c afv.c dynamics.c analysis.c svg.c io.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
-TEST_SRC = test/main.c $(wildcard test/test_*.c)
+TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
 .PHONY: all test run bench bench-quick clean
 

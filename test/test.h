@@ -42,6 +42,20 @@ int  test_close(double got, double want, double rtol, double atol);
 ** overridden by the environment variable AFV_SHARED. */
 const char *test_shared_dir(void);
 
+/* Shared fixtures (fixtures.c).  A fixed-seed splitmix64 stream, so every
+** "random" configuration is the same on every run; uniforms in [0, 1). */
+#include "afv.h"
+void               test_rng_seed(unsigned long long s);
+unsigned long long test_rng_next(void);
+double             test_rng_uniform(void);
+double             test_rng_normal(void);        /* Box-Muller */
+afv_box test_open_box(void);
+afv_box test_periodic_box(double Lx, double Ly);
+/* nx x ny triangular lattice of spacing D (ny even for periodicity), first
+** cell at (x0, y0), rows offset by D/2; returns its periodic box. */
+afv_box test_tri_lattice(int nx, int ny, double D, double x0, double y0,
+                         double *r);
+
 /* Test suites, one per source file. */
 void suite_core(void);
 void suite_cli(void);

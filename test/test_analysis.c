@@ -20,45 +20,7 @@
 
 #define PI 3.14159265358979323846
 
-/* ---- fixed-seed random numbers (splitmix64, Box-Muller) ------------------ */
-static unsigned long long rng_state;
-
-static unsigned long long rng_next(void)
-{
-  unsigned long long z = (rng_state += 0x9E3779B97F4A7C15ULL);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-
-static double rng_uniform(void)   /* in (0, 1) */
-{
-  return ((double)(rng_next() >> 11) + 0.5) * (1.0 / 9007199254740992.0);
-}
-
-static double rng_normal(void)
-{
-  return sqrt(-2 * log(rng_uniform())) * cos(2 * PI * rng_uniform());
-}
-
 /* ---- fixtures ------------------------------------------------------------ */
-static afv_box open_box(void)
-{
-  afv_box b;
-  b.periodic = 0;
-  b.Lx = b.Ly = 0;
-  return b;
-}
-
-static afv_box periodic_box(double Lx, double Ly)
-{
-  afv_box b;
-  b.periodic = 1;
-  b.Lx = Lx;
-  b.Ly = Ly;
-  return b;
-}
-
 /* Geometry (l = 1) and clusters of n cells; returns 0 on failure. */
 static int analyse(int n, const double *r, const afv_box *b, afv_geom *g,
                    afv_clusters *c)
@@ -75,17 +37,11 @@ static int analyse(int n, const double *r, const afv_box *b, afv_geom *g,
 }
 
 /* Periodic triangular lattice of mx x my cells (my even), spacing d. */
+/* An mx x my periodic triangular lattice of spacing d; returns its size. */
 static int tri_lattice(int mx, int my, double d, double *r, afv_box *b)
 {
-  int i, j, n = 0;
-  for (j = 0; j < my; j++)
-    for (i = 0; i < mx; i++) {
-      r[2*n] = (i + 0.5 * (j % 2) + 0.25) * d;
-      r[2*n+1] = (j + 0.5) * d * sqrt(3.0) / 2;
-      n++;
-    }
-  *b = periodic_box(mx * d, my * d * sqrt(3.0) / 2);
-  return n;
+  *b = test_tri_lattice(mx, my, d, 0.25 * d, 0.25 * sqrt(3.0) * d, r);
+  return mx * my;
 }
 
 static void free_both(afv_geom *g, afv_clusters *c)
@@ -100,7 +56,7 @@ static void clusters_two_separate(void)
   /* two tight triangles (side 1.2 < sqrt 3: a junction each), 10 l apart */
   double r[12] = {0, 0, 1.2, 0, 0.6, 1.03923,
                   10, 0, 11.2, 0, 10.6, 1.03923};
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   afv_geom g = {0};
   afv_clusters c = {0};
   if (!analyse(6, r, &b, &g, &c)) return;
@@ -119,7 +75,7 @@ static void clusters_chain(void)
 {
   double r[10];
   int i;
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   afv_geom g = {0};
   afv_clusters c = {0};
   for (i = 0; i < 5; i++) {
@@ -139,7 +95,7 @@ static void clusters_ring_wraps_box(void)
 {
   /* 4 cells 1.5 apart along x in a 6 x 6 box: a ring through the boundary */
   double r[8] = {0.75, 3, 2.25, 3, 3.75, 3, 5.25, 3};
-  afv_box b = periodic_box(6, 6);
+  afv_box b = test_periodic_box(6, 6);
   afv_geom g = {0};
   afv_clusters c = {0};
   if (!analyse(4, r, &b, &g, &c)) return;
@@ -149,7 +105,7 @@ static void clusters_ring_wraps_box(void)
   CHECK_CLOSE(c.omega, 0.0, 0, 0, "Omega of a ring");
   free_both(&g, &c);
   /* the same chain in a wider box is open: 3 contacts, no winding */
-  b = periodic_box(12, 6);
+  b = test_periodic_box(12, 6);
   if (!analyse(4, r, &b, &g, &c)) return;
   CHECK(c.count == 1 && c.wraps[0] == 0 && c.n_pairs == 3,
         "wide box: count %d wraps %d pairs %d", c.count, c.wraps[0],
@@ -160,7 +116,7 @@ static void clusters_ring_wraps_box(void)
 static void clusters_isolated(void)
 {
   double r[8] = {0, 0, 3, 0, 0, 3, 3, 3};
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   afv_geom g = {0};
   afv_clusters c = {0};
   if (!analyse(4, r, &b, &g, &c)) return;
@@ -176,7 +132,7 @@ static void clusters_isolated(void)
 static void clusters_shadowed_bisector(void)
 {
   double r[6] = {0, 0, 0.9, 0, 1.8, 0};
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   afv_geom g = {0};
   afv_clusters c = {0};
   int s, premise = 0;
@@ -198,11 +154,11 @@ static void clusters_match_flood_fill(void)
   enum { N = 300 };
   double r[2 * N];
   int seen[N], stack[N], i, k, sp, lab, bad = 0;
-  afv_box b = periodic_box(30, 30);
+  afv_box b = test_periodic_box(30, 30);
   afv_geom g = {0};
   afv_clusters c = {0};
-  rng_state = 7;
-  for (i = 0; i < 2 * N; i++) r[i] = 30 * rng_uniform();
+  test_rng_seed(7);
+  for (i = 0; i < 2 * N; i++) r[i] = 30 * test_rng_uniform();
   if (!analyse(N, r, &b, &g, &c)) return;
   for (i = 0; i < N; i++) seen[i] = -1;
   for (lab = 0, i = 0; i < N; i++) {
@@ -272,7 +228,7 @@ static void omega_mixed_by_hand(void)
 {
   double r[18] = {0, 0, 1.6, 0, 1.6, 1.6, 0, 1.6, 0.8, -1.2,
                   10, 0, 11.2, 0, 10.6, 1.03923, -10, -10};
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   afv_geom g = {0};
   afv_clusters c = {0};
   int a;
@@ -299,7 +255,7 @@ static void omega_degenerate_vertex(void)
   int k;
   for (k = 0; k < 3; k++) {
     double r[8] = {0, 0, 1.2, 0, 1.2, 1.2, 0, 1.2};
-    afv_box b = open_box();
+    afv_box b = test_open_box();
     afv_geom g = {0};
     afv_clusters c = {0};
     r[0] += eps[k];
@@ -314,7 +270,7 @@ static void omega_degenerate_vertex(void)
   /* a square of side 1.6 has a gap in the middle: no junction */
   {
     double r[8] = {0, 0, 1.6, 0, 1.6, 1.6, 0, 1.6};
-    afv_box b = open_box();
+    afv_box b = test_open_box();
     afv_geom g = {0};
     afv_clusters c = {0};
     if (!analyse(4, r, &b, &g, &c)) return;
@@ -342,7 +298,7 @@ static void exchange_config(double s, const int *perm, double *r)
 
 static double exchange_t1(const int *perm, int steps)
 {
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   afv_geom g = {0};
   afv_clusters c = {0};
   afv_t1 t = {0, NULL};
@@ -370,7 +326,7 @@ static void t1_neighbour_exchange(void)
 
 static void t1_flicker_cancels(void)
 {
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   afv_geom g = {0};
   afv_clusters c = {0};
   afv_t1 t = {0, NULL};
@@ -412,7 +368,7 @@ static void msd_translation_and_unwrap(void)
   afv_msd m;
   int f, i, k, n = 4, nf = 60;
   double err_unwrap = 0, err_msd = 0, err_rel = 0;
-  if (!traj_alloc(&tr, n, nf, periodic_box(6, 6))) return;
+  if (!traj_alloc(&tr, n, nf, test_periodic_box(6, 6))) return;
   for (f = 0; f < nf; f++) {
     tr.t[f] = 0.5 * f;
     for (i = 0; i < n; i++) {
@@ -455,7 +411,7 @@ static void msd_relative_by_hand(void)
 {
   afv_traj tr;
   afv_msd m;
-  if (!traj_alloc(&tr, 2, 2, open_box())) return;
+  if (!traj_alloc(&tr, 2, 2, test_open_box())) return;
   tr.t[1] = 1;
   tr.r[2] = tr.r[6] = 1.5;
   tr.r[4] = 1;
@@ -480,17 +436,19 @@ static void msd_random_walks(void)
   afv_traj tr;
   afv_msd m;
   int f, i, k, checked = 0;
-  if (!traj_alloc(&tr, N, T, open_box())) return;
-  rng_state = 11;
+  if (!traj_alloc(&tr, N, T, test_open_box())) return;
+  test_rng_seed(11);
   for (i = 0; i < N; i++) {
-    tr.r[2*i] = 10.0 * (i % 10);     /* far apart: they never meet */
-    tr.r[2*i+1] = 10.0 * (i / 10);
+    /* 30 l apart: each walk spreads by s sqrt(T) = 2 l per coordinate, so
+    ** two cells come within 2l of each other only at a 10-sigma excursion */
+    tr.r[2*i] = 30.0 * (i % 10);
+    tr.r[2*i+1] = 30.0 * (i / 10);
   }
   for (f = 1; f < T; f++) {
     tr.t[f] = f;
     for (i = 0; i < 2 * N; i++)
       tr.r[(size_t)f * 2 * N + i] = tr.r[(size_t)(f - 1) * 2 * N + i]
-                                    + s * rng_normal();
+                                    + s * test_rng_normal();
   }
   if (afv_msd_compute(&m, &tr, 0, 1.0) != AFV_OK) {
     CHECK(0, "afv_msd_compute failed");
@@ -524,9 +482,9 @@ static void tau_ar1(void)
     CHECK(0, "out of memory");
     return;
   }
-  rng_state = 3;
-  x[0] = rng_normal() / sqrt(1 - a * a);
-  for (i = 1; i < NS; i++) x[i] = a * x[i - 1] + rng_normal();
+  test_rng_seed(3);
+  x[0] = test_rng_normal() / sqrt(1 - a * a);
+  for (i = 1; i < NS; i++) x[i] = a * x[i - 1] + test_rng_normal();
   tau = afv_autocorr_time(x, NS, &reliable);
   sigma = want * sqrt(2.0 * (2 * w + 1) / NS);
   CHECK(reliable, "window not reached");
@@ -692,7 +650,7 @@ static void svg_counts_match_geometry(void)
   double r[18] = {0, 0, 1.6, 0, 1.6, 1.6, 0, 1.6, 0.8, -1.2,
                   10, 0, 11.2, 0, 10.6, 1.03923, -10, -10};
   double theta[9] = {0, 1, 2, 3, 4, 5, 6, 0.5, 1.5};
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   afv_params p;
   afv_geom g = {0};
   FILE *fp = tmpfile();
@@ -848,7 +806,7 @@ static int smoke_run(double P0, double *ngc_min, double *om_min,
   double r[2 * N], L = sqrt(N * PI / 0.5);
   afv_params p;
   afv_dyn d;
-  afv_box b = periodic_box(L, L);
+  afv_box b = test_periodic_box(L, L);
   afv_sim s;
   afv_clusters c = {0};
   afv_relax_report rep;

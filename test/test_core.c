@@ -23,43 +23,7 @@
 /* Finite-difference checks: max |F - F_fd| / max |F| below this. */
 #define GRAD_RTOL 1e-6
 
-/* ---- fixed-seed random numbers (splitmix64) ------------------------------ */
-static unsigned long long rng_state;
-
-static void rng_seed(unsigned long long s) { rng_state = s; }
-
-static unsigned long long rng_next(void)
-{
-  unsigned long long z = (rng_state += 0x9E3779B97F4A7C15ULL);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-
-/* Uniform in [0, 1), 53 random bits. */
-static double rng_uniform(void)
-{
-  return (double)(rng_next() >> 11) * (1.0 / 9007199254740992.0);
-}
-
 /* ---- small fixtures ------------------------------------------------------ */
-static afv_box open_box(void)
-{
-  afv_box b;
-  b.periodic = 0;
-  b.Lx = b.Ly = 0;
-  return b;
-}
-
-static afv_box periodic_box(double Lx, double Ly)
-{
-  afv_box b;
-  b.periodic = 1;
-  b.Lx = Lx;
-  b.Ly = Ly;
-  return b;
-}
-
 /* Parameters different from the defaults, so that no term hides behind a
 ** coefficient 1 or a target that happens to match. */
 static afv_params odd_params(double l)
@@ -87,19 +51,6 @@ static afv_params default_params(double l)
 
 /* Triangular lattice of nx x ny sites at spacing D (ny even), rows shifted
 ** by D/2 alternately, offset (x0, y0); returns the commensurate box. */
-static afv_box tri_lattice(int nx, int ny, double D, double x0, double y0,
-                           double *r)
-{
-  double rowh = D * sqrt(3.0) / 2;
-  int i, j;
-  for (j = 0; j < ny; j++)
-    for (i = 0; i < nx; i++) {
-      r[2 * (j * nx + i)] = x0 + (i + 0.5 * (j % 2)) * D;
-      r[2 * (j * nx + i) + 1] = y0 + j * rowh;
-    }
-  return periodic_box(nx * D, ny * rowh);
-}
-
 /* Uniform random centres: n cells, open square or periodic box, packing
 ** fraction phi = n pi l^2 / area.  Centres that land within `band` of
 ** exactly 2l from an earlier centre are redrawn (band 0: no rejection). */
@@ -107,15 +58,15 @@ static afv_box random_config(int n, double l, double phi, int periodic,
                              double band, double *r)
 {
   double side = sqrt(n * PI * l * l / phi);
-  afv_box b = periodic_box(side, side);
+  afv_box b = test_periodic_box(side, side);
   int i, j;
-  if (periodic && side < 4 * l) b = periodic_box(4 * l, 4 * l);
-  if (!periodic) b = open_box();
+  if (periodic && side < 4 * l) b = test_periodic_box(4 * l, 4 * l);
+  if (!periodic) b = test_open_box();
   for (i = 0; i < n; i++) {
     int ok;
     do {
-      r[2*i] = (periodic ? b.Lx : side) * rng_uniform();
-      r[2*i+1] = (periodic ? b.Ly : side) * rng_uniform();
+      r[2*i] = (periodic ? b.Lx : side) * test_rng_uniform();
+      r[2*i+1] = (periodic ? b.Ly : side) * test_rng_uniform();
       ok = 1;
       for (j = 0; j < i && band > 0; j++) {
         double dx = r[2*j] - r[2*i], dy = r[2*j+1] - r[2*i+1];
@@ -170,7 +121,7 @@ static void test_isolated_cell(void)
   for (k = 0; k < 3; k++) {
     double l = ls[k], r[2] = {0.37, -5.1}, f[2] = {1, 1};
     afv_params p = odd_params(l);
-    afv_box b = open_box();
+    afv_box b = test_open_box();
     int st = afv_compute(&g, 1, r, &p, &b, f);
     double A = PI * l * l, P = 2 * PI * l;
     CHECK(st == AFV_OK, "status %d", st);
@@ -223,7 +174,7 @@ static void test_two_cell_lens(void)
       double l = ls[a], d = dl[k] * l, phi = 0.3 + a + 0.7 * k;
       double r[4], f[4], A, P, L, F, fscale;
       afv_params p = odd_params(l);
-      afv_box b = open_box();
+      afv_box b = test_open_box();
       r[0] = 1.25; r[1] = -0.5;
       r[2] = r[0] + d * cos(phi);
       r[3] = r[1] + d * sin(phi);
@@ -303,7 +254,7 @@ static void check_hex_lattice(double l, double D)
   if (ny < 4) ny = 4;
   ny += ny % 2;
   n = nx * ny;
-  b = tri_lattice(nx, ny, D, 0.3 * l, 0.1 * l, r);
+  b = test_tri_lattice(nx, ny, D, 0.3 * l, 0.1 * l, r);
   if (afv_compute(&g, n, r, &p, &b, f) != AFV_OK) {
     CHECK(0, "D/l %g: afv_compute failed", D / l);
     afv_geom_free(&g);
@@ -403,13 +354,13 @@ static void test_large_l_voronoi(void)
   afv_geom g = {0};
   afv_box b;
   int i;
-  rng_seed(7);
+  test_rng_seed(7);
   afv_params_default(&p);
   p.l = 2.5;
-  b = periodic_box(10.0, 10.5);           /* >= 4l; mean spacing ~ 0.8 */
+  b = test_periodic_box(10.0, 10.5);           /* >= 4l; mean spacing ~ 0.8 */
   for (i = 0; i < N; i++) {
-    r[2*i] = b.Lx * rng_uniform();
-    r[2*i+1] = b.Ly * rng_uniform();
+    r[2*i] = b.Lx * test_rng_uniform();
+    r[2*i+1] = b.Ly * test_rng_uniform();
   }
   CHECK(afv_compute(&g, N, r, &p, &b, f) == AFV_OK, "status");
   for (i = 0; i < N; i++) {
@@ -428,7 +379,7 @@ static void test_large_l_voronoi(void)
   {
     enum { M = 5 };
     double q[2 * M * M], fq[2 * M * M];
-    afv_box bq = periodic_box(M, M);
+    afv_box bq = test_periodic_box(M, M);
     int j;
     p.l = 1.0;
     for (j = 0; j < M * M; j++) {
@@ -488,7 +439,7 @@ static double lattice_energy_per_cell(const afv_params *p, double D)
   enum { NX = 4, NY = 4, N = NX * NY };
   double r[2 * N];
   afv_geom g = {0};
-  afv_box b = tri_lattice(NX, NY, D, 0, 0, r);
+  afv_box b = test_tri_lattice(NX, NY, D, 0, 0, r);
   double e;
   CHECK(afv_compute(&g, N, r, p, &b, NULL) == AFV_OK, "status");
   e = g.energy / N;
@@ -543,11 +494,11 @@ static void test_gradient_random(void)
   int k;
   double *r = malloc(2 * 400 * sizeof(double));
   worst_random_rel = 0;
-  rng_seed(2024);
+  test_rng_seed(2024);
   for (k = 0; k < 60 && r; k++) {
     int n = sizes[k % 12], periodic = k % 2;
     double phi = 0.2 + 1.3 * ((k * 7) % 13) / 12.0;
-    double l = k % 3 == 0 ? 1.0 : 0.8 + 0.5 * rng_uniform();
+    double l = k % 3 == 0 ? 1.0 : 0.8 + 0.5 * test_rng_uniform();
     afv_params p = k % 4 < 2 ? odd_params(l) : default_params(l);
     afv_box b;
     afv_check_report rep;
@@ -580,21 +531,21 @@ static void test_gradient_near_detachment(void)
 {
   static const double ls[] = {1.0, 1.6};
   int a, k;
-  rng_seed(99);
+  test_rng_seed(99);
   for (a = 0; a < 2; a++)
     for (k = 0; k < 5; k++) {
       double l = ls[a], d = 2 * l - 1e-3 * l, r[12];
       afv_params p = k % 2 ? odd_params(l) : default_params(l);
-      afv_box b = k % 2 ? periodic_box(9 * l, 8 * l) : open_box();
+      afv_box b = k % 2 ? test_periodic_box(9 * l, 8 * l) : test_open_box();
       afv_check_report rep;
-      double phi = 2 * PI * rng_uniform();
+      double phi = 2 * PI * test_rng_uniform();
       int n = 2 + k, i;
       r[0] = 3 * l; r[1] = 3 * l;
       r[2] = r[0] + d * cos(phi);
       r[3] = r[1] + d * sin(phi);
       /* more cells, each at 2l - 1e-3 l from the previous one */
       for (i = 2; i < n; i++) {
-        phi += PI / 3 + 0.2 * rng_uniform();
+        phi += PI / 3 + 0.2 * test_rng_uniform();
         r[2*i] = r[2*i-2] + d * cos(phi);
         r[2*i+1] = r[2*i-1] + d * sin(phi);
       }
@@ -615,7 +566,7 @@ static void test_gradient_check_can_fail(void)
   afv_params p;
   afv_box b;
   afv_check_report rep;
-  rng_seed(5);
+  test_rng_seed(5);
   afv_params_default(&p);
   b = random_config(N, 1.0, 0.6, 0, 1e-3, r);
   CHECK(afv_gradient_check(N, r, &p, &b, 1e-6, &rep) == AFV_OK, "status");
@@ -638,7 +589,7 @@ static void test_force_check_catches_one_wrong_component(void)
   afv_geom g;
   afv_check_report rep;
   memset(&g, 0, sizeof g);
-  rng_seed(6);
+  test_rng_seed(6);
   afv_params_default(&p);
   b = random_config(N, 1.0, 0.6, 0, 1e-3, r);
   CHECK(afv_compute(&g, N, r, &p, &b, f) == AFV_OK, "compute");
@@ -696,13 +647,13 @@ static void test_cell_list_vs_all_pairs(void)
   afv_geom g = {0};
   int k, i;
   afv_params_default(&p);
-  rng_seed(11);
+  test_rng_seed(11);
   for (k = 0; k < 7; k++) {               /* periodic, bins that wrap */
-    afv_box b = periodic_box(sides[k], sides[(k + 3) % 7]);
+    afv_box b = test_periodic_box(sides[k], sides[(k + 3) % 7]);
     int n = k < 5 ? 20 : N;
     for (i = 0; i < n; i++) {
-      r[2*i] = b.Lx * rng_uniform();
-      r[2*i+1] = b.Ly * rng_uniform();
+      r[2*i] = b.Lx * test_rng_uniform();
+      r[2*i+1] = b.Ly * test_rng_uniform();
     }
     CHECK(afv_geometry(&g, n, r, &p, &b) == AFV_OK, "status");
     CHECK(neighbour_mismatches(&g, n, r, 1.0, &b) == 0, "box %g x %g: "
@@ -710,14 +661,14 @@ static void test_cell_list_vs_all_pairs(void)
           neighbour_mismatches(&g, n, r, 1.0, &b));
   }
   for (k = 0; k < 4; k++) {               /* open: dense, spread, clumps */
-    afv_box b = open_box();
+    afv_box b = test_open_box();
     for (i = 0; i < N; i++) {
       double spread = k == 0 ? 12 : k == 1 ? 1e4 : 40;
-      r[2*i] = spread * rng_uniform();
-      r[2*i+1] = spread * rng_uniform();
+      r[2*i] = spread * test_rng_uniform();
+      r[2*i+1] = spread * test_rng_uniform();
       if (k >= 2 && i % 3) {              /* clumps around far-apart seeds */
-        r[2*i] = r[2*(i - i % 3)] + 2 * rng_uniform();
-        r[2*i+1] = r[2*(i - i % 3) + 1] + 2 * rng_uniform();
+        r[2*i] = r[2*(i - i % 3)] + 2 * test_rng_uniform();
+        r[2*i+1] = r[2*(i - i % 3) + 1] + 2 * test_rng_uniform();
       }
       if (k == 3 && i == 0) r[0] = -1e6;  /* one outlier far away */
     }
@@ -740,7 +691,7 @@ static void test_total_force_and_torque(void)
   afv_geom g = {0};
   afv_box b;
   int i, k;
-  rng_seed(3);
+  test_rng_seed(3);
   for (k = 0; k < 2; k++) {
     b = random_config(N, 1.0, 0.9, k, 0, r);
     CHECK(afv_compute(&g, N, r, &p, &b, f) == AFV_OK, "status");
@@ -771,7 +722,7 @@ static void test_translation_rotation_permutation(void)
   afv_params p = odd_params(1.0);
   afv_geom g = {0};
   afv_box b;
-  rng_seed(17);
+  test_rng_seed(17);
   b = random_config(N, 1.0, 1.0, 0, 0, r);
   CHECK(afv_compute(&g, N, r, &p, &b, f) == AFV_OK, "status");
   E = g.energy;
@@ -801,7 +752,7 @@ static void test_translation_rotation_permutation(void)
   /* relabelling: cell i of q is cell perm[i] of r */
   for (i = 0; i < N; i++) perm[i] = i;
   for (i = N - 1; i > 0; i--) {
-    int j = (int)(rng_uniform() * (i + 1)), t = perm[i];
+    int j = (int)(test_rng_uniform() * (i + 1)), t = perm[i];
     perm[i] = perm[j];
     perm[j] = t;
   }
@@ -831,9 +782,9 @@ static void test_periodic_equals_open_far_from_edges(void)
   double r[2 * N], f1[2 * N], f2[2 * N];
   afv_params p = odd_params(1.0);
   afv_geom g1 = {0}, g2 = {0};
-  afv_box bo = open_box(), bp = periodic_box(40, 37);
+  afv_box bo = test_open_box(), bp = test_periodic_box(40, 37);
   int i;
-  rng_seed(23);
+  test_rng_seed(23);
   random_config(N, 1.0, 0.9, 0, 0, r);
   for (i = 0; i < 2 * N; i++) r[i] += 12;  /* the cluster spans ~12 x 12 */
   CHECK(afv_compute(&g1, N, r, &p, &bo, f1) == AFV_OK, "status");
@@ -858,7 +809,7 @@ static void test_zero_one_two_cells(void)
   double r[4] = {0, 0, 2, 0}, f[4] = {7, 7, 7, 7};
   afv_params p;
   afv_geom g = {0};
-  afv_box bo = open_box(), bp = periodic_box(4, 4);
+  afv_box bo = test_open_box(), bp = test_periodic_box(4, 4);
   afv_params_default(&p);
   CHECK(afv_compute(&g, 0, r, &p, &bo, f) == AFV_OK, "N = 0 open");
   CHECK(g.energy == 0, "N = 0 energy %g", g.energy);
@@ -886,7 +837,7 @@ static void test_exactly_2l_in_a_cluster(void)
   double r[6] = {0, 0, 2, 0, 1, 0.6}, f[6];
   afv_params p;
   afv_geom g = {0};
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   afv_check_report rep;
   afv_params_default(&p);
   CHECK(afv_compute(&g, 3, r, &p, &b, f) == AFV_OK, "status");
@@ -906,7 +857,7 @@ static void test_three_collinear(void)
   double l = 1.1, d = 1.3, r[6], f[6], A, P, L, S, s;
   afv_params p = odd_params(l);
   afv_geom g = {0};
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   int i;
   for (i = 0; i < 3; i++) {
     r[2*i] = 0.2 + i * d * 0.6;
@@ -943,7 +894,7 @@ static void test_four_cocircular(void)
   double r[2 * N], f[2 * N], q[2 * N], E0, worst = 0, h = 1e-6;
   afv_params p;
   afv_geom g = {0};
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   int i, c;
   afv_params_default(&p);
   for (i = 0; i < N; i++) {
@@ -993,7 +944,7 @@ static void test_tiny_edge_is_no_contact(void)
   double r[2 * N], f[2 * N], shortest = 1;
   afv_params p;
   afv_geom g = {0};
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   int i, k;
   afv_params_default(&p);
   for (i = 0; i < N; i++) {
@@ -1037,7 +988,7 @@ static void test_centre_on_box_edge(void)
   afv_box b;
   int i;
   afv_params_default(&p);
-  rng_seed(31);
+  test_rng_seed(31);
   b = random_config(N, 1.0, 0.8, 1, 0, r);
   r[0] = 0.0;
   r[3] = 0.0;
@@ -1065,7 +1016,7 @@ static void test_extreme_coordinates(void)
   double r[6] = {1.7e308, -1.7e308, -1.7e308, 1.7e308, 0, 0}, f[6];
   afv_params p;
   afv_geom g = {0};
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   int i;
   afv_params_default(&p);
   CHECK(afv_compute(&g, 3, r, &p, &b, f) == AFV_OK, "status");
@@ -1089,7 +1040,7 @@ static void test_repeatable(void)
   afv_geom g = {0}, h = {0};
   afv_box b;
   afv_params_default(&p);
-  rng_seed(41);
+  test_rng_seed(41);
   b = random_config(N, 1.0, 1.2, 1, 0, r);
   CHECK(afv_compute(&g, N, r, &p, &b, f1) == AFV_OK, "status");
   E1 = g.energy;
@@ -1106,7 +1057,7 @@ static void test_coincident_and_nonfinite(void)
   double r[8] = {0.5, 0.5, 1.5, 0.5, 3, 3, 1.5, 0.5}, f[8];
   afv_params p;
   afv_geom g = {0};
-  afv_box bo = open_box(), bp = periodic_box(5, 5);
+  afv_box bo = test_open_box(), bp = test_periodic_box(5, 5);
   int st;
   afv_params_default(&p);
   st = afv_compute(&g, 4, r, &p, &bo, f);
@@ -1145,7 +1096,7 @@ static void test_per_cell_parameters(void)
   afv_check_report rep;
   int i;
   afv_params_default(&p);
-  rng_seed(53);
+  test_rng_seed(53);
   b = random_config(N, 1.0, 0.9, 1, 1e-3, r);
   /* all equal: the same numbers as the scalar case */
   for (i = 0; i < N; i++) {
@@ -1159,10 +1110,10 @@ static void test_per_cell_parameters(void)
         "per-cell arrays of equal values differ from the scalars");
   /* heterogeneous tissue */
   for (i = 0; i < N; i++) {
-    KA[i] = 0.5 + rng_uniform();
-    KP[i] = 0.2 + 2 * rng_uniform();
-    A0[i] = 2 + 1.5 * rng_uniform();
-    P0[i] = 3.5 + 3 * rng_uniform();
+    KA[i] = 0.5 + test_rng_uniform();
+    KP[i] = 0.2 + 2 * test_rng_uniform();
+    A0[i] = 2 + 1.5 * test_rng_uniform();
+    P0[i] = 3.5 + 3 * test_rng_uniform();
   }
   CHECK(afv_gradient_check(N, r, &p, &b, 1e-6, &rep) == AFV_OK, "status");
   CHECK(rep.max_rel <= GRAD_RTOL, "heterogeneous: max rel error %.3e",
@@ -1180,7 +1131,7 @@ static void test_contact_cap(void)
   double r[4] = {0, 0, 0, 0}, f0[4], fc[4], gap;
   afv_params p;
   afv_geom g = {0};
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   afv_check_report rep;
   afv_params_default(&p);
   CHECK(p.cap == 0, "default cap %g", p.cap);
@@ -1230,7 +1181,7 @@ static void test_matlab_golden(void)
   int n = 0, m = 0, i, worst_i = -1;
   afv_params p;
   afv_geom g = {0};
-  afv_box b = open_box();
+  afv_box b = test_open_box();
   snprintf(pts, sizeof pts, "%s/golden/matlab_open_100/points.csv",
            test_shared_dir());
   snprintf(frc, sizeof frc, "%s/golden/matlab_open_100/forces.csv",
@@ -1273,7 +1224,7 @@ static void test_regression_golden(void)
   int n = 0, i, k, arcs = 0, inner = 0;
   afv_params p;
   afv_geom g = {0};
-  afv_box b = periodic_box(12.0, 11.5);
+  afv_box b = test_periodic_box(12.0, 11.5);
   if (!fp) {
     CHECK(0, "data/golden_periodic_40.out missing (run from the repo root)");
     return;
