@@ -162,7 +162,7 @@ static edge edge_of(const afv_geom *g, int s)
   E.dy = g->nbr_d[2*s+1];
   E.ux = e[0];
   E.uy = e[1];
-  E.d = e[2];
+  E.d = 2 * e[2];       /* the cache holds h = d/2 */
   E.s = e[3];
   E.tx = -E.uy;
   E.ty = E.ux;
@@ -223,30 +223,29 @@ static void circle_tangent(double x, double y, double l, double *tx,
   *ty = x / l;
 }
 
-/* Contributions of the vertex at the start of edge piece pc (previous
-** piece prev) and, if an arc follows, of its end vertex. */
-static void edge_vertex_terms(const afv_geom *g, const edge *Ep,
+/* Contributions of the vertex at the start of edge piece pc (edge *E,
+** previous piece prev) and, if an arc follows, of its end vertex. */
+static void edge_vertex_terms(const afv_geom *g, const edge *E,
                               const afv_piece *prev, const afv_piece *pc,
                               const afv_piece *next, double l, double cap,
                               double wP, double wL, double *grad)
 {
-  edge E = *Ep;
   double ax, ay;
   if (prev->nbr == AFV_ARC) {                 /* arc arrives: sigma = -1 */
     circle_tangent(pc->x, pc->y, l, &ax, &ay);
-    arc_end_term(&E, l, cap, -1, wP * (ax - E.tx) + wL * ax,
-                 wP * (ay - E.ty) + wL * ay, grad + 2 * pc->slot);
+    arc_end_term(E, l, cap, -1, wP * (ax - E->tx) + wL * ax,
+                 wP * (ay - E->ty) + wL * ay, grad + 2 * pc->slot);
   } else {                                    /* triple junction (i,k,j) */
     edge K = edge_of(g, prev->slot);
-    double wx = wP * (K.tx - E.tx), wy = wP * (K.ty - E.ty);
-    junction_term(&E, &K, pc->x, pc->y, wx, wy, grad + 2 * pc->slot);
-    junction_term(&K, &E, pc->x, pc->y, wx, wy, grad + 2 * prev->slot);
+    double wx = wP * (K.tx - E->tx), wy = wP * (K.ty - E->ty);
+    junction_term(E, &K, pc->x, pc->y, wx, wy, grad + 2 * pc->slot);
+    junction_term(&K, E, pc->x, pc->y, wx, wy, grad + 2 * prev->slot);
   }
   if (next->nbr == AFV_ARC) {                 /* arc leaves: sigma = +1 */
-    double vx = pc->x + pc->length * E.tx, vy = pc->y + pc->length * E.ty;
+    double vx = pc->x + pc->length * E->tx, vy = pc->y + pc->length * E->ty;
     circle_tangent(vx, vy, l, &ax, &ay);
-    arc_end_term(&E, l, cap, +1, wP * (E.tx - ax) - wL * ax,
-                 wP * (E.ty - ay) - wL * ay, grad + 2 * pc->slot);
+    arc_end_term(E, l, cap, +1, wP * (E->tx - ax) - wL * ax,
+                 wP * (E->ty - ay) - wL * ay, grad + 2 * pc->slot);
   }
 }
 
@@ -261,8 +260,9 @@ void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
     if (pc->nbr == AFV_ARC) continue;
     E = edge_of(g, pc->slot);
     area_term(&E, pc, wA, grad + 2 * pc->slot);
-    edge_vertex_terms(g, &E, &pieces[(k + np - 1) % np], pc,
-                      &pieces[(k + 1) % np], l, cap, wP, wL, grad);
+    /* the cyclic neighbours of piece k (no integer division) */
+    edge_vertex_terms(g, &E, &pieces[k > 0 ? k - 1 : np - 1], pc,
+                      &pieces[k + 1 < np ? k + 1 : 0], l, cap, wP, wL, grad);
   }
 }
 

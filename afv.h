@@ -121,7 +121,7 @@ typedef struct afv_geom {
   double  cand_l;
   int     cand_n;       /* cells they were built for; 0 = none */
   int     cap_cand, n_rebuilds;  /* n_rebuilds: candidate rebuilds so far */
-  double *edge;         /* per slot s: u = D/d (2), d, half-chord
+  double *edge;         /* per slot s: u = D/d (2), d/2, half-chord
                         ** sqrt(l^2 - d^2/4), set by afv_cell_shape */
   double *grad;         /* per neighbour slot s: dE_i/dr_nbr[s] */
   double *work;         /* clipping work space, one block per thread */
@@ -276,6 +276,7 @@ typedef struct afv_sim {
                        ** the force was not finite) */
   double    *r_start;  /* private: r at the start of the step (2n) */
   double    *move_len; /* private: per-cell move lengths (n) */
+  double    *pol;      /* private: v0_i n_i during a step (2n) */
   double    *own;      /* private: one block holding r, theta, f and the
                        ** copies of the per-cell parameter arrays */
 } afv_sim;

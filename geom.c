@@ -11,17 +11,24 @@
 ** (see "Verlet candidates"), and sorted by direction.
 **
 ** Algorithm, per cell, in coordinates centred on r_i:
-**   1. Start from the square [-2l, 2l]^2, which contains the disk; its sides
-**      lie outside the disk, so they never reach the final boundary.
-**   2. Clip it (Sutherland-Hodgman) by the half-plane x.u <= d/2 of each
-**      neighbour, u = (r_j - r_i)/d.  Each polygon side remembers its owner.
-**   3. Intersect the convex polygon with the disk: a side keeps the part of
-**      its line inside the disk; consecutive kept parts that do not meet at a
-**      polygon vertex are joined by an arc of the circle.
+**   1. Every neighbour j's bisector line x.u = d/2 (u = (r_j - r_i)/d)
+**      cuts the disk in a chord (d < 2l).  The cell is the disk cut by the
+**      half-planes x.u <= d/2, so its straight edges are exactly the parts
+**      of these chords that lie in every other half-plane.
+**   2. Clip each chord, as an interval of its line, by every other
+**      half-plane (clip_chords): an end cut by another line is a triple
+**      junction, an end left at the chord's end lies on the circle.
+**   3. The kept parts, in the order of their directions u (the slots are
+**      sorted so), are the edges in counter-clockwise boundary order; an
+**      edge ending on the circle is joined to the next by an arc.
+** (An earlier version clipped a square polygon by each half-plane
+** (Sutherland-Hodgman) and then by the disk: the same boundary, but it
+** copied every polygon vertex for every neighbour.)
 ** Cost: O(k^2) per cell for k neighbours (k is about 6 in a tissue), so
 ** O(N) for the tissue; the cell list is O(N) time and memory.  Measured
-** (README, Performance): 2200 - 4200 instructions per cell and evaluation,
-** 0.3 - 0.5 us on a 2-core AMD EPYC; about 1 kB per cell at N = 400000.
+** (README, Performance): about 1300 instructions per cell and evaluation
+** for the shape in the cluster benchmark state, 3780 for a whole step;
+** about 1 kB per cell at N = 400000.
 ** Every per-cell loop may run on OpenMP threads with the same result bits.
 */
 #include "afv.h"
@@ -56,12 +63,6 @@
 #else
 #define AFV_PARALLEL_FOR
 #endif
-
-/* ---- small vector helpers ---------------------------------------------- */
-static double dot(double ax, double ay, double bx, double by)
-{
-  return ax * bx + ay * by;
-}
 
 /* ---- buffers ----------------------------------------------------------- */
 static int grow(void **ptr, int *cap, int need, size_t elem)
@@ -155,7 +156,11 @@ void afv_min_image(const afv_box *b, double *dx, double *dy)
 
 static double wrap1(double x, double L)
 {
-  double w = x - L * floor(x / L);
+  double w;
+  if (x >= 0 && x < L) return x;   /* nearly always: no floor, no division
+                                   ** (and x just below L stays x, where
+                                   ** x / L rounds to 1 and w was -tiny) */
+  w = x - L * floor(x / L);
   return w >= L ? 0.0 : w;   /* x = -tiny gives w = L after rounding */
 }
 
@@ -475,26 +480,39 @@ static int lower_half(double dx, double dy)
   return dy < 0 || (dy == 0 && dx < 0);
 }
 
-/* 1 if slot a comes after slot b in a cell's list: by the direction of D
-** (counter-clockwise from +x; compared by half-plane, then by the sign of
-** the cross product, so without atan2), then by distance, then by cell. */
-static int slot_after(const int *nbr, const double *d, int a, int b)
+/* 1 if neighbour ja at displacement (ax, ay) comes after jb at (bx, by) in
+** a cell's list: by the direction of the displacement (counter-clockwise
+** from +x; compared by half-plane, then by the sign of the cross product,
+** so without atan2), then by distance, then by cell.  A total order: the
+** sorted list does not depend on the order the candidates come in.
+** (inline: it is called about once per slot and step; measured 70
+** instructions per cell-step fewer than the call.) */
+static inline int comes_after(double ax, double ay, int ja, double bx,
+                              double by, int jb)
 {
-  double ax = d[2*a], ay = d[2*a+1], bx = d[2*b], by = d[2*b+1], cross;
+  double cross;
   int ha = lower_half(ax, ay), hb = lower_half(bx, by);
   if (ha != hb) return ha > hb;
   cross = ax * by - ay * bx;
   if (cross != 0) return cross < 0;
   if (ax * ax + ay * ay != bx * bx + by * by)
     return ax * ax + ay * ay > bx * bx + by * by;
-  return nbr[a] > nbr[b];
+  return ja > jb;
+}
+
+static int slot_after(const int *nbr, const double *d, int a, int b)
+{
+  return comes_after(d[2*a], d[2*a+1], nbr[a], d[2*b], d[2*b+1], nbr[b]);
 }
 
 /* Insertion sort of a cell's m slots by direction (lists hold ~6).  The
-** order fixes the clipping order, which decides, where four or more
-** centres are cocircular, which of the coincident vertices survive: an
-** order set by the geometry alone treats every cell of a lattice alike,
-** so the forces there cancel as they should. */
+** order is the counter-clockwise order of the edges (clip_chords relies on
+** it) and fixes the order in which each chord meets its bounds, which
+** decides, where four or more centres are cocircular, which of the
+** coincident vertices survive: an order set by the geometry alone treats
+** every cell of a lattice alike, so the forces there cancel as they
+** should.  The candidates come nearly sorted (sort_candidates), so this
+** is about one comparison per slot. */
 static void sort_slots(int *nbr, double *d, int m)
 {
   int k, q;
@@ -509,6 +527,46 @@ static void sort_slots(int *nbr, double *d, int m)
       d[2*q - 2] = tx;
       d[2*q - 1] = ty;
     }
+}
+
+/* D = r_j - r_i from the wrapped centres, minimum image by fold (the
+** wrapped centres differ by less than a box side). */
+static void displacement(const afv_geom *g, int i, int j, const afv_box *b,
+                         double *dx, double *dy)
+{
+  *dx = g->rw[2*j] - g->rw[2*i];
+  *dy = g->rw[2*j+1] - g->rw[2*i+1];
+  if (b && b->periodic) {
+    *dx = fold(*dx, b->Lx);
+    *dy = fold(*dy, b->Ly);
+  }
+}
+
+/* Right after a rebuild, sorts each cell's candidates by comes_after (their
+** directions now).  Cells turn little about each other between rebuilds,
+** so the lists filter_cell takes from them are then nearly sorted, and its
+** insertion sort does about one comparison per slot instead of k^2/4.
+** This only saves time: filter_cell sorts anyway, into a total order, so
+** the lists are the same whatever order the candidates are in. */
+static void sort_candidates(afv_geom *g, int n, const afv_box *b)
+{
+  int i;
+  AFV_PARALLEL_FOR
+  for (i = 0; i < n; i++) {
+    int *c = g->cand + g->cand_start[i], m = g->cand_start[i + 1]
+             - g->cand_start[i], k, q;
+    for (k = 1; k < m; k++) {
+      int j = c[k];
+      double jx, jy, px, py;
+      displacement(g, i, j, b, &jx, &jy);
+      for (q = k; q > 0; q--) {
+        displacement(g, i, c[q - 1], b, &px, &py);
+        if (!comes_after(px, py, c[q - 1], jx, jy, j)) break;
+        c[q] = c[q - 1];
+      }
+      c[q] = j;
+    }
+  }
 }
 
 /* The candidates of cell i closer than 2l (if nbr != NULL, written with
@@ -542,7 +600,11 @@ static int filter_cell(const afv_geom *g, int i, double l, const afv_box *b,
 }
 
 /* nbr_rev[s]: the slot of i in the list of j = nbr[s].  The lists are
-** symmetric (the same minimum-image distance both ways), so it exists. */
+** exactly symmetric (fold is odd, so d^2 has the same bits both ways), so
+** it exists, and each pair is searched once, from its smaller cell, which
+** fills both directions.  Every entry has exactly one writer (the pair's
+** smaller cell) and nothing here reads nbr_rev, so threads may share the
+** cells and the result does not depend on them. */
 static void link_reverse_slots(afv_geom *g, int n)
 {
   int i;
@@ -551,10 +613,11 @@ static void link_reverse_slots(afv_geom *g, int n)
     int s, t;
     for (s = g->nbr_start[i]; s < g->nbr_start[i + 1]; s++) {
       int j = g->nbr[s];
-      g->nbr_rev[s] = -1;
+      if (j < i) continue;
       for (t = g->nbr_start[j]; t < g->nbr_start[j + 1]; t++)
         if (g->nbr[t] == i) {
           g->nbr_rev[s] = t;
+          g->nbr_rev[t] = s;
           break;
         }
     }
@@ -569,16 +632,18 @@ static void link_reverse_slots(afv_geom *g, int n)
 int afv_neighbours(afv_geom *g, int n, const double *r, double l,
                    const afv_box *b)
 {
-  int i, st;
+  int i, st, rebuilt = 0;
   if (grow_cells(g, n)) return AFV_ENOMEM;
   g->n = n;
   g->nbr_start[0] = 0;
   if (n == 0) return AFV_OK;
-  if (!candidates_valid(g, n, r, l, b)
-      && (st = build_candidates(g, n, r, l, b)) != AFV_OK)
-    return st;
+  if (!candidates_valid(g, n, r, l, b)) {
+    if ((st = build_candidates(g, n, r, l, b)) != AFV_OK) return st;
+    rebuilt = 1;
+  }
   if (grow_nbr(g, g->cand_start[n] + 1)) return AFV_ENOMEM;
   wrap_all(g, n, r, b);
+  if (rebuilt) sort_candidates(g, n, b);
   AFV_PARALLEL_FOR
   for (i = 0; i < n; i++) {
     int c = g->cand_start[i];
@@ -590,8 +655,12 @@ int afv_neighbours(afv_geom *g, int n, const double *r, double l,
   AFV_PARALLEL_FOR
   for (i = 0; i < n; i++) {
     int s = g->nbr_start[i], m = g->nbr_start[i + 1] - s, c = g->cand_start[i];
-    memcpy(g->nbr + s, g->nbr_rev + c, (size_t)m * sizeof(int));
-    memcpy(g->nbr_d + 2 * s, g->grad + 2 * c, (size_t)m * 2 * sizeof(double));
+    int k;
+    for (k = 0; k < m; k++) {   /* ~6 slots: a loop beats two memcpy calls */
+      g->nbr[s + k] = g->nbr_rev[c + k];
+      g->nbr_d[2 * (s + k)] = g->grad[2 * (c + k)];
+      g->nbr_d[2 * (s + k) + 1] = g->grad[2 * (c + k) + 1];
+    }
   }
   link_reverse_slots(g, n);
   return AFV_OK;
@@ -615,13 +684,6 @@ int afv_spatial_order(int n, const double *r, double l, const afv_box *b,
 }
 
 /* ---- one cell's shape --------------------------------------------------- */
-/* A polygon vertex during clipping; the side from it to the next vertex is
-** owned by neighbour slot `slot` (-1: a side of the initial square). */
-typedef struct pvert {
-  double x, y;
-  int slot;
-} pvert;
-
 /* The line of neighbour slot s, in the cell's frame: x.u = h, with
 ** u = D/d the unit vector to the neighbour, h = d/2, and t = (-u_y, u_x)
 ** the counter-clockwise direction along it; sc = sqrt(l^2 - h^2) is half
@@ -630,7 +692,7 @@ typedef struct bisector {
   double ux, uy, h, d, sc;
 } bisector;
 
-/* The edge cache of cell i (g->edge, 4 doubles per slot: u, d, sc):
+/* The edge cache of cell i (g->edge, 4 doubles per slot: u, h = d/2, sc):
 ** the clipping, the boundary assembly and the forces (afv.c) all need these,
 ** and computing them once per slot saves two square roots and two
 ** divisions each time. */
@@ -642,7 +704,8 @@ static void fill_edge_cache(afv_geom *g, int i, double l)
     double d = sqrt(dx * dx + dy * dy), h = 0.5 * d;
     e[0] = dx / d;
     e[1] = dy / d;
-    e[2] = d;
+    e[2] = h;                         /* h, not d: clip_chord's inner loop
+                                      ** needs h; d = 2h is exact */
     e[3] = sqrt((l - h) * (l + h));   /* (l-h)(l+h) is exact where l*l - h*h
                                       ** would cancel for h near l */
   }
@@ -654,94 +717,91 @@ static bisector bisector_of(const afv_geom *g, int s)
   bisector B;
   B.ux = e[0];
   B.uy = e[1];
-  B.d = e[2];
-  B.h = 0.5 * e[2];
+  B.d = 2 * e[2];
+  B.h = e[2];
   B.sc = e[3];
   return B;
 }
 
-/* Clips the convex polygon in[0..m-1] by x.u <= h (the half-plane of slot
-** s); writes the result to out and returns its vertex count.  A vertex
-** exactly on the line counts as inside and, if the polygon leaves there,
-** starts the new side (so no duplicate vertices are made). */
-static int clip_polygon(const pvert *in, int m, pvert *out, bisector B, int s)
-{
-  int k, o = 0;
-  double s0 = dot(in[0].x, in[0].y, B.ux, B.uy) - B.h, sp = s0, sq;
-  for (k = 0; k < m; k++, sp = sq) {   /* sp: signed distance of in[k] */
-    const pvert *P = &in[k], *Q = &in[k + 1 < m ? k + 1 : 0];
-    sq = k + 1 < m ? dot(Q->x, Q->y, B.ux, B.uy) - B.h : s0;
-    if (sp <= 0) {
-      out[o] = *P;
-      if (sq > 0) {                      /* leaving: the new side starts */
-        if (sp < 0) {
-          double t = sp / (sp - sq);
-          o++;
-          out[o].x = P->x + t * (Q->x - P->x);
-          out[o].y = P->y + t * (Q->y - P->y);
-        }
-        out[o].slot = s;
-      }
-      o++;
-    } else if (sq < 0) {                 /* entering: the old side resumes */
-      double t = sp / (sp - sq);
-      out[o].x = P->x + t * (Q->x - P->x);
-      out[o].y = P->y + t * (Q->y - P->y);
-      out[o].slot = P->slot;
-      o++;
-    }
-  }
-  return o;
-}
-
-/* Steps 1 and 2: the polygon of cell i.  buf and spare each hold
-** nn + 4 vertices; returns the buffer that holds the result, count in *m. */
-static pvert *clipped_polygon(const afv_geom *g, int i, double l, pvert *buf,
-                              pvert *spare, int *m)
-{
-  static const double corner[4][2] = {{-2, -2}, {2, -2}, {2, 2}, {-2, 2}};
-  int k, s;
-  for (k = 0; k < 4; k++) {
-    buf[k].x = corner[k][0] * l;
-    buf[k].y = corner[k][1] * l;
-    buf[k].slot = -1;
-  }
-  *m = 4;
-  for (s = g->nbr_start[i]; s < g->nbr_start[i + 1]; s++) {
-    pvert *t = buf;
-    *m = clip_polygon(buf, *m, spare, bisector_of(g, s), s);
-    buf = spare;
-    spare = t;
-  }
-  return buf;
-}
-
-/* One kept part of a polygon side: from tau0 to tau1 along its line, in
-** the direction t; `*_on_circle` says whether the end is an arc end (else
-** it is the polygon vertex, a triple junction). */
+/* One kept part of a bisector line: from tau0 to tau1 along it, in the
+** direction t; `*_on_circle` says whether the end is an arc end (else it is
+** a triple junction, where the line of another neighbour cuts it). */
 typedef struct segment {
   int slot;
   double tau0, tau1;
   int start_on_circle, end_on_circle;
 } segment;
 
-/* Step 3 for one polygon side P->Q of slot s: the part inside the disk.
-** in_p, in_q say whether P and Q are in the closed disk; they are computed
-** once per vertex so that the two sides sharing a vertex agree on it. */
-static int keep_inside(const pvert *P, const pvert *Q, int in_p, int in_q,
-                       bisector B, segment *seg)
+/* Step 2: the part of each slot's chord (tau in [-sc, sc]) in the
+** half-plane x.u_q <= h_q of every other slot q.  On the line of slot s,
+** x = h_s u_s + tau t_s, so that half-plane is  tau c <= rhs  with
+** c = t_s.u_q and rhs = h_q - h_s u_s.u_q: an upper bound on tau if c > 0,
+** a lower bound if c < 0; a parallel line (c = 0) keeps the whole line or
+** none of it.  (Where the polygon clipping this replaces copied every
+** vertex for every neighbour, this is a few multiplications per pair.) */
+
+/* tau <= rhs / c (c > 0): compared as rhs < tau1 c, so that the division
+** is done only for a new tightest bound.  The interval only shrinks: once
+** empty (tau0 >= tau1) it stays empty. */
+static void bound_above(segment *S, double rhs, double c)
 {
-  double tx = -B.uy, ty = B.ux;
-  double ta = dot(P->x, P->y, tx, ty), tb = dot(Q->x, Q->y, tx, ty);
-  double sc = B.sc;   /* half-chord of the line in the disk */
-  seg->slot = P->slot;
-  seg->start_on_circle = !in_p;
-  seg->end_on_circle = !in_q;
-  seg->tau0 = in_p ? ta : -sc;
-  seg->tau1 = in_q ? tb : sc;
-  if (!in_p && !in_q) return ta < -sc && tb > sc && sc > 0;
-  if (seg->tau1 < seg->tau0) seg->tau1 = seg->tau0;   /* roundoff at a touch */
-  return 1;
+  if (rhs < S->tau1 * c) {
+    S->tau1 = rhs / c;
+    S->end_on_circle = 0;
+  }
+}
+
+/* tau >= rhs / c (c < 0): compared as rhs < tau0 c. */
+static void bound_below(segment *S, double rhs, double c)
+{
+  if (rhs < S->tau0 * c) {
+    S->tau0 = rhs / c;
+    S->start_on_circle = 0;
+  }
+}
+
+/* Clips the chords of all slots of cell i, one pass over the pairs a < b:
+** c and u_a.u_b serve both (t_b.u_a = -t_a.u_b exactly, as the products
+** commute), and each slot still meets its bounds in increasing slot order.
+** Writes the parts of positive length to seg[] in slot order (seg must
+** hold one entry per slot); returns their number. */
+static int clip_chords(const afv_geom *g, int i, segment *seg)
+{
+  int s0 = g->nbr_start[i], nn = g->nbr_start[i + 1] - s0, a, b, ns = 0;
+  const double *edge = g->edge + 4 * s0;
+  for (a = 0; a < nn; a++) {
+    seg[a].slot = s0 + a;
+    seg[a].tau0 = -edge[4*a+3];
+    seg[a].tau1 = edge[4*a+3];
+    seg[a].start_on_circle = seg[a].end_on_circle = 1;
+  }
+  for (a = 0; a < nn; a++) {
+    const double *ea = edge + 4 * a;
+    for (b = a + 1; b < nn; b++) {
+      const double *eb = edge + 4 * b;
+      double c = ea[0] * eb[1] - ea[1] * eb[0];         /* t_a.u_b */
+      double cu = ea[0] * eb[0] + ea[1] * eb[1];        /* u_a.u_b */
+      double ra = eb[2] - ea[2] * cu, rb = ea[2] - eb[2] * cu;
+      if (c > 0) {
+        bound_above(&seg[a], ra, c);
+        bound_below(&seg[b], rb, -c);
+      } else if (c < 0) {
+        bound_below(&seg[a], ra, c);
+        bound_above(&seg[b], rb, -c);
+      } else {                         /* parallel: a line behind the other */
+        if (ra < 0) seg[a].tau1 = seg[a].tau0;
+        if (rb < 0) seg[b].tau1 = seg[b].tau0;
+      }
+    }
+  }
+  /* keep parts of positive length (sc = 0, a line that only touches the
+  ** circle, and NaN go too) */
+  for (a = 0; a < nn; a++)
+    if (seg[a].tau0 < seg[a].tau1) {
+      if (ns < a) seg[ns] = seg[a];   /* copies only after a dropped one */
+      ns++;
+    }
+  return ns;
 }
 
 /* The point at parameter tau on the line of B (cell frame). */
@@ -751,15 +811,18 @@ static void point_on(bisector B, double tau, double *x, double *y)
   *y = B.h * B.uy + tau * B.ux;
 }
 
-static void store_piece(afv_geom *g, int i, int slot, double x, double y,
-                        double length)
+/* Writes one piece at *pc; returns the place of the next one.  (Counting
+** through a pointer, not g->n_pieces[i], lets the compiler keep the count
+** in a register: the stores to pieces could alias n_pieces.) */
+static afv_piece *store_piece(const afv_geom *g, afv_piece *pc, int slot,
+                              double x, double y, double length)
 {
-  afv_piece *pc = &g->pieces[g->piece_start[i] + g->n_pieces[i]++];
   pc->slot = slot;
   pc->nbr = slot >= 0 ? g->nbr[slot] : AFV_ARC;
   pc->x = x;
   pc->y = y;
   pc->length = length;
+  return pc + 1;
 }
 
 /* The arc from (ax, ay), the end of a segment, to the start of segment b
@@ -782,7 +845,8 @@ static double gap_angle(const afv_geom *g, double ax, double ay,
 
 static void isolated_cell(afv_geom *g, int i, double l)
 {
-  store_piece(g, i, -1, l, 0, TWO_PI * l);
+  store_piece(g, g->pieces + g->piece_start[i], -1, l, 0, TWO_PI * l);
+  g->n_pieces[i] = 1;
   g->area[i] = PI * l * l;
   g->perim[i] = g->arc[i] = TWO_PI * l;
 }
@@ -792,29 +856,31 @@ static void isolated_cell(afv_geom *g, int i, double l)
 static void assemble_boundary(afv_geom *g, int i, double l, const segment *seg,
                               int ns)
 {
+  afv_piece *first = g->pieces + g->piece_start[i], *pc = first;
   double A = 0, P = 0, L = 0;
-  int k;
-  g->contacts[i] = 0;
+  int k, contacts = 0;
   for (k = 0; k < ns; k++) {
     const segment *S = &seg[k];
     bisector B = bisector_of(g, S->slot);
     double len = S->tau1 - S->tau0;
     double x, y;
     point_on(B, S->tau0, &x, &y);
-    store_piece(g, i, S->slot, x, y, len);
+    pc = store_piece(g, pc, S->slot, x, y, len);
     A += 0.5 * B.h * len;
     P += len;
-    if (len > AFV_CONTACT_TOL * l) g->contacts[i]++;
+    if (len > AFV_CONTACT_TOL * l) contacts++;
     if (S->end_on_circle) {
       const segment *next = &seg[k + 1 < ns ? k + 1 : 0];
       double phi;
       point_on(B, S->tau1, &x, &y);
       phi = gap_angle(g, x, y, next, ns == 1);
-      store_piece(g, i, -1, x, y, l * phi);
+      pc = store_piece(g, pc, -1, x, y, l * phi);
       A += 0.5 * l * l * phi;
       L += l * phi;
     }
   }
+  g->n_pieces[i] = (int)(pc - first);
+  g->contacts[i] = contacts;
   g->area[i] = A;
   g->perim[i] = P + L;
   g->arc[i] = L;
@@ -833,35 +899,24 @@ static double *thread_work(const afv_geom *g)
 
 void afv_cell_shape(afv_geom *g, int i, double l)
 {
-  int nn = g->nbr_start[i + 1] - g->nbr_start[i];
-  pvert *buf = (pvert *)thread_work(g), *spare = buf + (nn + 4), *poly, *flags;
-  segment *seg = (segment *)(spare + (nn + 4));
-  int m, k, ns = 0;
+  segment *seg = (segment *)thread_work(g);
+  int ns;
   g->n_pieces[i] = 0;
   g->contacts[i] = 0;
   fill_edge_cache(g, i, l);
-  poly = clipped_polygon(g, i, l, buf, spare, &m);
-  /* the other buffer is free again: it holds the "in the disk" flags */
-  flags = poly == buf ? spare : buf;
-  for (k = 0; k < m; k++)
-    flags[k].slot = poly[k].x * poly[k].x + poly[k].y * poly[k].y <= l * l;
-  for (k = 0; k < m; k++) {
-    int b = k + 1 < m ? k + 1 : 0;
-    if (poly[k].slot < 0) continue;
-    if (keep_inside(&poly[k], &poly[b], flags[k].slot, flags[b].slot,
-                    bisector_of(g, poly[k].slot), &seg[ns]))
-      ns++;
-  }
+  /* the slots are sorted by the direction of u (sort_slots), which is the
+  ** counter-clockwise order of the edges of a convex cell: the kept parts
+  ** come out in boundary order */
+  ns = clip_chords(g, i, seg);
   if (ns == 0) isolated_cell(g, i, l);
   else assemble_boundary(g, i, l, seg, ns);
 }
 
-/* Work space for one cell with up to max_nn neighbours: two polygons of at
-** most max_nn + 4 vertices and max_nn + 4 segments; one such block per
-** OpenMP thread. */
+/* Work space for one cell with up to max_nn neighbours: max_nn segments;
+** one such block per OpenMP thread. */
 static int reserve_work(afv_geom *g, int max_nn)
 {
-  size_t bytes = (size_t)(max_nn + 4) * (2 * sizeof(pvert) + sizeof(segment));
+  size_t bytes = (size_t)(max_nn + 1) * sizeof(segment);
   int threads = 1;
 #ifdef _OPENMP
   threads = omp_get_max_threads();

@@ -262,6 +262,12 @@ int afv_traj_read(const char *path, afv_traj *tr, char *err, size_t errlen)
     double t;
     int f;
     lineno++;
+    if (!strchr(line, '\n') && feof(fp)) {
+      /* the last line has no newline: an interrupted writer; its frame is
+      ** incomplete and is dropped below */
+      row = -1;
+      break;
+    }
     if (lineno == 1) {
       if (!parse_traj_header(line, tr)) {
         afv_errorf(err, errlen, "%s:1: not an afv trajectory header", path);
@@ -270,7 +276,12 @@ int afv_traj_read(const char *path, afv_traj *tr, char *err, size_t errlen)
       continue;
     }
     if (sscanf(line, "# step %lld time %lf", &step, &t) == 2) {
-      if (tr->nframes > 0 && row != tr->n) break;
+      if (tr->nframes > 0 && row != tr->n) {
+        afv_errorf(err, errlen, "%s:%d: the frame before this line has %d "
+                   "of %d cells", path, lineno, row, tr->n);
+        st = AFV_EFORMAT;
+        break;
+      }
       if ((st = traj_grow(tr, &cap)) != AFV_OK) break;
       tr->step[tr->nframes] = step;
       tr->t[tr->nframes] = t;
@@ -293,7 +304,8 @@ int afv_traj_read(const char *path, afv_traj *tr, char *err, size_t errlen)
     row++;
   }
   fclose(fp);
-  /* a last frame cut short (an interrupted writer) is dropped */
+  /* a last frame cut short (an interrupted writer) is dropped; a short
+  ** frame anywhere else is an error (above) */
   if (st == AFV_OK && tr->nframes > 0 && row != tr->n) tr->nframes--;
   if (st != AFV_OK) afv_traj_free(tr);
   return st;

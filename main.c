@@ -1375,70 +1375,6 @@ static int load_frame(const char *path, long frame, afv_box *b, int *n,
   return 1;
 }
 
-static int cmd_draw(int argc, char **argv)
-{
-  afv_params p;
-  afv_box b = {0, 0, 0};
-  afv_geom g;
-  const char *path = NULL;
-  double *r = NULL, *theta = NULL;
-  long frame = -1;
-  int n = 0, k, st, ok;
-  afv_params_default(&p);
-  memset(&g, 0, sizeof g);
-  for (k = 1; k < argc; k++) {
-    int m;
-    if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
-      printf("usage: afv draw FILE [options] > picture.svg\n\n"
-             "Draws one configuration as SVG, like the paper's Fig. 1: red\n"
-             "centres, blue contact edges, pink arcs, hollow purple triple\n"
-             "junctions, cyan polarity arrows, the periodic box in black.\n"
-             "FILE is a POINTS file or a trajectory ('# afv trajectory'\n"
-             "header: the box and the angles come from it).\n\n"
-             "  --frame K        trajectory frame K, 0-based (default: last)\n"
-             "\n%s", model_help);
-      return 0;
-    }
-    if ((m = model_option(argc, argv, &k, &p, &b)) < 0) return EXIT_BAD_INPUT;
-    if (m) continue;
-    if (strcmp(argv[k], "--frame") == 0) {
-      char *end;
-      if (k + 1 >= argc) return bad_input("--frame needs a value");
-      errno = 0;
-      frame = strtol(argv[++k], &end, 10);
-      if (end == argv[k] || *end || errno || frame < 0)
-        return bad_input("--frame: must be an integer >= 0");
-      continue;
-    }
-    if (argv[k][0] == '-' && argv[k][1]) {
-      fprintf(stderr, "afv draw: unknown option '%s' (see afv draw --help)\n",
-              argv[k]);
-      return EXIT_BAD_INPUT;
-    }
-    if (path) return bad_input("draw: more than one FILE given");
-    path = argv[k];
-  }
-  if (!path) return bad_input("draw: missing FILE (see afv draw --help)");
-  if (is_trajectory(path)) ok = load_frame(path, frame, &b, &n, &r, &theta);
-  else if (frame >= 0) ok = !bad_input("draw: --frame needs a trajectory");
-  else ok = model_valid(&p, &b) && load_points(path, &b, &n, &r);
-  if (ok && !model_valid(&p, &b)) ok = 0;
-  if (!ok) {
-    free(r);
-    free(theta);
-    return EXIT_BAD_INPUT;
-  }
-  st = afv_geometry(&g, n, r, &p, &b);
-  if (st != AFV_OK) st = library_error(st, &g);
-  else if (afv_svg_write(stdout, &g, n, r, theta, &p, &b) != AFV_OK
-           || fflush(stdout) != 0)
-    st = bad_input("draw: cannot write the SVG");
-  afv_geom_free(&g);
-  free(r);
-  free(theta);
-  return st;
-}
-
 /* params.txt of a run: KEY VALUE lines; picks l, v0 and Dr, ignores the
 ** rest (a tolerant reader: the run owns the format).  0 if unreadable. */
 static int read_run_params(const char *path, double *l, double *v0,
@@ -1459,6 +1395,92 @@ static int read_run_params(const char *path, double *l, double *v0,
   return 1;
 }
 
+/* l of the run whose trajectory is at path: from params.txt in the same
+** directory, if there is one (else *l is left as it is). */
+static void run_l_beside(const char *path, double *l)
+{
+  char dir[RUN_PATH_MAX + 32];
+  const char *slash = strrchr(path, '/');
+  double v0 = 0, Dr = 0;
+  size_t len = slash ? (size_t)(slash - path) : 0;
+  if (len > RUN_PATH_MAX) return;
+  if (slash) snprintf(dir, sizeof dir, "%.*s/params.txt", (int)len, path);
+  else snprintf(dir, sizeof dir, "params.txt");
+  read_run_params(dir, l, &v0, &Dr);
+}
+
+static int cmd_draw(int argc, char **argv)
+{
+  afv_params p;
+  afv_box b = {0, 0, 0};
+  afv_geom g;
+  const char *path = NULL;
+  double *r = NULL, *theta = NULL;
+  long frame = -1;
+  int n = 0, k, st, ok, l_given = 0;
+  afv_params_default(&p);
+  memset(&g, 0, sizeof g);
+  for (k = 1; k < argc; k++) {
+    int m;
+    if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
+      printf("usage: afv draw FILE [options] > picture.svg\n\n"
+             "Draws one configuration as SVG, like the paper's Fig. 1: red\n"
+             "centres, blue contact edges, pink arcs, hollow purple triple\n"
+             "junctions, cyan polarity arrows, the periodic box in black.\n"
+             "FILE is a POINTS file or a trajectory ('# afv trajectory'\n"
+             "header: the box and the angles come from it, and l from\n"
+             "params.txt beside it, unless --l is given).  Only --l and\n"
+             "--box (POINTS files) change the picture.\n\n"
+             "  --frame K        trajectory frame K, 0-based (default: last)\n"
+             "\n%s", model_help);
+      return 0;
+    }
+    if (strcmp(argv[k], "--l") == 0) l_given = 1;
+    if ((m = model_option(argc, argv, &k, &p, &b)) < 0) return EXIT_BAD_INPUT;
+    if (m) continue;
+    if (strcmp(argv[k], "--frame") == 0) {
+      char *end;
+      if (k + 1 >= argc) return bad_input("--frame needs a value");
+      errno = 0;
+      frame = strtol(argv[++k], &end, 10);
+      if (end == argv[k] || *end || errno || frame < 0)
+        return bad_input("--frame: must be an integer >= 0");
+      continue;
+    }
+    if (argv[k][0] == '-' && argv[k][1]) {
+      fprintf(stderr, "afv draw: unknown option '%s' (see afv draw --help)\n",
+              argv[k]);
+      return EXIT_BAD_INPUT;
+    }
+    if (path) return bad_input("draw: more than one FILE given");
+    path = argv[k];
+  }
+  if (!path) return bad_input("draw: missing FILE (see afv draw --help)");
+  if (is_trajectory(path) && !l_given) run_l_beside(path, &p.l);
+  if (is_trajectory(path)) ok = load_frame(path, frame, &b, &n, &r, &theta);
+  else if (frame >= 0) ok = !bad_input("draw: --frame needs a trajectory");
+  else ok = model_valid(&p, &b) && load_points(path, &b, &n, &r);
+  if (ok && !model_valid(&p, &b)) ok = 0;
+  if (!ok) {
+    free(r);
+    free(theta);
+    return EXIT_BAD_INPUT;
+  }
+  st = afv_geometry(&g, n, r, &p, &b);
+  if (st != AFV_OK) st = library_error(st, &g);
+  else if (afv_svg_write(stdout, &g, n, r, theta, &p, &b) != AFV_OK
+           || fflush(stdout) != 0)
+    st = bad_input("draw: cannot write the SVG");
+  afv_geom_free(&g);
+  free(r);
+  free(theta);
+  return st;
+}
+
+/* Fewer time origins than this behind the lag of D_s earn a warning: the
+** average of a handful of displacements is not a diffusivity. */
+#define MIN_LAG_ORIGINS 10
+
 static const char *analyze_usage =
   "usage: afv analyze DIR [--lag L] [--steady-from T] [--l L] [--v0 V]"
   " [--Dr D]\n\n"
@@ -1473,7 +1495,12 @@ static const char *analyze_usage =
   "  msd.svg, series.svg, csd.svg   plots\n\n"
   "  --lag L          lag for D_s = MSD_rel / (4 L), in time units; the\n"
   "                   computed lag nearest to L is used (default 5000)\n"
-  "  --steady-from T  steady part: frames with time >= T (default 0)\n";
+  "  --steady-from T  steady part: frames with time >= T (default 0)\n"
+  "  --l L            maximal cell radius (default: params.txt, else 1)\n"
+  "  --v0 V           self-propulsion speed for D_0 (default: params.txt,\n"
+  "                   else 0.5)\n"
+  "  --Dr D           rotational diffusion for D_0 (default: params.txt,\n"
+  "                   else 0.1)\n";
 
 /* Option NAME with a finite double value; returns 1 if consumed. */
 static int double_option(int argc, char **argv, int *k, const char *name,
@@ -1488,6 +1515,23 @@ static int double_option(int argc, char **argv, int *k, const char *name,
   (*k)++;
   if (!parse_double(name, argv[*k], out)) *bad = 1;
   return 1;
+}
+
+/* D_s is only as good as the lag it is measured at: say so when the lag
+** asked for is beyond the run, or has few time origins behind it. */
+static void warn_if_lag_unsupported(const afv_analysis *a, double lag)
+{
+  const afv_msd *m = &a->msd;
+  int k;
+  for (k = 0; k < m->nlags && m->dt[k] != a->ds_lag; k++) {}
+  if (k == m->nlags) return;
+  if (lag > 1.5 * a->ds_lag)
+    fprintf(stderr, "afv analyze: warning: --lag %g is beyond the run; D_s "
+            "is measured at lag %g instead\n", lag, a->ds_lag);
+  if (a->n > 0 && m->samples[k] / a->n < MIN_LAG_ORIGINS)
+    fprintf(stderr, "afv analyze: warning: D_s at lag %g rests on %ld "
+            "time origin(s) only (fewer than %d)\n", a->ds_lag,
+            m->samples[k] / a->n, MIN_LAG_ORIGINS);
 }
 
 static int analyze_write(const char *dir, const afv_analysis *a)
@@ -1514,7 +1558,7 @@ static int cmd_analyze(int argc, char **argv)
   const char *dir = NULL;
   char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
   double lag = 5000, from = 0, l = 1, v0 = 0.5, Dr = 0.1;
-  double l_o = -1, v0_o = -1, Dr_o = -1;
+  double l_o = NAN, v0_o = NAN, Dr_o = NAN;   /* NAN: option not given */
   afv_traj tr;
   afv_analysis a;
   int k, st, bad = 0;
@@ -1545,16 +1589,19 @@ static int cmd_analyze(int argc, char **argv)
   if (!read_run_params(path, &l, &v0, &Dr))
     fprintf(stderr, "afv analyze: %s not found: using l = 1, v0 = 0.5, "
             "Dr = 0.1 unless given\n", path);
-  if (l_o >= 0) l = l_o;
-  if (v0_o >= 0) v0 = v0_o;
-  if (Dr_o >= 0) Dr = Dr_o;
+  if (!isnan(l_o)) l = l_o;
+  if (!isnan(v0_o)) v0 = v0_o;
+  if (!isnan(Dr_o)) Dr = Dr_o;
   if (!(l > 0)) return bad_input("analyze: l must be > 0");
   snprintf(path, sizeof path, "%s/trajectory.dat", dir);
   if (afv_traj_read(path, &tr, err, sizeof err) != AFV_OK)
     return bad_input(err);
-  afv_traj_unwrap(&tr);
+  /* afv run writes unwrapped centres (io.c, TRAJECTORY format): no
+  ** unwrapping here, which would fold moves of more than half a box
+  ** between two frames back into the box */
   st = afv_analyze(&a, &tr, l, v0, Dr, from, lag);
   afv_traj_free(&tr);
+  if (st == AFV_OK) warn_if_lag_unsupported(&a, lag);
   if (st != AFV_OK) {
     fprintf(stderr, "afv analyze: %s: %s\n", path,
             st == AFV_EINVAL ? "no complete frame" : afv_strerror(st));
