@@ -53,6 +53,7 @@
 */
 #include "afv.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -92,23 +93,27 @@ void afv_params_default(afv_params *p)
   p->cap = 0;
 }
 
-static int finite_array(const double *v, int n)
+/* 1 if every v[i] (i < n) is finite and >= lo; a NULL array passes. */
+static int array_at_least(const double *v, int n, double lo)
 {
   int i;
   if (!v) return 1;
   for (i = 0; i < n; i++)
-    if (!isfinite(v[i])) return 0;
+    if (!(isfinite(v[i]) && v[i] >= lo)) return 0;
   return 1;
 }
 
 int afv_params_check(const afv_params *p, int n)
 {
   if (!(isfinite(p->l) && p->l > 0)) return AFV_EINVAL;
-  if (!(isfinite(p->KA) && isfinite(p->KP) && isfinite(p->A0)
-        && isfinite(p->P0) && isfinite(p->Lambda))) return AFV_EINVAL;
+  if (!(isfinite(p->KA) && p->KA >= 0 && isfinite(p->KP) && p->KP >= 0))
+    return AFV_EINVAL;
+  if (!(isfinite(p->A0) && isfinite(p->P0) && isfinite(p->Lambda)))
+    return AFV_EINVAL;
   if (!(isfinite(p->cap) && p->cap >= 0)) return AFV_EINVAL;
-  if (!(finite_array(p->KA_i, n) && finite_array(p->KP_i, n)
-        && finite_array(p->A0_i, n) && finite_array(p->P0_i, n)))
+  if (!(array_at_least(p->KA_i, n, 0) && array_at_least(p->KP_i, n, 0)
+        && array_at_least(p->A0_i, n, -HUGE_VAL)
+        && array_at_least(p->P0_i, n, -HUGE_VAL)))
     return AFV_EINVAL;
   return AFV_OK;
 }
@@ -278,6 +283,8 @@ static void gather_forces(const afv_geom *g, int n, double *f)
     int s;
     for (s = g->nbr_start[j]; s < g->nbr_start[j + 1]; s++) {
       int t = g->nbr_rev[s];
+      /* the lists are symmetric (geom.c), so every slot has its reverse */
+      assert(t >= 0);
       fx += g->grad[2*s] - g->grad[2*t];
       fy += g->grad[2*s+1] - g->grad[2*t+1];
     }

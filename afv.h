@@ -234,9 +234,10 @@ void afv_traj_free(afv_traj *tr);
 ** (AFV_EUNSTABLE): the forces change on the scale l, so such a step is
 ** outside the range where Euler's method follows the dynamics at all. */
 #define AFV_MAX_STEP_DISP 0.5
-/* At most this many halvings of a step (dt / 2^20): with max_move = 0.05 l
-** and dt = 0.01 that bounds the kick of forces up to ~5e6 / mu. */
-#define AFV_MAX_HALVINGS 20
+/* At most this many pieces per step (dynamics.c, SUB-STEPS): each piece
+** but the last moves the fastest cell by max_move l, so 64 pieces cover
+** 3 l of force-driven motion, more than the l/2 a step may move at all. */
+#define AFV_MAX_SUBSTEPS 64
 #define AFV_EUNSTABLE    8  /* NaN/Inf force or a step > l/2: see afv_sim.bad_cell */
 
 typedef struct afv_dyn {
@@ -246,8 +247,8 @@ typedef struct afv_dyn {
   double dt;          /* time step, > 0 */
   double max_move;    /* sub-step threshold, in l (>= 0; 0 = plain Euler):
                       ** a step in which the force would move some cell
-                      ** farther is integrated in halves (dynamics.c,
-                      ** SUB-STEPS) */
+                      ** farther is integrated in pieces that move it at
+                      ** most this far (dynamics.c, SUB-STEPS) */
   const double *v0_i; /* optional per-cell v0 (length n), NULL = scalar v0 */
   const double *Dr_i; /* optional per-cell Dr (length n), NULL = scalar Dr */
   unsigned long long seed; /* key of the random streams */
@@ -270,7 +271,8 @@ typedef struct afv_sim {
   afv_box    box;      /* boundary */
   afv_dyn    dyn;      /* dynamics; per-cell arrays point into own[] */
   afv_geom   geom;     /* geometry at r (energy, areas, contacts, ...) */
-  long long  substeps;  /* halvings done so far (extra force evaluations) */
+  long long  substeps;  /* extra sub-step pieces so far (= extra force
+                       ** evaluations) */
   int        bad_cell; /* on AFV_EUNSTABLE: the offending cell, else -1 */
   double     bad_disp; /* on AFV_EUNSTABLE: its step length / l (NaN if
                        ** the force was not finite) */
@@ -287,10 +289,10 @@ int  afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
                   const afv_params *p, const afv_box *b, const afv_dyn *d);
 /* One Euler-Maruyama step: r += dt (mu F + v0 n); th += sqrt(2 Dr dt) xi;
 ** then the forces at the new r.  If the force would move some cell more
-** than max_move l, the position update is done in halves (sub-steps).
+** than max_move l, the position update is done in pieces (sub-steps).
 ** Allocation-free once the geometry buffers have grown.  AFV_EUNSTABLE
 ** (state unchanged) if a force is not finite, if v0 dt alone exceeds
-** AFV_MAX_STEP_DISP l, or if a move still does after the halvings. */
+** AFV_MAX_STEP_DISP l, or if some cell's whole move in the step does. */
 int  afv_sim_step(afv_sim *s);
 void afv_sim_free(afv_sim *s);
 /* Largest |F_i| over the cells (0 if n = 0). */

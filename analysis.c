@@ -30,6 +30,7 @@
 */
 #include "afv.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,6 +52,7 @@ static int grow(void **ptr, int *cap, int need, size_t elem)
   void *q;
   int nc;
   if (need <= *cap) return AFV_OK;
+  if (need > INT_MAX / 2) return AFV_ENOMEM;   /* doubling would overflow */
   nc = *cap > 0 ? *cap : 8;   /* small: growth runs in every test */
   while (nc < need) nc *= 2;
   q = realloc(*ptr, (size_t)nc * elem);

@@ -259,40 +259,68 @@ static int unstable(afv_sim *s, int cell, double len)
   return AFV_EUNSTABLE;
 }
 
+/* The cell farthest from its position at the start of the step (the
+** first such; a NaN wins) and that distance in *len. */
+static int farthest_from_start(afv_sim *s, double *len)
+{
+  double *m = s->move_len, best = -1;
+  int i, worst = 0;
+  AFV_PARALLEL_FOR
+  for (i = 0; i < s->n; i++)
+    m[i] = hypot(s->r[2*i] - s->r_start[2*i], s->r[2*i+1] - s->r_start[2*i+1]);
+  for (i = 0; i < s->n; i++)
+    if (!(m[i] <= best)) {
+      best = m[i];
+      worst = i;
+      if (isnan(best)) break;
+    }
+  *len = best;
+  return worst;
+}
+
 /* SUB-STEPS.  The exact force diverges like (2l - d)^(-1/2) as a contact
 ** is about to break (afv.c, (V1)): one Euler step of dt = 0.01 taken from
 ** within ~1e-5 l of detachment throws a cell across half its radius.  Over
 ** one step the polarity n_i is fixed, so the position equation has no noise
-** inside the step and may be integrated more finely: while the force would
-** move some cell more than max_move l (mu |F_i| h > max_move l), the
-** interval is halved, forces recomputed in between, at most
-** AFV_MAX_HALVINGS times.  Steps in which no force moves a cell that far --
-** nearly all of them -- are exactly the paper's Euler steps.  As max_move
-** goes to 0 the result converges to the exact trajectory of the step (a
-** test shows it); max_move bounds the kick a cell can get from landing
-** next to detachment, it does not resolve the singularity by itself.
-** Advances r (and f) by a time h; AFV_EUNSTABLE if a force is not finite or
-** a whole move is still longer than AFV_MAX_STEP_DISP l. */
-static int advance(afv_sim *s, double h, int halvings)
+** inside the step and may be integrated more finely.  If the force would
+** move some cell more than max_move l over the time left in the step
+** (mu |F_i| h > max_move l), only the fraction of it that moves that cell
+** exactly max_move l is taken, the forces are recomputed, and the rest of
+** the step follows in the same way (at most AFV_MAX_SUBSTEPS pieces).  The
+** singular force pulls the pair back into contact, away from the
+** singularity, so one extra piece usually suffices.  Steps in which no
+** force moves a cell that far -- nearly all of them -- are exactly the
+** paper's Euler steps.  As max_move goes to 0 the step converges to the
+** exact trajectory (a test shows it); max_move bounds the kick a cell gets
+** from landing next to detachment, it does not resolve the singularity.
+** The state moves by the step's time dt in all; AFV_EUNSTABLE if a force is
+** not finite or a cell's whole move in the step exceeds AFV_MAX_STEP_DISP l
+** (the caller then restores r_start). */
+static int advance(afv_sim *s)
 {
-  double len, split = s->dyn.max_move * s->par.l;
-  int i, cell = largest_move(s, h, 1, &len), st;
-  if (isnan(len)) return unstable(s, cell, len);
-  if (split > 0 && len > split && halvings < AFV_MAX_HALVINGS) {
+  double left = s->dyn.dt, split = s->dyn.max_move * s->par.l;
+  int piece, i, cell, st;
+  for (piece = 1;; piece++) {
+    double len, h = left;
+    cell = largest_move(s, left, 1, &len);
+    if (isnan(len)) return unstable(s, cell, len);
+    if (split > 0 && len > split && piece < AFV_MAX_SUBSTEPS)
+      h = left * (split / len);
+    AFV_PARALLEL_FOR
+    for (i = 0; i < s->n; i++) {
+      double dx, dy;
+      move_of(s, i, h, &dx, &dy);
+      s->r[2*i] += dx;
+      s->r[2*i+1] += dy;
+    }
+    cell = farthest_from_start(s, &len);
+    if (!(len <= AFV_MAX_STEP_DISP * s->par.l)) return unstable(s, cell, len);
+    if ((st = afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f)))
+      return st;
+    if (h == left) return AFV_OK;
     s->substeps++;
-    if ((st = advance(s, 0.5 * h, halvings + 1)) != AFV_OK) return st;
-    return advance(s, 0.5 * h, halvings + 1);
+    left -= h;
   }
-  cell = largest_move(s, h, 0, &len);
-  if (!(len <= AFV_MAX_STEP_DISP * s->par.l)) return unstable(s, cell, len);
-  AFV_PARALLEL_FOR
-  for (i = 0; i < s->n; i++) {
-    double dx, dy;
-    move_of(s, i, h, &dx, &dy);
-    s->r[2*i] += dx;
-    s->r[2*i+1] += dy;
-  }
-  return afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
 }
 
 /* Self-propulsion alone moves cell i by v0_i dt in a step, sub-steps or
@@ -317,7 +345,7 @@ int afv_sim_step(afv_sim *s)
   if ((st = too_fast(s)) != AFV_OK) return st;
   memcpy(s->r_start, s->r, bytes);
   polarity_all(s);
-  if ((st = advance(s, s->dyn.dt, 0)) != AFV_OK) {
+  if ((st = advance(s)) != AFV_OK) {
     /* a refused step leaves the state as it was, sub-steps included */
     s->substeps = substeps;
     if (memcmp(s->r_start, s->r, bytes) != 0) {

@@ -33,6 +33,7 @@
 */
 #include "afv.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,9 +51,11 @@
 ** contact edge of the cell shorter than about 1e-12 l). */
 #define ANGLE_TOL 1e-12
 
-/* Open space: at most this many bins per cell; wider bins if the points are
-** spread out, so that memory stays O(N) however far apart they are. */
-#define OPEN_BINS_PER_CELL 2
+/* At most BINS_PER_CELL bins per cell (plus BINS_SLACK for tiny N): a
+** sparse periodic box or spread-out open points get wider bins, so that
+** memory stays O(N) however large the box or far apart the points. */
+#define BINS_PER_CELL 2
+#define BINS_SLACK    16
 
 /* OpenMP (make OPENMP=1): the per-cell loops marked AFV_PARALLEL_FOR write
 ** only their own cell's entries, so any thread count gives the same bits.
@@ -70,6 +73,7 @@ static int grow(void **ptr, int *cap, int need, size_t elem)
   void *q;
   int newcap;
   if (need <= *cap) return AFV_OK;
+  if (need > INT_MAX / 2) return AFV_ENOMEM;   /* doubling would overflow */
   newcap = *cap > 0 ? *cap : 16;
   while (newcap < need) newcap *= 2;
   q = realloc(*ptr, (size_t)newcap * elem);
@@ -172,7 +176,7 @@ void afv_wrap(const afv_box *b, double *x, double *y)
 }
 
 /* ---- cell list --------------------------------------------------------- */
-/* The grid of bins.  Bins have sides >= 2l for the argument l of
+/* The grid of bins.  Bins have sides >= 2 half_range, the argument of
 ** grid_periodic / grid_open (the candidates pass half their search range
 ** (2 + SKIN) l there), so a scan of the 3 x 3 bins around a cell finds
 ** every cell within that range. */
@@ -184,13 +188,25 @@ typedef struct grid {
   double Lx, Ly;    /* periodic box sides (0 in open space) */
 } grid;
 
-static void grid_periodic(grid *G, const afv_box *b, double l)
+/* Bins of side >= 2 half_range dividing the box evenly, at most
+** BINS_PER_CELL per cell (+ BINS_SLACK): a sparse box gets fewer, wider
+** bins, so memory stays O(N) whatever the box size.  Counted in double
+** until they are known to fit an int. */
+static void grid_periodic(grid *G, const afv_box *b, double half_range,
+                          int n)
 {
+  double fx = floor(b->Lx / (2 * half_range));
+  double fy = floor(b->Ly / (2 * half_range));
+  double most = (double)BINS_PER_CELL * n + BINS_SLACK;
+  if (fx < 1) fx = 1;
+  if (fy < 1) fy = 1;
+  while (fx * fy > most) {
+    fx = fx > 1 ? floor(fx / 2) : 1;
+    fy = fy > 1 ? floor(fy / 2) : 1;
+  }
   G->periodic = 1;
-  G->nbx = (int)floor(b->Lx / (2 * l));
-  G->nby = (int)floor(b->Ly / (2 * l));
-  if (G->nbx < 1) G->nbx = 1;
-  if (G->nby < 1) G->nby = 1;
+  G->nbx = (int)fx;
+  G->nby = (int)fy;
   G->x0 = G->y0 = 0;
   G->wx = b->Lx / G->nbx;
   G->wy = b->Ly / G->nby;
@@ -198,9 +214,9 @@ static void grid_periodic(grid *G, const afv_box *b, double l)
   G->Ly = b->Ly;
 }
 
-static void grid_open(grid *G, int n, const double *r, double l)
+static void grid_open(grid *G, int n, const double *r, double half_range)
 {
-  double xmin = r[0], xmax = r[0], ymin = r[1], ymax = r[1], w = 2 * l;
+  double xmin = r[0], xmax = r[0], ymin = r[1], ymax = r[1], w = 2 * half_range;
   double hx, hy;
   int i;
   for (i = 1; i < n; i++) {
@@ -213,9 +229,9 @@ static void grid_open(grid *G, int n, const double *r, double l)
   ** +-DBL_MAX; and w must stay finite (inf / inf in bin_of is NaN) */
   hx = 0.5 * xmax - 0.5 * xmin;
   hy = 0.5 * ymax - 0.5 * ymin;
-  /* widen the bins until there are at most OPEN_BINS_PER_CELL per cell */
+  /* widen the bins until there are at most BINS_PER_CELL per cell */
   while ((2 * (hx / w) + 1) * (2 * (hy / w) + 1)
-         > (double)OPEN_BINS_PER_CELL * n + 16 && isfinite(4 * w))
+         > (double)BINS_PER_CELL * n + BINS_SLACK && isfinite(4 * w))
     w *= 2;
   G->periodic = 0;
   G->x0 = xmin;
@@ -440,7 +456,7 @@ static int build_candidates(afv_geom *g, int n, const double *r, double l,
   grid G;
   int i, st;
   g->cand_n = 0;
-  if (b && b->periodic) grid_periodic(&G, b, 0.5 * range);
+  if (b && b->periodic) grid_periodic(&G, b, 0.5 * range, n);
   else grid_open(&G, n, r, 0.5 * range);
   if ((st = fill_bins(g, &G, n, r)) != AFV_OK) return st;
   g->cand_start[0] = 0;
@@ -674,7 +690,7 @@ int afv_spatial_order(int n, const double *r, double l, const afv_box *b,
   int st;
   if (n <= 0) return AFV_OK;
   memset(&tmp, 0, sizeof tmp);
-  if (b && b->periodic) grid_periodic(&G, b, l);
+  if (b && b->periodic) grid_periodic(&G, b, l, n);
   else grid_open(&G, n, r, l);
   st = grow_cells(&tmp, n);
   if (st == AFV_OK) st = fill_bins(&tmp, &G, n, r);

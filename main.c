@@ -4,6 +4,9 @@
 **   afv eval POINTS [options]     geometry, energy and forces of one configuration
 **   afv check POINTS [options]    analytic forces against finite differences
 **   afv run [options] --out DIR   the simulation job (relax, then dynamics)
+**   afv draw FILE [options]       SVG of a POINTS file or a trajectory frame
+**   afv analyze DIR [options]     order parameters, MSD and plots of a run
+**   afv meanfield [options]       the hexagonal mean-field E/M point P0*
 **
 ** Exit status: 0 success, 1 a check failed, 2 bad input or options,
 ** 3 a run stopped on an unstable step.
@@ -40,7 +43,8 @@ static const char *usage_text =
   "  analyze DIR     order parameters, MSD and plots of a run\n"
   "  meanfield       the hexagonal mean-field E/M point P0*\n"
   "\n"
-  "Run 'afv COMMAND --help' for the options of a command.\n";
+  "Run 'afv COMMAND --help' for the options of a command (afv run --help\n"
+  "lists every simulation key with its default, unit and meaning).\n";
 
 /* ---- messages and numbers ---------------------------------------------- */
 static int bad_input(const char *msg)
@@ -910,6 +914,14 @@ static int run_outputs(run_state *R)
   return AFV_OK;
 }
 
+/* 1 if the file at path exists and holds at least `bytes` bytes (cutting
+** back a shorter one would pad it with zeros). */
+static int file_at_least(const char *path, long long bytes)
+{
+  struct stat st;
+  return stat(path, &st) == 0 && (long long)st.st_size >= bytes;
+}
+
 /* Opens the append-only files: fresh (with headers) or cut back to the
 ** sizes of the checkpoint and appended to. */
 static int open_outputs(run_state *R, const afv_checkpoint *ck, char *err,
@@ -920,6 +932,12 @@ static int open_outputs(run_state *R, const afv_checkpoint *ck, char *err,
   for (k = 0; k < AFV_CKPT_FILES; k++) {
     if (k == OUT_XYZ && !R->cfg.xyz) continue;
     snprintf(path, sizeof path, "%s/%s", R->dir, afv_checkpoint_files[k]);
+    if (ck && !file_at_least(path, ck->bytes[k])) {
+      afv_errorf(err, errlen, "%s: shorter than the checkpoint records (%lld "
+                 "bytes): not the file this checkpoint was written with",
+                 path, (long long)ck->bytes[k]);
+      return 0;
+    }
     if (ck && truncate(path, (off_t)ck->bytes[k]) != 0) {
       afv_errorf(err, errlen, "%s: cannot cut back to the checkpoint: %s",
                  path, strerror(errno));
@@ -1050,7 +1068,7 @@ static int run_loop(run_state *R)
     double w = wall_seconds() - R->wall0;
     long long k = s->step - R->start_step;
     run_log(R, "%d cells, steps %lld..%lld (t = %.6g) in %.3g s (%.0f "
-            "steps/s, %lld sub-step halvings); outputs in %s/: "
+            "steps/s, %lld extra sub-steps); outputs in %s/: "
             "observables.csv, trajectory.dat, snapshots snap_*.svg and "
             "final.svg\n", s->n, R->start_step, s->step, s->t, w,
             w > 0 ? (double)k / w : 0.0, s->substeps, R->dir);
@@ -1663,6 +1681,7 @@ int main(int argc, char **argv)
   if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0
       || strcmp(argv[1], "help") == 0) {
     fputs(usage_text, argc < 2 ? stderr : stdout);
+    if (argc >= 2) printf("\nOptions of eval, check and draw:\n%s", model_help);
     return argc < 2 ? EXIT_BAD_INPUT : 0;
   }
   for (c = 0; c < sizeof commands / sizeof commands[0]; c++)

@@ -907,6 +907,77 @@ static void commands_end_to_end(void)
   CHECK(run_status(cmd) == 0, "cleanup of %s", dir);
 }
 
+/* afv analyze on afv's own (unwrapped) trajectory: two cells jump 7 l per
+** frame in a 10 l box.  Folding those jumps into the minimum image (as an
+** earlier version did) would give 9 l^2 at one frame; the true MSD is
+** 49 l^2. */
+static void analyze_keeps_unwrapped_jumps(void)
+{
+  char dir[64], cmd[256], path[128], line[256];
+  afv_box b = test_periodic_box(10, 10);
+  double r[4], th[2] = {0, 0}, lag = 0, msd = 0;
+  FILE *fp;
+  int f;
+  if (access("./afv", X_OK) != 0) {
+    SKIP("./afv not built");
+    return;
+  }
+  snprintf(dir, sizeof dir, "/tmp/afv_unwrapped_%ld", (long)getpid());
+  snprintf(cmd, sizeof cmd, "mkdir -p %s", dir);
+  CHECK(run_status(cmd) == 0, "mkdir");
+  snprintf(path, sizeof path, "%s/trajectory.dat", dir);
+  fp = fopen(path, "w");
+  CHECK(fp != NULL, "cannot write %s", path);
+  if (!fp) return;
+  afv_traj_write_header(fp, 2, &b);
+  for (f = 0; f < 6; f++) {
+    r[0] = 1 + 7.0 * f;  r[1] = 2;
+    r[2] = 1 + 7.0 * f;  r[3] = 7;
+    afv_traj_write_frame(fp, f, f, 2, r, th);
+  }
+  fclose(fp);
+  snprintf(cmd, sizeof cmd, "./afv analyze %s --l 1 --v0 1 --Dr 0.1 "
+           "--lag 1 > /dev/null 2>&1", dir);
+  CHECK(run_status(cmd) == 0, "%s failed", cmd);
+  snprintf(path, sizeof path, "%s/analysis/msd.csv", dir);
+  fp = fopen(path, "r");
+  CHECK(fp != NULL, "no %s", path);
+  while (fp && fgets(line, sizeof line, fp))
+    if (sscanf(line, "%lf,%lf", &lag, &msd) == 2) break;
+  if (fp) fclose(fp);
+  CHECK(lag == 1 && fabs(msd - 49) < 1e-9, "MSD at lag %g: %.17g, want 49",
+        lag, msd);
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  run_status(cmd);
+}
+
+/* The trajectory reader: a last line cut by an interrupted writer drops
+** its frame; a frame short of cells in the middle of the file is an error
+** that names the line. */
+static void traj_reader_truncation(void)
+{
+  char path[64], err[256];
+  afv_traj tr;
+  FILE *fp;
+  snprintf(path, sizeof path, "/tmp/afv_traj_%ld.dat", (long)getpid());
+  fp = fopen(path, "w");
+  CHECK(fp != NULL, "cannot write");
+  if (!fp) return;
+  fputs("# afv trajectory cells 2 box open\n# step 0 time 0\n1 2 0\n3 4 0\n"
+        "\n\n# step 1 time 1\n1 2 0\n3 4", fp);      /* cut mid-line */
+  fclose(fp);
+  CHECK(afv_traj_read(path, &tr, err, sizeof err) == AFV_OK && tr.nframes == 1,
+        "cut last line: %s, %d frames", err, tr.nframes);
+  afv_traj_free(&tr);
+  fp = fopen(path, "w");
+  fputs("# afv trajectory cells 2 box open\n# step 0 time 0\n1 2 0\n\n\n"
+        "# step 1 time 1\n1 2 0\n3 4 0\n", fp);      /* frame 0 is short */
+  fclose(fp);
+  CHECK(afv_traj_read(path, &tr, err, sizeof err) == AFV_EFORMAT
+        && strstr(err, ":6:") != NULL, "short middle frame: '%s'", err);
+  remove(path);
+}
+
 void suite_analysis(void)
 {
   RUN(clusters_two_separate);
@@ -935,4 +1006,6 @@ void suite_analysis(void)
   RUN(smoke_epithelial_cluster);
   RUN(smoke_mesenchymal_cluster);
   RUN(commands_end_to_end);
+  RUN(analyze_keeps_unwrapped_jumps);
+  RUN(traj_reader_truncation);
 }

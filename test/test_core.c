@@ -1266,6 +1266,33 @@ static void test_regression_golden(void)
   afv_geom_free(&g);
 }
 
+/* A sparse periodic box: two cells in boxes up to 1e12 l wide.  The cell
+** list once sized its bins by the box alone (76 MB at 1e4 l, a crash at
+** 2e5 l); now there are at most a few bins per cell, and the answer is
+** the open-space one. */
+static void test_sparse_periodic_box(void)
+{
+  static const double sides[3] = {1e4, 1e6, 1e12};
+  double r[4] = {1.0, 1.0, 2.5, 1.0}, f[4], fo[4], Eo;
+  afv_params p;
+  afv_box b = test_open_box();
+  afv_geom g;
+  int k;
+  memset(&g, 0, sizeof g);
+  afv_params_default(&p);
+  CHECK(afv_compute(&g, 2, r, &p, &b, fo) == AFV_OK, "open");
+  Eo = g.energy;
+  for (k = 0; k < 3; k++) {
+    b = test_periodic_box(sides[k], sides[k]);
+    CHECK(afv_compute(&g, 2, r, &p, &b, f) == AFV_OK, "box %g", sides[k]);
+    CHECK(g.cap_bins <= 64, "box %g: %d bins for 2 cells", sides[k],
+          g.cap_bins);
+    CHECK_CLOSE(g.energy, Eo, 1e-14, 0, "energy");
+    CHECK_CLOSE(f[0], fo[0], 1e-12, 1e-14, "fx");
+  }
+  afv_geom_free(&g);
+}
+
 void suite_core(void)
 {
   RUN(test_isolated_cell);
@@ -1289,6 +1316,7 @@ void suite_core(void)
   RUN(test_four_cocircular);
   RUN(test_tiny_edge_is_no_contact);
   RUN(test_centre_on_box_edge);
+  RUN(test_sparse_periodic_box);
   RUN(test_extreme_coordinates);
   RUN(test_repeatable);
   RUN(test_coincident_and_nonfinite);

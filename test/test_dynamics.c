@@ -790,7 +790,7 @@ static void test_run_survives_sigkill(void)
 ** ~ Lambda l^2 / (d s), s = sqrt(l (2l - d)) (afv.c, (V1)), so one plain
 ** Euler step of dt = 0.01 would throw them apart by more than l/2
 ** (refused), while sub-steps (max_move 0.1 l) follow the attraction: the
-** step succeeds, halvings happen, the energy falls, and as max_move
+** step succeeds, sub-steps happen, the energy falls, and as max_move
 ** shrinks the result converges to a fine plain-Euler integration of the
 ** same step (dt / 65536: converged to ~2e-4 l, measured). */
 static void pair_near_detachment(afv_sim *s, double max_move, double dt)
@@ -825,11 +825,11 @@ static void test_substeps_tame_detachment(void)
     pair_near_detachment(&sub, max_moves[k], 0.01);
     E0 = sub.geom.energy;
     CHECK(afv_sim_step(&sub) == AFV_OK, "sub-stepped step refused");
-    CHECK(sub.substeps > 0, "no halvings");
+    CHECK(sub.substeps > 0, "no sub-steps");
     CHECK(sub.geom.energy < E0, "energy rose: %.17g -> %.17g", E0,
           sub.geom.energy);
     err[k] = fabs(sub.r[2] - sub.r[0] - dfine);
-    printf("  max_move %g: %lld halvings, |d - d_fine| = %.3e\n",
+    printf("  max_move %g: %lld extra sub-steps, |d - d_fine| = %.3e\n",
            max_moves[k], sub.substeps, err[k]);
     afv_sim_free(&sub);
   }
@@ -838,6 +838,33 @@ static void test_substeps_tame_detachment(void)
         err[1], err[2]);
   afv_sim_free(&plain);
   afv_sim_free(&fine);
+}
+
+/* The l/2 rule holds for a whole step, sub-steps included: with forces far
+** too large for dt (KA = 1e5 on a compressed random packing) the pieces
+** would carry a cell across more than l/2 within one step; the step is
+** refused, the cell named, and the state left as it was. */
+static void test_whole_step_move_bounded(void)
+{
+  enum { N = 60 };
+  afv_box b = {1, 8, 8};
+  afv_params p;
+  afv_dyn d;
+  afv_sim s;
+  double r[2 * N], r0[2 * N];
+  memset(&s, 0, sizeof s);
+  afv_params_default(&p);
+  p.KA = 1e5;
+  afv_dyn_default(&d);
+  afv_init_random(N, 3, &b, 0, r);
+  CHECK(afv_sim_init(&s, N, r, NULL, &p, &b, &d) == AFV_OK, "init");
+  memcpy(r0, s.r, sizeof r0);
+  CHECK(afv_sim_step(&s) == AFV_EUNSTABLE, "step with huge forces accepted");
+  CHECK(s.bad_cell >= 0 && s.bad_disp > AFV_MAX_STEP_DISP, "cell %d moved "
+        "%g l", s.bad_cell, s.bad_disp);
+  CHECK(memcmp(r0, s.r, sizeof r0) == 0 && s.step == 0 && s.substeps == 0,
+        "state changed");
+  afv_sim_free(&s);
 }
 
 void suite_dynamics(void)
@@ -850,6 +877,7 @@ void suite_dynamics(void)
   RUN(test_sim_deterministic);
   RUN(test_sim_refuses_unstable_step);
   RUN(test_substeps_tame_detachment);
+  RUN(test_whole_step_move_bounded);
   RUN(test_free_abp_msd_and_polarity);
   RUN(test_per_cell_v0_and_Dr);
   RUN(test_energy_decrease_first_order);
