@@ -717,6 +717,9 @@ typedef struct run_state {
   double wall0;            /* wall clock at the start of the active run */
   double last_progress;    /* wall clock of the last progress line */
   int progress;            /* 1: progress lines on stderr */
+  double start_spacing;    /* cluster start: the spacing used, in l (it is
+                           ** reduced if the cluster would not fit the
+                           ** box); 0 for other starts */
   obs_analysis an;         /* analysis columns of observables.csv */
 } run_state;
 
@@ -766,6 +769,20 @@ static void cfg_model(const run_cfg *c, const afv_cells *cl, afv_params *p,
   d->Dr_i = cl->col[AFV_COL_DR];
 }
 
+/* Distance from cell 0 to its nearest neighbour (minimum image): the
+** lattice spacing of a cluster start. */
+static double nearest_to_first(int n, const double *r, const afv_box *b)
+{
+  double best = HUGE_VAL;
+  int i;
+  for (i = 1; i < n; i++) {
+    double dx = r[2*i] - r[0], dy = r[2*i+1] - r[1];
+    afv_min_image(b, &dx, &dy);
+    if (hypot(dx, dy) < best) best = hypot(dx, dy);
+  }
+  return best;
+}
+
 /* Builds the start (positions and angles) and the simulation at it. */
 static int run_start(run_state *R, char *err, size_t errlen)
 {
@@ -778,8 +795,10 @@ static int run_start(run_state *R, char *err, size_t errlen)
   afv_dyn d;
   cfg_model(c, &R->cells, &p, &b, &d);
   if (!r || !th) st = AFV_ENOMEM;
-  else if (strcmp(c->init, "cluster") == 0)
+  else if (strcmp(c->init, "cluster") == 0) {
     st = afv_init_cluster(n, c->spacing * c->l, &b, r);
+    R->start_spacing = n > 1 ? nearest_to_first(n, r, &b) / c->l : 0;
+  }
   else if (strcmp(c->init, "random") == 0)
     afv_init_random(n, c->seed, &b, box_side(c), r);
   else
@@ -1246,6 +1265,10 @@ static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
             err[0] ? ": " : "", err);
     return EXIT_BAD_INPUT;
   }
+  if (R->start_spacing > 0
+      && R->start_spacing < R->cfg.spacing * (1 - 1e-9))
+    run_log(R, "cluster start: spacing %.6g l instead of %.6g l, so that "
+            "the cluster fits the box\n", R->start_spacing, R->cfg.spacing);
   if ((st = relax_start(R)) != AFV_OK) {
     fprintf(stderr, "afv run: relaxation: %s\n", afv_strerror(st));
     return EXIT_BAD_INPUT;
