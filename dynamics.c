@@ -224,13 +224,29 @@ static void move_of(const afv_sim *s, int i, double h, double *dx, double *dy)
   *dy = h * (mu * s->f[2*i+1] + s->pol[2*i+1]);
 }
 
-/* The cell with the largest move over a time h (the first such cell; a
-** NaN wins), that move's length in *len.  With force_only, the move
-** counted is the force-driven part h mu F_i alone. */
+/* The index of the largest of m[0..n-1] (the first such; a NaN wins, so
+** it is seen), that value in *best.  Serial: the same answer whatever the
+** thread count. */
+static int first_largest(const double *m, int n, double *best)
+{
+  int i, worst = 0;
+  *best = -1;
+  for (i = 0; i < n; i++)
+    if (!(m[i] <= *best)) {
+      *best = m[i];
+      worst = i;
+      if (isnan(*best)) break;
+    }
+  return worst;
+}
+
+/* The cell with the largest move over a time h, that move's length in
+** *len.  With force_only, the move counted is the force-driven part
+** h mu F_i alone. */
 static int largest_move(afv_sim *s, double h, int force_only, double *len)
 {
-  double *m = s->move_len, best = -1;
-  int i, worst = 0;
+  double *m = s->move_len;
+  int i;
   AFV_PARALLEL_FOR
   for (i = 0; i < s->n; i++) {
     double dx, dy;
@@ -242,14 +258,19 @@ static int largest_move(afv_sim *s, double h, int force_only, double *len)
     }
     m[i] = sqrt(dx * dx + dy * dy);
   }
+  return first_largest(m, s->n, len);
+}
+
+/* The cell farthest from its position at the start of the step, and that
+** distance in *len. */
+static int farthest_from_start(afv_sim *s, double *len)
+{
+  double *m = s->move_len;
+  int i;
+  AFV_PARALLEL_FOR
   for (i = 0; i < s->n; i++)
-    if (!(m[i] <= best)) {
-      best = m[i];
-      worst = i;
-      if (isnan(best)) break;
-    }
-  *len = best;
-  return worst;
+    m[i] = hypot(s->r[2*i] - s->r_start[2*i], s->r[2*i+1] - s->r_start[2*i+1]);
+  return first_largest(m, s->n, len);
 }
 
 static int unstable(afv_sim *s, int cell, double len)
@@ -257,25 +278,6 @@ static int unstable(afv_sim *s, int cell, double len)
   s->bad_cell = cell;
   s->bad_disp = len / s->par.l;
   return AFV_EUNSTABLE;
-}
-
-/* The cell farthest from its position at the start of the step (the
-** first such; a NaN wins) and that distance in *len. */
-static int farthest_from_start(afv_sim *s, double *len)
-{
-  double *m = s->move_len, best = -1;
-  int i, worst = 0;
-  AFV_PARALLEL_FOR
-  for (i = 0; i < s->n; i++)
-    m[i] = hypot(s->r[2*i] - s->r_start[2*i], s->r[2*i+1] - s->r_start[2*i+1]);
-  for (i = 0; i < s->n; i++)
-    if (!(m[i] <= best)) {
-      best = m[i];
-      worst = i;
-      if (isnan(best)) break;
-    }
-  *len = best;
-  return worst;
 }
 
 /* SUB-STEPS.  The exact force diverges like (2l - d)^(-1/2) as a contact
