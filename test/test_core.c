@@ -1293,6 +1293,31 @@ static void test_sparse_periodic_box(void)
   afv_geom_free(&g);
 }
 
+/* Triple junctions exactly on the circle (a triangular patch at spacing
+** D = sqrt(3) l, the paper's mean-field transition point).  Cell 6 sits on
+** the patch's edge with 5 neighbours: 5 full chords of length l, adjacent
+** ones meeting on the circle, and one arc of pi/3.  The first version of
+** the clipping lost one of those edges to rounding (4 contacts, arc
+** 2 pi/3: an energy off by a finite amount); found by comparing it with
+** the present one on random and degenerate inputs. */
+static void test_junctions_on_the_circle(void)
+{
+  enum { M = 6, N = M * M };
+  double r[2 * N], f[2 * N];
+  afv_params p;
+  afv_box b = test_open_box();
+  afv_geom g;
+  memset(&g, 0, sizeof g);
+  afv_params_default(&p);
+  test_tri_lattice(M, M, sqrt(3.0), 5, 5, r);
+  CHECK(afv_compute(&g, N, r, &p, &b, f) == AFV_OK, "compute");
+  CHECK(g.contacts[6] == 5, "cell 6: %d contacts, want 5", g.contacts[6]);
+  CHECK_CLOSE(g.arc[6], PI / 3, CLOSED_RTOL, 0, "arc length");
+  CHECK_CLOSE(g.area[6], PI / 6 + 5 * sqrt(3.0) / 4, CLOSED_RTOL, 0, "area");
+  CHECK_CLOSE(g.perim[6], 5 + PI / 3, CLOSED_RTOL, 0, "perimeter");
+  afv_geom_free(&g);
+}
+
 void suite_core(void)
 {
   RUN(test_isolated_cell);
@@ -1317,6 +1342,7 @@ void suite_core(void)
   RUN(test_tiny_edge_is_no_contact);
   RUN(test_centre_on_box_edge);
   RUN(test_sparse_periodic_box);
+  RUN(test_junctions_on_the_circle);
   RUN(test_extreme_coordinates);
   RUN(test_repeatable);
   RUN(test_coincident_and_nonfinite);
