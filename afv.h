@@ -279,6 +279,13 @@ typedef struct afv_sim {
   double    *r_start;  /* private: r at the start of the step (2n) */
   double    *move_len; /* private: per-cell move lengths (n) */
   double    *pol;      /* private: v0_i n_i during a step (2n) */
+  int       *fast;     /* private, sub-steps: the fast cells (n) */
+  int       *region;   /* private, sub-steps: cells around them (n) */
+  int       *fbin_start, *fbin_cell; /* private: coarse bins of fast cells */
+  double    *sub;      /* private: the region's positions, forces and
+                       ** per-cell parameters (8n) */
+  afv_geom   sub_geom; /* private: the region's geometry */
+  int       *iown;     /* private: one block holding the int arrays */
   double    *own;      /* private: one block holding r, theta, f and the
                        ** copies of the per-cell parameter arrays */
 } afv_sim;

@@ -143,7 +143,9 @@ static const double *own_copy(const double *src, int n, double **next)
 void afv_sim_free(afv_sim *s)
 {
   afv_geom_free(&s->geom);
+  afv_geom_free(&s->sub_geom);
   free(s->own);
+  free(s->iown);
   memset(s, 0, sizeof *s);
 }
 
@@ -155,9 +157,19 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   afv_sim_free(s);
   if (n < 0 || dyn_check(d, n) != AFV_OK) return AFV_EINVAL;
   /* r, f, r_start, pol (2n each), theta, move_len (n each), six optional
-  ** per-cell arrays (n each) */
-  s->own = malloc((size_t)(16 * n + 1) * sizeof(double));
-  if (!s->own) return AFV_ENOMEM;
+  ** per-cell arrays (n each); the local sub-steps' region (8n) */
+  s->own = malloc((size_t)(24 * n + 1) * sizeof(double));
+  /* fast cells, region (n each), coarse bins (<= 2n + 17), binned (n) */
+  s->iown = malloc((size_t)(5 * n + 18) * sizeof(int));
+  if (!s->own || !s->iown) {
+    afv_sim_free(s);
+    return AFV_ENOMEM;
+  }
+  s->sub = s->own + 16 * n;
+  s->fast = s->iown;
+  s->region = s->iown + n;
+  s->fbin_cell = s->iown + 2 * n;
+  s->fbin_start = s->iown + 3 * n;
   s->n = n;
   s->r = s->own;
   s->f = s->own + 2 * n;
@@ -284,45 +296,255 @@ static int unstable(afv_sim *s, int cell, double len)
 ** is about to break (afv.c, (V1)): one Euler step of dt = 0.01 taken from
 ** within ~1e-5 l of detachment throws a cell across half its radius.  Over
 ** one step the polarity n_i is fixed, so the position equation has no noise
-** inside the step and may be integrated more finely.  If the force would
-** move some cell more than max_move l over the time left in the step
-** (mu |F_i| h > max_move l), only the fraction of it that moves that cell
-** exactly max_move l is taken, the forces are recomputed, and the rest of
-** the step follows in the same way (at most AFV_MAX_SUBSTEPS pieces).  The
-** singular force pulls the pair back into contact, away from the
-** singularity, so one extra piece usually suffices.  Steps in which no
-** force moves a cell that far -- nearly all of them -- are exactly the
-** paper's Euler steps.  As max_move goes to 0 the step converges to the
-** exact trajectory (a test shows it); max_move bounds the kick a cell gets
-** from landing next to detachment, it does not resolve the singularity.
-** The state moves by the step's time dt in all; AFV_EUNSTABLE if a force is
-** not finite or a cell's whole move in the step exceeds AFV_MAX_STEP_DISP l
-** (the caller then restores r_start). */
-static int advance(afv_sim *s)
+** inside the step and may be integrated more finely where it must be.
+** The "fast" cells are those the force would move more than max_move l in
+** the step.  If there are none -- nearly always -- the step is exactly the
+** paper's Euler step.  Otherwise every other cell takes its Euler step, and
+** the fast cells alone go on in pieces: each piece is the fraction of the
+** time left that moves the fastest of them max_move l, and their forces are
+** recomputed between pieces from the cells around them (REGION_RADIUS), the
+** rest held where their Euler step put them; at most AFV_MAX_SUBSTEPS
+** pieces.  The singular force pulls the pair back into contact, away from
+** the singularity, so one extra piece usually suffices.  Local pieces cost
+** O(cells near the fast ones), so a large tissue with many contacts about
+** to break does not pay a whole-tissue force evaluation per piece.  As
+** max_move goes to 0 the fast cells' motion converges to the exact
+** trajectory of the step with the others held (a test shows it); max_move
+** bounds the kick a cell gets from landing next to detachment, it does not
+** resolve the singularity.  AFV_EUNSTABLE if a force is not finite or a
+** cell's whole move in the step exceeds AFV_MAX_STEP_DISP l (the caller then
+** restores r_start). */
+
+/* The force on a fast cell i depends on the shapes of i and of its
+** neighbours j (closer than 2l), and those on their neighbours k: all
+** within 4l of i.  i moves at most AFV_MAX_STEP_DISP l = l/2 in an accepted
+** step, so the cells within 4.5 l of its start hold everything its pieces
+** need; 5 l leaves a margin. */
+#define REGION_RADIUS 5.0
+
+/* Moves the cells of list (all cells if list is NULL; m entries) by h. */
+static void move_cells(afv_sim *s, const int *list, int m, double h)
 {
-  double left = s->dyn.dt, split = s->dyn.max_move * s->par.l;
-  int piece, i, cell, st;
-  for (piece = 1;; piece++) {
-    double len, h = left;
-    cell = largest_move(s, left, 1, &len);
-    if (isnan(len)) return unstable(s, cell, len);
-    if (split > 0 && len > split && piece < AFV_MAX_SUBSTEPS)
-      h = left * (split / len);
-    AFV_PARALLEL_FOR
-    for (i = 0; i < s->n; i++) {
-      double dx, dy;
-      move_of(s, i, h, &dx, &dy);
-      s->r[2*i] += dx;
-      s->r[2*i+1] += dy;
+  int k;
+  AFV_PARALLEL_FOR
+  for (k = 0; k < m; k++) {
+    int i = list ? list[k] : k;
+    double dx, dy;
+    move_of(s, i, h, &dx, &dy);
+    s->r[2*i] += dx;
+    s->r[2*i+1] += dy;
+  }
+}
+
+/* Lists the fast cells (force move over dt above `split`, in m from
+** largest_move) in increasing order; returns how many. */
+static int list_fast(afv_sim *s, double split)
+{
+  int i, nf = 0;
+  for (i = 0; i < s->n; i++)
+    if (s->move_len[i] > split) s->fast[nf++] = i;
+  return nf;
+}
+
+/* A coarse grid (bins of side >= R) holding the fast cells, to find the
+** cells within R of any of them in O(N + fast) instead of O(N fast). */
+typedef struct coarse_grid {
+  int nbx, nby, periodic;
+  double x0, y0, wx, wy;
+} coarse_grid;
+
+static void coarse_grid_init(coarse_grid *G, const afv_sim *s, double R,
+                             int nf)
+{
+  double most = 2.0 * nf + 16, fx, fy, xmax, ymax;   /* O(fast) bins */
+  int i;
+  G->periodic = s->box.periodic;
+  G->x0 = G->y0 = 0;
+  xmax = s->box.Lx;
+  ymax = s->box.Ly;
+  if (!G->periodic) {                 /* the bounding box of all cells */
+    G->x0 = xmax = s->r[0];
+    G->y0 = ymax = s->r[1];
+    for (i = 1; i < s->n; i++) {
+      G->x0 = fmin(G->x0, s->r[2*i]);
+      G->y0 = fmin(G->y0, s->r[2*i+1]);
+      xmax = fmax(xmax, s->r[2*i]);
+      ymax = fmax(ymax, s->r[2*i+1]);
     }
-    cell = farthest_from_start(s, &len);
-    if (!(len <= AFV_MAX_STEP_DISP * s->par.l)) return unstable(s, cell, len);
-    if ((st = afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f)))
-      return st;
+  }
+  fx = fmax(1, floor((xmax - G->x0) / R));
+  fy = fmax(1, floor((ymax - G->y0) / R));
+  while (fx * fy > most) {
+    fx = fx > 1 ? floor(fx / 2) : 1;
+    fy = fy > 1 ? floor(fy / 2) : 1;
+  }
+  G->nbx = (int)fx;
+  G->nby = (int)fy;
+  /* bins at least R wide; in open space the last bin takes the rest */
+  G->wx = G->periodic ? s->box.Lx / fx : fmax(R, (xmax - G->x0) / fx);
+  G->wy = G->periodic ? s->box.Ly / fy : fmax(R, (ymax - G->y0) / fy);
+}
+
+static void coarse_bin(const coarse_grid *G, const afv_box *b, double x,
+                       double y, int *bx, int *by)
+{
+  double fx, fy;
+  if (G->periodic) afv_wrap(b, &x, &y);
+  fx = floor((x - G->x0) / G->wx);
+  fy = floor((y - G->y0) / G->wy);
+  *bx = !(fx > 0) ? 0 : fx >= G->nbx ? G->nbx - 1 : (int)fx;
+  *by = !(fy > 0) ? 0 : fy >= G->nby ? G->nby - 1 : (int)fy;
+}
+
+/* 1 if cell k lies within R of a fast cell in bin (bx, by). */
+static int near_fast_in_bin(const afv_sim *s, const coarse_grid *G, int k,
+                            int bx, int by, double R)
+{
+  int q, bin;
+  if (G->periodic) {
+    bx = (bx + G->nbx) % G->nbx;
+    by = (by + G->nby) % G->nby;
+  } else if (bx < 0 || by < 0 || bx >= G->nbx || by >= G->nby) {
+    return 0;
+  }
+  bin = by * G->nbx + bx;
+  for (q = s->fbin_start[bin]; q < s->fbin_start[bin + 1]; q++) {
+    int i = s->fbin_cell[q];
+    double dx = s->r[2*k] - s->r[2*i], dy = s->r[2*k+1] - s->r[2*i+1];
+    afv_min_image(&s->box, &dx, &dy);
+    if (dx * dx + dy * dy < R * R) return 1;
+  }
+  return 0;
+}
+
+/* The cells within R of a fast cell, in increasing order, into region;
+** returns how many (the fast cells are among them). */
+static int list_region(afv_sim *s, int nf, double R)
+{
+  coarse_grid G;
+  int k, q, nb, nr = 0, xlo = -1, xhi = 1, ylo = -1, yhi = 1;
+  coarse_grid_init(&G, s, R, nf);
+  nb = G.nbx * G.nby;
+  memset(s->fbin_start, 0, (size_t)(nb + 1) * sizeof(int));
+  for (q = 0; q < nf; q++) {
+    int bx, by, i = s->fast[q];
+    coarse_bin(&G, &s->box, s->r[2*i], s->r[2*i+1], &bx, &by);
+    s->fbin_start[by * G.nbx + bx + 1]++;
+  }
+  for (k = 0; k < nb; k++) s->fbin_start[k + 1] += s->fbin_start[k];
+  for (q = 0; q < nf; q++) {          /* counting sort, fast order kept */
+    int bx, by, i = s->fast[q];
+    coarse_bin(&G, &s->box, s->r[2*i], s->r[2*i+1], &bx, &by);
+    s->fbin_cell[s->fbin_start[by * G.nbx + bx]++] = i;
+  }
+  for (k = nb; k > 0; k--) s->fbin_start[k] = s->fbin_start[k - 1];
+  s->fbin_start[0] = 0;
+  if (G.periodic && G.nbx < 3) { xlo = 0; xhi = G.nbx - 1; }
+  if (G.periodic && G.nby < 3) { ylo = 0; yhi = G.nby - 1; }
+  for (k = 0; k < s->n; k++) {
+    int bx, by, ox, oy, hit = 0;
+    coarse_bin(&G, &s->box, s->r[2*k], s->r[2*k+1], &bx, &by);
+    for (oy = ylo; oy <= yhi && !hit; oy++)
+      for (ox = xlo; ox <= xhi && !hit; ox++)
+        hit = near_fast_in_bin(s, &G, k, bx + ox, by + oy, R);
+    if (hit) s->region[nr++] = k;
+  }
+  return nr;
+}
+
+/* The forces on the fast cells, from the region's cells alone (at their
+** present positions): exact, since the region holds every cell they
+** depend on.  Per-cell parameters are carried over to the region. */
+static int region_forces(afv_sim *s, int nf, int nr)
+{
+  afv_params p = s->par;
+  double *sub_r = s->sub, *sub_f = s->sub + 2 * nr, *col = s->sub + 4 * nr;
+  const double *per[4];
+  const double **dst[4];
+  int q, c, k, st;
+  per[0] = s->par.KA_i; per[1] = s->par.KP_i;
+  per[2] = s->par.A0_i; per[3] = s->par.P0_i;
+  dst[0] = &p.KA_i; dst[1] = &p.KP_i; dst[2] = &p.A0_i; dst[3] = &p.P0_i;
+  for (c = 0; c < 4; c++)
+    if (per[c]) {
+      for (q = 0; q < nr; q++) col[q] = per[c][s->region[q]];
+      *dst[c] = col;
+      col += nr;
+    }
+  for (q = 0; q < nr; q++) {
+    sub_r[2*q] = s->r[2 * s->region[q]];
+    sub_r[2*q+1] = s->r[2 * s->region[q] + 1];
+  }
+  st = afv_compute(&s->sub_geom, nr, sub_r, &p, &s->box, sub_f);
+  if (st != AFV_OK) return st;
+  for (k = 0, q = 0; k < nf; k++) {   /* both lists are increasing */
+    while (s->region[q] != s->fast[k]) q++;
+    s->f[2 * s->fast[k]] = sub_f[2*q];
+    s->f[2 * s->fast[k] + 1] = sub_f[2*q+1];
+  }
+  return AFV_OK;
+}
+
+/* The largest force move of the fast cells over a time h. */
+static double fastest(const afv_sim *s, int nf, double h, int *cell)
+{
+  double best = -1;
+  int k;
+  *cell = nf ? s->fast[0] : 0;
+  for (k = 0; k < nf; k++) {
+    int i = s->fast[k];
+    double m = h * s->dyn.mu * hypot(s->f[2*i], s->f[2*i+1]);
+    if (!(m <= best)) {
+      best = m;
+      *cell = i;
+    }
+  }
+  return best;
+}
+
+/* Moves the fast cells over the time dt in pieces (the others have moved). */
+static int fast_pieces(afv_sim *s, int nf, int nr, double split)
+{
+  double left = s->dyn.dt;
+  int piece, cell, st;
+  for (piece = 1;; piece++) {
+    double h = left, len = fastest(s, nf, left, &cell);
+    if (isnan(len)) return unstable(s, cell, len);
+    if (len > split && piece < AFV_MAX_SUBSTEPS) h = left * (split / len);
+    move_cells(s, s->fast, nf, h);
     if (h == left) return AFV_OK;
     s->substeps++;
     left -= h;
+    if ((st = region_forces(s, nf, nr)) != AFV_OK) return st;
   }
+}
+
+static int advance(afv_sim *s)
+{
+  double len, split = s->dyn.max_move * s->par.l;
+  int cell = largest_move(s, s->dyn.dt, 1, &len), nf = 0, st;
+  if (isnan(len)) return unstable(s, cell, len);
+  if (split > 0 && len > split) nf = list_fast(s, split);
+  if (nf == 0) {
+    move_cells(s, NULL, s->n, s->dyn.dt);
+  } else {
+    int k, nr;
+    for (k = 0; k < nf; k++) s->move_len[s->fast[k]] = -1;   /* mark */
+    AFV_PARALLEL_FOR
+    for (k = 0; k < s->n; k++)          /* every other cell: Euler */
+      if (s->move_len[k] >= 0) {
+        double dx, dy;
+        move_of(s, k, s->dyn.dt, &dx, &dy);
+        s->r[2*k] += dx;
+        s->r[2*k+1] += dy;
+      }
+    nr = list_region(s, nf, REGION_RADIUS * s->par.l);
+    s->sub_geom.cand_n = 0;    /* a new region: no Verlet candidates yet */
+    if ((st = fast_pieces(s, nf, nr, split)) != AFV_OK) return st;
+  }
+  cell = farthest_from_start(s, &len);
+  if (!(len <= AFV_MAX_STEP_DISP * s->par.l)) return unstable(s, cell, len);
+  return afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
 }
 
 /* Self-propulsion alone moves cell i by v0_i dt in a step, sub-steps or

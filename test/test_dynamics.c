@@ -867,6 +867,75 @@ static void test_whole_step_move_bounded(void)
   afv_sim_free(&s);
 }
 
+/* Local sub-steps see what the whole tissue would show them: a tissue with
+** one pair 1e-7 l from detachment, stepped by afv_sim_step, against the
+** same rule (Euler for the others, pieces for the fast cells) computed by
+** hand with forces of the whole tissue.  A region too small to hold every
+** cell the fast ones depend on would make the two differ. */
+static void test_local_substeps_match_whole_tissue(void)
+{
+  enum { N = 80 };
+  afv_box b = {1, 30, 30};
+  afv_params p;
+  afv_dyn d;
+  afv_sim s;
+  afv_geom g;
+  double r[2 * N], f[2 * N], ref[2 * N], left, split, worst = 0;
+  int i, fast[N], nf = 0, piece;
+  memset(&s, 0, sizeof s);
+  memset(&g, 0, sizeof g);
+  afv_params_default(&p);
+  afv_dyn_default(&d);
+  d.v0 = 0.3;
+  d.Dr = 0;
+  int rim = 0;
+  afv_init_cluster(N - 1, 1.7, &b, r);
+  for (i = 1; i < N - 1; i++)
+    if (r[2*i] > r[2*rim]) rim = i;
+  /* the last cell sits just outside the cluster, on the verge of losing
+  ** its contact with the rightmost cell */
+  r[2*(N-1)] = r[2*rim] + 2 - 1e-7;
+  r[2*(N-1)+1] = r[2*rim+1];
+  CHECK(afv_sim_init(&s, N, r, NULL, &p, &b, &d) == AFV_OK, "init");
+  /* by hand: the same pieces, forces from the whole tissue */
+  memcpy(ref, s.r, sizeof ref);
+  memcpy(f, s.f, sizeof f);
+  split = d.max_move;
+  for (i = 0; i < N; i++) {
+    double vx = d.v0 * cos(s.theta[i]), vy = d.v0 * sin(s.theta[i]);
+    if (d.dt * hypot(f[2*i], f[2*i+1]) > split) {
+      fast[nf++] = i;
+    } else {
+      ref[2*i] += d.dt * (f[2*i] + vx);
+      ref[2*i+1] += d.dt * (f[2*i+1] + vy);
+    }
+  }
+  CHECK(nf >= 2, "only %d fast cells", nf);
+  for (left = d.dt, piece = 1;; piece++) {
+    double len = 0, h;
+    int k;
+    for (k = 0; k < nf; k++)
+      len = fmax(len, left * hypot(f[2*fast[k]], f[2*fast[k]+1]));
+    h = len > split && piece < AFV_MAX_SUBSTEPS ? left * (split / len) : left;
+    for (k = 0; k < nf; k++) {
+      int c = fast[k];
+      ref[2*c] += h * (f[2*c] + d.v0 * cos(s.theta[c]));
+      ref[2*c+1] += h * (f[2*c+1] + d.v0 * sin(s.theta[c]));
+    }
+    if (h == left) break;
+    left -= h;
+    CHECK(afv_compute(&g, N, ref, &p, &b, f) == AFV_OK, "compute");
+  }
+  CHECK(afv_sim_step(&s) == AFV_OK, "step refused");
+  CHECK(s.substeps == piece - 1, "%lld extra pieces, by hand %d", s.substeps,
+        piece - 1);
+  for (i = 0; i < 2 * N; i++) worst = fmax(worst, fabs(s.r[i] - ref[i]));
+  CHECK(worst < 1e-12, "local and whole-tissue pieces differ by %.3e l",
+        worst);
+  afv_geom_free(&g);
+  afv_sim_free(&s);
+}
+
 void suite_dynamics(void)
 {
   snprintf(tmpdir, sizeof tmpdir, "/tmp/afv_test_dynamics.%ld",
@@ -878,6 +947,7 @@ void suite_dynamics(void)
   RUN(test_sim_refuses_unstable_step);
   RUN(test_substeps_tame_detachment);
   RUN(test_whole_step_move_bounded);
+  RUN(test_local_substeps_match_whole_tissue);
   RUN(test_free_abp_msd_and_polarity);
   RUN(test_per_cell_v0_and_Dr);
   RUN(test_energy_decrease_first_order);
