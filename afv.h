@@ -281,6 +281,7 @@ typedef struct afv_sim {
   double    *pol;      /* private: v0_i n_i during a step (2n) */
   int       *fast;     /* private, sub-steps: the fast cells (n) */
   int       *region;   /* private, sub-steps: cells around them (n) */
+  int       *in_region; /* private, sub-steps: 1 if cell i is in it (n) */
   int       *fbin_start, *fbin_cell; /* private: coarse bins of fast cells */
   double    *sub;      /* private: the region's positions, forces and
                        ** per-cell parameters (8n) */

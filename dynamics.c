@@ -159,8 +159,9 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   /* r, f, r_start, pol (2n each), theta, move_len (n each), six optional
   ** per-cell arrays (n each); the local sub-steps' region (8n) */
   s->own = malloc((size_t)(24 * n + 1) * sizeof(double));
-  /* fast cells, region (n each), coarse bins (<= 2n + 17), binned (n) */
-  s->iown = malloc((size_t)(5 * n + 18) * sizeof(int));
+  /* fast cells, region, in_region (n each), binned fast cells (n), coarse
+  ** bins (<= 2n + 17) */
+  s->iown = malloc((size_t)(6 * n + 18) * sizeof(int));
   if (!s->own || !s->iown) {
     afv_sim_free(s);
     return AFV_ENOMEM;
@@ -168,8 +169,9 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   s->sub = s->own + 16 * n;
   s->fast = s->iown;
   s->region = s->iown + n;
-  s->fbin_cell = s->iown + 2 * n;
-  s->fbin_start = s->iown + 3 * n;
+  s->in_region = s->iown + 2 * n;
+  s->fbin_cell = s->iown + 3 * n;
+  s->fbin_start = s->iown + 4 * n;
   s->n = n;
   s->r = s->own;
   s->f = s->own + 2 * n;
@@ -441,14 +443,17 @@ static int list_region(afv_sim *s, int nf, double R)
   s->fbin_start[0] = 0;
   if (G.periodic && G.nbx < 3) { xlo = 0; xhi = G.nbx - 1; }
   if (G.periodic && G.nby < 3) { ylo = 0; yhi = G.nby - 1; }
-  for (k = 0; k < s->n; k++) {
+  AFV_PARALLEL_FOR
+  for (k = 0; k < s->n; k++) {          /* each cell on its own ... */
     int bx, by, ox, oy, hit = 0;
     coarse_bin(&G, &s->box, s->r[2*k], s->r[2*k+1], &bx, &by);
     for (oy = ylo; oy <= yhi && !hit; oy++)
       for (ox = xlo; ox <= xhi && !hit; ox++)
         hit = near_fast_in_bin(s, &G, k, bx + ox, by + oy, R);
-    if (hit) s->region[nr++] = k;
+    s->in_region[k] = hit;
   }
+  for (k = 0; k < s->n; k++)            /* ... then listed in order */
+    if (s->in_region[k]) s->region[nr++] = k;
   return nr;
 }
 
