@@ -214,10 +214,8 @@ double afv_sim_max_force(const afv_sim *s)
 }
 
 /* pol = v0_i n_i = v0_i (cos theta_i, sin theta_i): fixed during a step
-** (sub-steps included), so computed once at its start rather than by every
-** move_of (largest_move and the move itself each needed it: cos and sin
-** were a tenth of a step's instructions).  The same products as before,
-** so the same bits. */
+** (sub-steps included), so computed once at its start rather than in
+** every move_of (cos and sin were a tenth of a step's instructions). */
 static void polarity_all(afv_sim *s)
 {
   int i;
@@ -254,24 +252,15 @@ static int first_largest(const double *m, int n, double *best)
   return worst;
 }
 
-/* The cell with the largest move over a time h, that move's length in
-** *len.  With force_only, the move counted is the force-driven part
-** h mu F_i alone. */
-static int largest_move(afv_sim *s, double h, int force_only, double *len)
+/* The cell with the largest force-driven move h mu F_i, and that move's
+** length in *len (the lengths stay in move_len). */
+static int largest_force_move(afv_sim *s, double h, double *len)
 {
   double *m = s->move_len;
   int i;
   AFV_PARALLEL_FOR
-  for (i = 0; i < s->n; i++) {
-    double dx, dy;
-    if (force_only) {
-      dx = h * s->dyn.mu * s->f[2*i];
-      dy = h * s->dyn.mu * s->f[2*i+1];
-    } else {
-      move_of(s, i, h, &dx, &dy);
-    }
-    m[i] = sqrt(dx * dx + dy * dy);
-  }
+  for (i = 0; i < s->n; i++)
+    m[i] = h * s->dyn.mu * hypot(s->f[2*i], s->f[2*i+1]);
   return first_largest(m, s->n, len);
 }
 
@@ -324,13 +313,13 @@ static int unstable(afv_sim *s, int cell, double len)
 ** need; 5 l leaves a margin. */
 #define REGION_RADIUS 5.0
 
-/* Moves the cells of list (all cells if list is NULL; m entries) by h. */
+/* Moves the m cells of list by h. */
 static void move_cells(afv_sim *s, const int *list, int m, double h)
 {
   int k;
   AFV_PARALLEL_FOR
   for (k = 0; k < m; k++) {
-    int i = list ? list[k] : k;
+    int i = list[k];
     double dx, dy;
     move_of(s, i, h, &dx, &dy);
     s->r[2*i] += dx;
@@ -338,8 +327,22 @@ static void move_cells(afv_sim *s, const int *list, int m, double h)
   }
 }
 
-/* Lists the fast cells (force move over dt above `split`, in m from
-** largest_move) in increasing order; returns how many. */
+/* Euler step of dt for every cell not marked fast (move_len < 0). */
+static void move_unmarked(afv_sim *s)
+{
+  int i;
+  AFV_PARALLEL_FOR
+  for (i = 0; i < s->n; i++)
+    if (s->move_len[i] >= 0) {
+      double dx, dy;
+      move_of(s, i, s->dyn.dt, &dx, &dy);
+      s->r[2*i] += dx;
+      s->r[2*i+1] += dy;
+    }
+}
+
+/* Lists the fast cells (force move over dt above `split`, in move_len from
+** largest_force_move) in increasing order; returns how many. */
 static int list_fast(afv_sim *s, double split)
 {
   int i, nf = 0;
@@ -527,23 +530,13 @@ static int fast_pieces(afv_sim *s, int nf, int nr, double split)
 static int advance(afv_sim *s)
 {
   double len, split = s->dyn.max_move * s->par.l;
-  int cell = largest_move(s, s->dyn.dt, 1, &len), nf = 0, st;
+  int cell = largest_force_move(s, s->dyn.dt, &len), nf = 0, k, st;
   if (isnan(len)) return unstable(s, cell, len);
   if (split > 0 && len > split) nf = list_fast(s, split);
-  if (nf == 0) {
-    move_cells(s, NULL, s->n, s->dyn.dt);
-  } else {
-    int k, nr;
-    for (k = 0; k < nf; k++) s->move_len[s->fast[k]] = -1;   /* mark */
-    AFV_PARALLEL_FOR
-    for (k = 0; k < s->n; k++)          /* every other cell: Euler */
-      if (s->move_len[k] >= 0) {
-        double dx, dy;
-        move_of(s, k, s->dyn.dt, &dx, &dy);
-        s->r[2*k] += dx;
-        s->r[2*k+1] += dy;
-      }
-    nr = list_region(s, nf, REGION_RADIUS * s->par.l);
+  for (k = 0; k < nf; k++) s->move_len[s->fast[k]] = -1;   /* mark */
+  move_unmarked(s);                     /* every other cell: Euler */
+  if (nf > 0) {
+    int nr = list_region(s, nf, REGION_RADIUS * s->par.l);
     s->sub_geom.cand_n = 0;    /* a new region: no Verlet candidates yet */
     if ((st = fast_pieces(s, nf, nr, split)) != AFV_OK) return st;
   }
