@@ -53,7 +53,6 @@
 */
 #include "afv.h"
 
-#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -157,8 +156,8 @@ typedef struct edge {
   double s;            /* half-chord sqrt(l^2 - d^2/4) */
 } edge;
 
-/* u, d and s come from the edge cache that afv_cell_shape fills (geom.c),
-** computed there once per slot with the same formulas. */
+/* u, d and s come from the edge cache that afv_neighbours fills (geom.c),
+** computed there once per neighbour pair. */
 static edge edge_of(const afv_geom *g, int s)
 {
   const double *e = g->edge + 4 * s;
@@ -281,10 +280,9 @@ static void gather_forces(const afv_geom *g, int n, double *f)
   for (j = 0; j < n; j++) {
     double fx = 0, fy = 0;
     int s;
-    for (s = g->nbr_start[j]; s < g->nbr_start[j + 1]; s++) {
+    for (s = g->nbr_start[j]; s < g->nbr_end[j]; s++) {
       int t = g->nbr_rev[s];
       /* the lists are symmetric (geom.c), so every slot has its reverse */
-      assert(t >= 0);
       fx += g->grad[2*s] - g->grad[2*t];
       fy += g->grad[2*s+1] - g->grad[2*t+1];
     }
@@ -301,8 +299,8 @@ static int check_inputs(int n, const afv_params *p, const afv_box *b)
   return box_check(b, p->l);
 }
 
-/* Every cell's shape and, if `gradient`, its G_ij in grad (its own slots).
-** A cell writes only its own entries, so the cells may be shared among
+/* Every cell's shape and, if `gradient`, its G_ij in grad (its own slots,
+** which afv_geometry_prepare has zeroed).  A cell writes only its own entries, so the cells may be shared among
 ** threads.  (Visiting them in cell-list order instead was measured slower
 ** for cells given in random order: the per-cell arrays are in cell order.) */
 static void shape_all(afv_geom *g, int n, const afv_params *p, int gradient)
@@ -310,11 +308,9 @@ static void shape_all(afv_geom *g, int n, const afv_params *p, int gradient)
   int i;
   AFV_PARALLEL_FOR
   for (i = 0; i < n; i++) {
-    int s0 = g->nbr_start[i], s1 = g->nbr_start[i + 1];
     cell_targets c = targets_of(p, i);
     afv_cell_shape(g, i, p->l);
     if (!gradient) continue;
-    memset(g->grad + 2 * s0, 0, (size_t)(s1 - s0) * 2 * sizeof(double));
     afv_cell_shape_gradient(g, i, p->l, p->cap, 2 * c.KA * (g->area[i] - c.A0),
                             2 * c.KP * (g->perim[i] - c.P0), p->Lambda,
                             g->grad);

@@ -85,7 +85,7 @@ void afv_wrap(const afv_box *b, double *x, double *y);
 typedef struct afv_piece {
   int    nbr;     /* cell on the other side of this edge, or AFV_ARC */
   int    slot;    /* for an edge: index of nbr in the neighbour list
-                  ** (nbr_start[i] <= slot < nbr_start[i+1]); -1 for an arc */
+                  ** (nbr_start[i] <= slot < nbr_end[i]); -1 for an arc */
   double x, y;    /* start vertex, relative to the cell centre */
   double length;  /* edge length or arc length (>= 0) */
 } afv_piece;
@@ -103,7 +103,8 @@ typedef struct afv_geom {
   int    *n_pieces;     /*   piece_start[i] + n_pieces[i] - 1]            */
   afv_piece *pieces;
   int    *nbr_start;    /* neighbours (centres closer than 2l) of cell i: */
-  int    *nbr;          /*   nbr[nbr_start[i] .. nbr_start[i+1]-1]        */
+  int    *nbr_end;      /*   nbr[nbr_start[i] .. nbr_end[i]-1]; the slots  */
+  int    *nbr;          /*   up to nbr_start[i+1] are unused (room kept)   */
   double *nbr_d;        /* their minimum-image displacements r_j - r_i,
                         ** interleaved, same indexing as nbr */
   int    *nbr_rev;      /* nbr_rev[s] = slot of i in the list of nbr[s] */
@@ -122,8 +123,9 @@ typedef struct afv_geom {
   int     cand_n;       /* cells they were built for; 0 = none */
   int     cap_cand, n_rebuilds;  /* n_rebuilds: candidate rebuilds so far */
   double *edge;         /* per slot s: u = D/d (2), d/2, half-chord
-                        ** sqrt(l^2 - d^2/4), set by afv_cell_shape */
-  double *grad;         /* per neighbour slot s: dE_i/dr_nbr[s] */
+                        ** sqrt(l^2 - d^2/4), set by afv_neighbours */
+  double *grad;         /* per neighbour slot s: dE_i/dr_nbr[s] (zeroed by
+                        ** afv_neighbours, summed by afv_compute) */
   double *work;         /* clipping work space, one block per thread */
   int     work_stride;  /* doubles per thread block of work */
 } afv_geom;
@@ -277,7 +279,7 @@ typedef struct afv_sim {
   double     bad_disp; /* on AFV_EUNSTABLE: its step length / l (NaN if
                        ** the force was not finite) */
   double    *r_start;  /* private: r at the start of the step (2n) */
-  double    *move_len; /* private: per-cell move lengths (n) */
+  double    *move_len; /* private: per-cell squared move lengths (n) */
   double    *pol;      /* private: v0_i n_i during a step (2n) */
   int       *fast;     /* private, sub-steps: the fast cells (n) */
   int       *region;   /* private, sub-steps: cells around them (n) */
@@ -355,7 +357,12 @@ enum { AFV_RNG_NOISE = 1, AFV_RNG_INIT_POS = 2, AFV_RNG_INIT_ANGLE = 3 };
 /* Two uniforms in (0, 1] (multiples of 2^-53) for (seed, cell, step, purpose). */
 void afv_rng_uniform2(unsigned long long seed, uint32_t cell,
                       unsigned long long step, unsigned purpose, double u[2]);
-/* One standard normal (Box-Muller, cosine branch) for the same stream. */
+/* Two independent standard normals (Box-Muller: cosine and sine branch)
+** from the stream of counter `pair`. */
+void afv_rng_normal2(unsigned long long seed, uint32_t pair,
+                     unsigned long long step, unsigned purpose, double z[2]);
+/* The normal of `cell`: z[cell % 2] of afv_rng_normal2 for pair cell / 2
+** (the noise of cell i at step s in afv_sim_step). */
 double afv_rng_normal(unsigned long long seed, uint32_t cell,
                       unsigned long long step, unsigned purpose);
 

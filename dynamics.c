@@ -14,17 +14,21 @@
 ** RANDOM NUMBERS.  Philox4x32-10 (Salmon, Moraes, Dror, Shaw, "Parallel
 ** random numbers: as easy as 1, 2, 3", SC'11), a counter-based generator:
 ** each output is a keyed bijection of a 128-bit counter, with no state to
-** carry.  The normal for cell i at step s is drawn from the counter
-** (i, s mod 2^32, s div 2^32, purpose) under the key seed.  So a run depends
-** only on (seed, parameters): not on the order in which cells are visited
-** (any number of threads gives the same bits), and a resumed run needs only
-** the step count to continue the same streams.  Philox passes BigCrush and
-** costs 10 multiply rounds: a few nanoseconds, nothing beside the geometry.
-** Normals come from the Box-Muller transform (cosine branch): it is exact,
-** and it takes a fixed number of uniforms per normal, so each (cell, step)
-** uses exactly one counter; a rejection method (polar, ziggurat) would need
-** a variable number and break the one-counter-per-draw bookkeeping.  The
-** uniforms have 53 random bits and lie in (0, 1], so log(u) is finite and
+** carry.  The normals of cells 2k and 2k + 1 at step s are drawn from the
+** counter (k, s mod 2^32, s div 2^32, purpose) under the key seed.  So a
+** run depends only on (seed, parameters): not on the order in which cells
+** are visited (any number of threads gives the same bits), and a resumed
+** run needs only the step count to continue the same streams.  Philox
+** passes BigCrush and costs 10 multiply rounds.
+** Normals come from the Box-Muller transform, both branches (cosine for
+** the even cell of the pair, sine for the odd): it is exact, one counter
+** gives two independent normals, so the generator, the log and the sincos
+** are paid once per two cells (they were an eighth of a step's
+** instructions with one counter per cell), and it takes a fixed number of
+** uniforms per normal, so each (pair, step) uses exactly one counter; a
+** rejection method (polar, ziggurat) would need a variable number and
+** break the one-counter-per-draw bookkeeping.  The uniforms have 53 random
+** bits and lie in (0, 1], so log(u) is finite and
 ** |xi| <= sqrt(2 * 53 ln 2) = 8.57.  Bit-for-bit equality across machines
 ** relies on the C library's log, cos and sin returning the same bits.
 */
@@ -61,14 +65,12 @@ void afv_philox4x32(const uint32_t ctr[4], const uint32_t key[2],
   int round;
   for (round = 0; round < PHILOX_ROUNDS; round++) {
     uint64_t p0 = (uint64_t)PHILOX_M0 * c0, p1 = (uint64_t)PHILOX_M1 * c2;
-    if (round > 0) {          /* the key is bumped between rounds */
-      k0 += PHILOX_W0;
-      k1 += PHILOX_W1;
-    }
     c0 = (uint32_t)(p1 >> 32) ^ c1 ^ k0;
     c1 = (uint32_t)p1;
     c2 = (uint32_t)(p0 >> 32) ^ c3 ^ k1;
     c3 = (uint32_t)p0;
+    k0 += PHILOX_W0;          /* the key is bumped between rounds (the bump */
+    k1 += PHILOX_W1;          /* after the last is unused: no branch) */
   }
   out[0] = c0; out[1] = c1; out[2] = c2; out[3] = c3;
 }
@@ -95,12 +97,22 @@ void afv_rng_uniform2(unsigned long long seed, uint32_t cell,
   u[1] = unit53(out[2], out[3]);
 }
 
+void afv_rng_normal2(unsigned long long seed, uint32_t pair,
+                     unsigned long long step, unsigned purpose, double z[2])
+{
+  double u[2], rho;
+  afv_rng_uniform2(seed, pair, step, purpose, u);
+  rho = sqrt(-2.0 * log(u[0]));
+  z[0] = rho * cos(TWO_PI * u[1]);
+  z[1] = rho * sin(TWO_PI * u[1]);
+}
+
 double afv_rng_normal(unsigned long long seed, uint32_t cell,
                       unsigned long long step, unsigned purpose)
 {
-  double u[2];
-  afv_rng_uniform2(seed, cell, step, purpose, u);
-  return sqrt(-2.0 * log(u[0])) * cos(TWO_PI * u[1]);
+  double z[2];
+  afv_rng_normal2(seed, cell / 2, step, purpose, z);
+  return z[cell % 2];
 }
 
 /* ---- the simulation ---------------------------------------------------- */
@@ -253,27 +265,37 @@ static int first_largest(const double *m, int n, double *best)
 }
 
 /* The cell with the largest force-driven move h mu F_i, and that move's
-** length in *len (the lengths stay in move_len). */
+** length in *len.  The squared lengths stay in move_len: squares order the
+** cells as the lengths do, and save a hypot per cell (a NaN stays NaN; a
+** square that overflows to inf still counts as fast). */
 static int largest_force_move(afv_sim *s, double h, double *len)
 {
-  double *m = s->move_len;
-  int i;
+  double *m = s->move_len, hmu = h * s->dyn.mu;
+  int i, worst;
   AFV_PARALLEL_FOR
-  for (i = 0; i < s->n; i++)
-    m[i] = h * s->dyn.mu * hypot(s->f[2*i], s->f[2*i+1]);
-  return first_largest(m, s->n, len);
+  for (i = 0; i < s->n; i++) {
+    double mx = hmu * s->f[2*i], my = hmu * s->f[2*i+1];
+    m[i] = mx * mx + my * my;
+  }
+  worst = first_largest(m, s->n, len);
+  *len = sqrt(*len);
+  return worst;
 }
 
 /* The cell farthest from its position at the start of the step, and that
-** distance in *len. */
+** distance in *len (squared distances in move_len, as above). */
 static int farthest_from_start(afv_sim *s, double *len)
 {
   double *m = s->move_len;
-  int i;
+  int i, worst;
   AFV_PARALLEL_FOR
-  for (i = 0; i < s->n; i++)
-    m[i] = hypot(s->r[2*i] - s->r_start[2*i], s->r[2*i+1] - s->r_start[2*i+1]);
-  return first_largest(m, s->n, len);
+  for (i = 0; i < s->n; i++) {
+    double dx = s->r[2*i] - s->r_start[2*i], dy = s->r[2*i+1] - s->r_start[2*i+1];
+    m[i] = dx * dx + dy * dy;
+  }
+  worst = first_largest(m, s->n, len);
+  *len = sqrt(*len);
+  return worst;
 }
 
 static int unstable(afv_sim *s, int cell, double len)
@@ -341,13 +363,15 @@ static void move_unmarked(afv_sim *s)
     }
 }
 
-/* Lists the fast cells (force move over dt above `split`, in move_len from
-** largest_force_move) in increasing order; returns how many. */
+/* Lists the fast cells (force move over dt above `split`; move_len holds
+** its square, from largest_force_move) in increasing order; returns how
+** many. */
 static int list_fast(afv_sim *s, double split)
 {
+  double split2 = split * split;
   int i, nf = 0;
   for (i = 0; i < s->n; i++)
-    if (s->move_len[i] > split) s->fast[nf++] = i;
+    if (s->move_len[i] > split2) s->fast[nf++] = i;
   return nf;
 }
 
@@ -527,7 +551,8 @@ static int fast_pieces(afv_sim *s, int nf, int nr, double split)
   }
 }
 
-static int advance(afv_sim *s)
+/* The moves of a step (v0_max = max |v0_i|, from too_fast). */
+static int advance(afv_sim *s, double v0_max)
 {
   double len, split = s->dyn.max_move * s->par.l;
   int cell = largest_force_move(s, s->dyn.dt, &len), nf = 0, k, st;
@@ -540,22 +565,44 @@ static int advance(afv_sim *s)
     s->sub_geom.cand_n = 0;    /* a new region: no Verlet candidates yet */
     if ((st = fast_pieces(s, nf, nr, split)) != AFV_OK) return st;
   }
-  cell = farthest_from_start(s, &len);
-  if (!(len <= AFV_MAX_STEP_DISP * s->par.l)) return unstable(s, cell, len);
+  /* Without fast cells every move is at most split + |v0_i| dt: when that
+  ** cannot exceed the limit, the scan of all the moves is skipped. */
+  if (nf > 0 || !(split > 0 && split + v0_max * s->dyn.dt
+                                  <= AFV_MAX_STEP_DISP * s->par.l)) {
+    cell = farthest_from_start(s, &len);
+    if (!(len <= AFV_MAX_STEP_DISP * s->par.l)) return unstable(s, cell, len);
+  }
   return afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
 }
 
 /* Self-propulsion alone moves cell i by v0_i dt in a step, sub-steps or
-** not: a step where that exceeds AFV_MAX_STEP_DISP l is refused. */
-static int too_fast(afv_sim *s)
+** not: a step where that exceeds AFV_MAX_STEP_DISP l is refused.  Sets
+** *v0_max = max |v0_i|. */
+static int too_fast(afv_sim *s, double *v0_max)
 {
-  int i;
-  for (i = 0; i < s->n; i++) {
-    double v0 = s->dyn.v0_i ? s->dyn.v0_i[i] : s->dyn.v0;
-    if (fabs(v0) * s->dyn.dt > AFV_MAX_STEP_DISP * s->par.l)
-      return unstable(s, i, fabs(v0) * s->dyn.dt);
+  int i, n = s->dyn.v0_i ? s->n : 1;
+  *v0_max = 0;
+  for (i = 0; i < n; i++) {
+    double v0 = s->dyn.v0_i ? fabs(s->dyn.v0_i[i]) : fabs(s->dyn.v0);
+    if (v0 * s->dyn.dt > AFV_MAX_STEP_DISP * s->par.l)
+      return unstable(s, i, v0 * s->dyn.dt);
+    if (v0 > *v0_max) *v0_max = v0;
   }
   return AFV_OK;
+}
+
+/* The rotational noise of cells i and i + 1 (if it exists) at this step:
+** the two normals of pair i / 2 (afv_rng_normal2). */
+static void rotate_pair(afv_sim *s, int i, unsigned long long seed,
+                        unsigned long long step)
+{
+  double z[2];
+  int k, m = i + 1 < s->n ? 2 : 1;
+  afv_rng_normal2(seed, (uint32_t)(i / 2), step, AFV_RNG_NOISE, z);
+  for (k = 0; k < m; k++) {
+    double Dr = s->dyn.Dr_i ? s->dyn.Dr_i[i + k] : s->dyn.Dr;
+    if (Dr > 0) s->theta[i + k] += sqrt(2 * Dr * s->dyn.dt) * z[k];
+  }
 }
 
 int afv_sim_step(afv_sim *s)
@@ -563,11 +610,12 @@ int afv_sim_step(afv_sim *s)
   unsigned long long seed = s->dyn.seed, step = (unsigned long long)s->step;
   long long substeps = s->substeps;
   size_t bytes = (size_t)(2 * s->n) * sizeof(double);
+  double v0_max;
   int i, st;
-  if ((st = too_fast(s)) != AFV_OK) return st;
+  if ((st = too_fast(s, &v0_max)) != AFV_OK) return st;
   memcpy(s->r_start, s->r, bytes);
   polarity_all(s);
-  if ((st = advance(s)) != AFV_OK) {
+  if ((st = advance(s, v0_max)) != AFV_OK) {
     /* a refused step leaves the state as it was, sub-steps included */
     s->substeps = substeps;
     if (memcmp(s->r_start, s->r, bytes) != 0) {
@@ -577,12 +625,8 @@ int afv_sim_step(afv_sim *s)
     return st;
   }
   AFV_PARALLEL_FOR
-  for (i = 0; i < s->n; i++) {
-    double Dr = s->dyn.Dr_i ? s->dyn.Dr_i[i] : s->dyn.Dr;
-    if (Dr > 0)
-      s->theta[i] += sqrt(2 * Dr * s->dyn.dt)
-                     * afv_rng_normal(seed, (uint32_t)i, step, AFV_RNG_NOISE);
-  }
+  for (i = 0; i < s->n; i += 2)   /* cells i and i + 1 share one draw */
+    rotate_pair(s, i, seed, step);
   s->step++;
   s->t = (double)s->step * s->dyn.dt;   /* no drift from summing dt */
   return AFV_OK;

@@ -102,6 +102,8 @@ static int grow_cells(afv_geom *g, int n)
   c = cap;
   if (grow((void **)&g->nbr_start, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
   c = cap;
+  if (grow((void **)&g->nbr_end, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
   if (grow((void **)&g->bin_cell, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
   c = cap;
   if (grow((void **)&g->bin_xy, &c, n + 1, 2 * sizeof(double)))
@@ -141,7 +143,8 @@ void afv_geom_free(afv_geom *g)
 {
   free(g->area); free(g->perim); free(g->arc); free(g->contacts);
   free(g->piece_start); free(g->n_pieces); free(g->pieces);
-  free(g->nbr_start); free(g->nbr); free(g->nbr_d); free(g->nbr_rev);
+  free(g->nbr_start); free(g->nbr_end); free(g->nbr); free(g->nbr_d);
+  free(g->nbr_rev);
   free(g->bin_start); free(g->bin_cell); free(g->bin_xy); free(g->edge);
   free(g->cand_start); free(g->cand); free(g->cand_r0); free(g->rw);
   free(g->grad); free(g->work);
@@ -615,25 +618,54 @@ static int filter_cell(const afv_geom *g, int i, double l, const afv_box *b,
   return count;
 }
 
-/* nbr_rev[s]: the slot of i in the list of j = nbr[s].  The lists are
-** exactly symmetric (fold is odd, so d^2 has the same bits both ways), so
-** it exists, and each pair is searched once, from its smaller cell, which
-** fills both directions.  Every entry has exactly one writer (the pair's
-** smaller cell) and nothing here reads nbr_rev, so threads may share the
-** cells and the result does not depend on them. */
-static void link_reverse_slots(afv_geom *g, int n)
+/* The edge cache of slot s (g->edge, 4 doubles per slot: u = D/d, h = d/2,
+** sc = sqrt(l^2 - h^2)) and of its reverse slot t, from the displacement
+** D of s: the clipping, the boundary assembly and the forces (afv.c) all
+** need these.  D_t = -D_s exactly (fold is odd), so d, h and sc are the
+** same bits from both cells and u_t = -u_s exactly: one computation (two
+** square roots, two divisions) serves the pair. */
+static void fill_edge_pair(afv_geom *g, int s, int t, double l)
+{
+  double dx = g->nbr_d[2*s], dy = g->nbr_d[2*s+1];
+  double d = sqrt(dx * dx + dy * dy), h = 0.5 * d;
+  double *e = g->edge + 4 * s, *f = g->edge + 4 * t;
+  e[0] = dx / d;
+  e[1] = dy / d;
+  e[2] = h;                         /* h, not d: clip_chords' inner loop
+                                    ** needs h; d = 2h is exact */
+  e[3] = sqrt((l - h) * (l + h));   /* (l-h)(l+h) is exact where l*l - h*h
+                                    ** would cancel for h near l */
+  f[0] = -e[0];
+  f[1] = -e[1];
+  f[2] = e[2];
+  f[3] = e[3];
+}
+
+/* Per neighbour pair: nbr_rev[s], the slot of i in the list of j = nbr[s],
+** and the reverse for j; the edge cache of both slots (fill_edge_pair);
+** and zero in both gradient slots, where afv_cell_shape_gradient adds.
+** The lists are exactly symmetric (fold is odd, so d^2 has the same bits
+** both ways), so the reverse slot exists, and each pair is searched once,
+** from its smaller cell, which fills both directions.  Every entry has
+** exactly one writer (the pair's smaller cell) and nothing here reads what
+** it writes, so threads may share the cells and the result does not
+** depend on them. */
+static void link_pairs(afv_geom *g, int n, double l)
 {
   int i;
   AFV_PARALLEL_FOR
   for (i = 0; i < n; i++) {
     int s, t;
-    for (s = g->nbr_start[i]; s < g->nbr_start[i + 1]; s++) {
+    for (s = g->nbr_start[i]; s < g->nbr_end[i]; s++) {
       int j = g->nbr[s];
       if (j < i) continue;
-      for (t = g->nbr_start[j]; t < g->nbr_start[j + 1]; t++)
+      for (t = g->nbr_start[j]; t < g->nbr_end[j]; t++)
         if (g->nbr[t] == i) {
           g->nbr_rev[s] = t;
           g->nbr_rev[t] = s;
+          fill_edge_pair(g, s, t, l);
+          g->grad[2*s] = g->grad[2*s+1] = 0;
+          g->grad[2*t] = g->grad[2*t+1] = 0;
           break;
         }
     }
@@ -641,44 +673,36 @@ static void link_reverse_slots(afv_geom *g, int n)
 }
 
 /* The exact lists from the candidates, in one filtering pass: cell i
-** writes its list at its candidate offset cand_start[i] (an upper bound)
-** into nbr_rev (cells) and grad (displacements), which serve as scratch
-** here -- both are rewritten before they are read -- and is then copied to
-** its place nbr_start[i].  Each cell writes only its own entries. */
+** writes its list in place at its candidate offset, nbr_start[i] =
+** cand_start[i] (room for every candidate), up to nbr_end[i].  The slots
+** between nbr_end[i] and nbr_start[i+1] are unused: no compaction to pay
+** for.  Each cell writes only its own entries. */
 int afv_neighbours(afv_geom *g, int n, const double *r, double l,
                    const afv_box *b)
 {
-  int i, st, rebuilt = 0;
+  int i, st;
   if (grow_cells(g, n)) return AFV_ENOMEM;
   g->n = n;
   g->nbr_start[0] = 0;
   if (n == 0) return AFV_OK;
   if (!candidates_valid(g, n, r, l, b)) {
     if ((st = build_candidates(g, n, r, l, b)) != AFV_OK) return st;
-    rebuilt = 1;
+    if (grow_nbr(g, g->cand_start[n] + 1)) return AFV_ENOMEM;
+    wrap_all(g, n, r, b);
+    sort_candidates(g, n, b);
+  } else {
+    wrap_all(g, n, r, b);
   }
-  if (grow_nbr(g, g->cand_start[n] + 1)) return AFV_ENOMEM;
-  wrap_all(g, n, r, b);
-  if (rebuilt) sort_candidates(g, n, b);
   AFV_PARALLEL_FOR
   for (i = 0; i < n; i++) {
     int c = g->cand_start[i];
-    g->nbr_start[i + 1] = filter_cell(g, i, l, b, g->nbr_rev + c,
-                                      g->grad + 2 * c);
+    g->nbr_start[i] = c;
+    g->nbr_end[i] = filter_cell(g, i, l, b, g->nbr + c, g->nbr_d + 2 * c);
   }
-  if ((st = find_coincident(g, g->nbr_start + 1, n)) != AFV_OK) return st;
-  for (i = 0; i < n; i++) g->nbr_start[i + 1] += g->nbr_start[i];
-  AFV_PARALLEL_FOR
-  for (i = 0; i < n; i++) {
-    int s = g->nbr_start[i], m = g->nbr_start[i + 1] - s, c = g->cand_start[i];
-    int k;
-    for (k = 0; k < m; k++) {   /* ~6 slots: a loop beats two memcpy calls */
-      g->nbr[s + k] = g->nbr_rev[c + k];
-      g->nbr_d[2 * (s + k)] = g->grad[2 * (c + k)];
-      g->nbr_d[2 * (s + k) + 1] = g->grad[2 * (c + k) + 1];
-    }
-  }
-  link_reverse_slots(g, n);
+  g->nbr_start[n] = g->cand_start[n];
+  if ((st = find_coincident(g, g->nbr_end, n)) != AFV_OK) return st;
+  for (i = 0; i < n; i++) g->nbr_end[i] += g->nbr_start[i];   /* count -> end */
+  link_pairs(g, n, l);
   return AFV_OK;
 }
 
@@ -708,25 +732,7 @@ typedef struct bisector {
   double ux, uy, h, d, sc;
 } bisector;
 
-/* The edge cache of cell i (g->edge, 4 doubles per slot: u, h = d/2, sc):
-** the clipping, the boundary assembly and the forces (afv.c) all need these,
-** and computing them once per slot saves two square roots and two
-** divisions each time. */
-static void fill_edge_cache(afv_geom *g, int i, double l)
-{
-  int s;
-  for (s = g->nbr_start[i]; s < g->nbr_start[i + 1]; s++) {
-    double dx = g->nbr_d[2*s], dy = g->nbr_d[2*s+1], *e = g->edge + 4 * s;
-    double d = sqrt(dx * dx + dy * dy), h = 0.5 * d;
-    e[0] = dx / d;
-    e[1] = dy / d;
-    e[2] = h;                         /* h, not d: clip_chord's inner loop
-                                      ** needs h; d = 2h is exact */
-    e[3] = sqrt((l - h) * (l + h));   /* (l-h)(l+h) is exact where l*l - h*h
-                                      ** would cancel for h near l */
-  }
-}
-
+/* The line of slot s, from the edge cache (link_pairs). */
 static bisector bisector_of(const afv_geom *g, int s)
 {
   const double *e = g->edge + 4 * s;
@@ -783,7 +789,7 @@ static void bound_below(segment *S, double rhs, double c)
 ** hold one entry per slot); returns their number. */
 static int clip_chords(const afv_geom *g, int i, segment *seg)
 {
-  int s0 = g->nbr_start[i], nn = g->nbr_start[i + 1] - s0, a, b, ns = 0;
+  int s0 = g->nbr_start[i], nn = g->nbr_end[i] - s0, a, b, ns = 0;
   const double *edge = g->edge + 4 * s0;
   for (a = 0; a < nn; a++) {
     seg[a].slot = s0 + a;
@@ -919,7 +925,6 @@ void afv_cell_shape(afv_geom *g, int i, double l)
   int ns;
   g->n_pieces[i] = 0;
   g->contacts[i] = 0;
-  fill_edge_cache(g, i, l);
   /* the slots are sorted by the direction of u (sort_slots), which is the
   ** counter-clockwise order of the edges of a convex cell: the kept parts
   ** come out in boundary order */
@@ -949,7 +954,7 @@ static int reserve_pieces(afv_geom *g, int n, int *max_nn)
   int i, total = 0;
   *max_nn = 0;
   for (i = 0; i < n; i++) {
-    int k = g->nbr_start[i + 1] - g->nbr_start[i];
+    int k = g->nbr_end[i] - g->nbr_start[i];
     if (k > *max_nn) *max_nn = k;
     g->piece_start[i] = total;
     total += 2 * k + 1;

@@ -137,7 +137,7 @@ static void clusters_shadowed_bisector(void)
   afv_clusters c = {0};
   int s, premise = 0;
   if (!analyse(3, r, &b, &g, &c)) return;
-  for (s = g.nbr_start[0]; s < g.nbr_start[1]; s++) premise |= g.nbr[s] == 2;
+  for (s = g.nbr_start[0]; s < g.nbr_end[0]; s++) premise |= g.nbr[s] == 2;
   CHECK(premise, "premise: 0 and 2 are within 2l");
   CHECK(c.n_pairs == 2, "pairs: got %d, want 2", c.n_pairs);
   CHECK(c.n_pairs == 2 && c.pairs[0] == 0 && c.pairs[1] == 1

@@ -626,7 +626,7 @@ static int neighbour_mismatches(const afv_geom *g, int n, const double *r,
       afv_min_image(b, &dx, &dy);
       if (j != i && dx * dx + dy * dy < 4 * l * l) ref[k++] = j;
     }
-    for (s = g->nbr_start[i]; s < g->nbr_start[i + 1]; s++) {
+    for (s = g->nbr_start[i]; s < g->nbr_end[i]; s++) {
       mine[m++] = g->nbr[s];
       if (g->nbr[g->nbr_rev[s]] != i) bad++;   /* reverse slot */
     }

@@ -494,7 +494,7 @@ static void test_large_cluster_start(void)
   for (i = 0; st == AFV_OK && i < N; i++) {
     double dmin = 1e9;
     int s;
-    for (s = g.nbr_start[i]; s < g.nbr_start[i + 1]; s++)
+    for (s = g.nbr_start[i]; s < g.nbr_end[i]; s++)
       dmin = fmin(dmin, hypot(g.nbr_d[2*s], g.nbr_d[2*s+1]));
     if (fabs(dmin - 1.8) > 1e-9) far++;
   }
