@@ -9,8 +9,12 @@
 # CC and CFLAGS may be overridden (make CC=clang, make CC=tcc).
 # OPENMP=1 adds -fopenmp (optional; the default build is plain C99).
 
+# -O3 and -fno-math-errno (sqrt inline, without the errno branch; afv never
+# reads errno) take 2-4% fewer instructions per step than -O2 (callgrind)
+# and give the same result bits: neither changes floating-point semantics
+# (-std=c99 also keeps gcc from contracting a*b+c into an fma).
 CC      ?= cc
-CFLAGS  ?= -O2 -std=c99 -pedantic -Wall -Wextra
+CFLAGS  ?= -O3 -fno-math-errno -std=c99 -pedantic -Wall -Wextra
 LDLIBS  = -lm
 ifeq ($(OPENMP),1)
 CFLAGS  += -fopenmp

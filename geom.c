@@ -588,33 +588,34 @@ static void sort_candidates(afv_geom *g, int n, const afv_box *b)
   }
 }
 
-/* The candidates of cell i closer than 2l (if nbr != NULL, written with
-** their displacements D = r_j - r_i, sorted by sort_slots); returns their
-** number, or -1 - j if cell j has the same centre.  Minimum image by fold:
-** the wrapped centres differ by less than a box side. */
+/* The candidates of cell i closer than 2l, written to nbr[] with their
+** displacements D = r_j - r_i to nbr_d[] and sorted by sort_slots; returns
+** their number, or -1 - j if cell j has the same centre.  Minimum image by
+** fold: the wrapped centres differ by less than a box side.  (The box and
+** the list end are read into locals: the stores to nbr_d could alias them,
+** which would force a reload per candidate.) */
 static int filter_cell(const afv_geom *g, int i, double l, const afv_box *b,
                        int *nbr, double *nbr_d)
 {
   double xi = g->rw[2*i], yi = g->rw[2*i+1], range2 = 4 * l * l;
-  int periodic = b && b->periodic, count = 0, c;
-  for (c = g->cand_start[i]; c < g->cand_start[i + 1]; c++) {
+  int periodic = b && b->periodic, count = 0, c, end = g->cand_start[i + 1];
+  double Lx = periodic ? b->Lx : 0, Ly = periodic ? b->Ly : 0;
+  for (c = g->cand_start[i]; c < end; c++) {
     int j = g->cand[c];
     double dx = g->rw[2*j] - xi, dy = g->rw[2*j+1] - yi, d2;
     if (periodic) {
-      dx = fold(dx, b->Lx);
-      dy = fold(dy, b->Ly);
+      dx = fold(dx, Lx);
+      dy = fold(dy, Ly);
     }
     d2 = dx * dx + dy * dy;
     if (d2 >= range2) continue;
     if (d2 == 0) return -1 - j;
-    if (nbr) {
-      nbr[count] = j;
-      nbr_d[2*count] = dx;
-      nbr_d[2*count+1] = dy;
-    }
+    nbr[count] = j;
+    nbr_d[2*count] = dx;
+    nbr_d[2*count+1] = dy;
     count++;
   }
-  if (nbr) sort_slots(nbr, nbr_d, count);
+  sort_slots(nbr, nbr_d, count);
   return count;
 }
 
