@@ -290,7 +290,8 @@ static int farthest_from_start(afv_sim *s, double *len)
   int i, worst;
   AFV_PARALLEL_FOR
   for (i = 0; i < s->n; i++) {
-    double dx = s->r[2*i] - s->r_start[2*i], dy = s->r[2*i+1] - s->r_start[2*i+1];
+    double dx = s->r[2*i] - s->r_start[2*i];
+    double dy = s->r[2*i+1] - s->r_start[2*i+1];
     m[i] = dx * dx + dy * dy;
   }
   worst = first_largest(m, s->n, len);
