@@ -227,25 +227,25 @@ static void circle_tangent(double x, double y, double l, double *tx,
   *ty = x / l;
 }
 
-/* Contributions of the vertex at the start of edge piece pc (edge *E,
-** previous piece prev) and, if an arc follows, of its end vertex. */
-static void edge_vertex_terms(const afv_geom *g, const edge *E,
-                              const afv_piece *prev, const afv_piece *pc,
-                              const afv_piece *next, double l, double cap,
-                              double wP, double wL, double *grad)
+/* Contributions of the vertex at the start of edge piece pc (edge *E) and,
+** if an arc follows (next_arc), of its end vertex.  The piece before pc is
+** an arc if prev_arc, else the edge *K of slot prev_slot. */
+static void edge_vertex_terms(const edge *E, const afv_piece *pc, int prev_arc,
+                              const edge *K, int prev_slot, int next_arc,
+                              double l, double cap, double wP, double wL,
+                              double *grad)
 {
   double ax, ay;
-  if (prev->nbr == AFV_ARC) {                 /* arc arrives: sigma = -1 */
+  if (prev_arc) {                             /* arc arrives: sigma = -1 */
     circle_tangent(pc->x, pc->y, l, &ax, &ay);
     arc_end_term(E, l, cap, -1, wP * (ax - E->tx) + wL * ax,
                  wP * (ay - E->ty) + wL * ay, grad + 2 * pc->slot);
   } else {                                    /* triple junction (i,k,j) */
-    edge K = edge_of(g, prev->slot);
-    double wx = wP * (K.tx - E->tx), wy = wP * (K.ty - E->ty);
-    junction_term(E, &K, pc->x, pc->y, wx, wy, grad + 2 * pc->slot);
-    junction_term(&K, E, pc->x, pc->y, wx, wy, grad + 2 * prev->slot);
+    double wx = wP * (K->tx - E->tx), wy = wP * (K->ty - E->ty);
+    junction_term(E, K, pc->x, pc->y, wx, wy, grad + 2 * pc->slot);
+    junction_term(K, E, pc->x, pc->y, wx, wy, grad + 2 * prev_slot);
   }
-  if (next->nbr == AFV_ARC) {                 /* arc leaves: sigma = +1 */
+  if (next_arc) {                             /* arc leaves: sigma = +1 */
     double vx = pc->x + pc->length * E->tx, vy = pc->y + pc->length * E->ty;
     circle_tangent(vx, vy, l, &ax, &ay);
     arc_end_term(E, l, cap, +1, wP * (E->tx - ax) - wL * ax,
@@ -253,20 +253,35 @@ static void edge_vertex_terms(const afv_geom *g, const edge *E,
   }
 }
 
+/* One pass over the pieces in boundary order.  The edge of the previous
+** piece is carried along (K) rather than fetched again: the same values,
+** and the same additions to grad in the same order as visiting each edge
+** with its two cyclic neighbours. */
 void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
                              double wA, double wP, double wL, double *grad)
 {
   const afv_piece *pieces = g->pieces + g->piece_start[i];
-  int np = g->n_pieces[i], k;
+  int np = g->n_pieces[i], k, prev_slot, prev_arc;
+  edge K;                                     /* read only after an edge */
+  if (np == 0) return;
+  prev_slot = pieces[np - 1].slot;            /* the piece before piece 0 */
+  prev_arc = pieces[np - 1].nbr == AFV_ARC;
+  if (!prev_arc) K = edge_of(g, prev_slot);
   for (k = 0; k < np; k++) {
     const afv_piece *pc = &pieces[k];
+    int next_arc = pieces[k + 1 < np ? k + 1 : 0].nbr == AFV_ARC;
     edge E;
-    if (pc->nbr == AFV_ARC) continue;
+    if (pc->nbr == AFV_ARC) {
+      prev_arc = 1;
+      continue;
+    }
     E = edge_of(g, pc->slot);
     area_term(&E, pc, wA, grad + 2 * pc->slot);
-    /* the cyclic neighbours of piece k (no integer division) */
-    edge_vertex_terms(g, &E, &pieces[k > 0 ? k - 1 : np - 1], pc,
-                      &pieces[k + 1 < np ? k + 1 : 0], l, cap, wP, wL, grad);
+    edge_vertex_terms(&E, pc, prev_arc, &K, prev_slot, next_arc, l, cap, wP,
+                      wL, grad);
+    K = E;
+    prev_slot = pc->slot;
+    prev_arc = 0;
   }
 }
 
