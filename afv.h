@@ -90,6 +90,15 @@ typedef struct afv_piece {
   double length;  /* edge length or arc length (>= 0) */
 } afv_piece;
 
+/* Private: the grid of a cell list (geom.c). */
+typedef struct afv_grid {
+  int nbx, nby;     /* bins along x and y (>= 1) */
+  int periodic;     /* 1: the bins tile the periodic box */
+  double x0, y0;    /* lower-left corner of bin (0, 0) */
+  double wx, wy;    /* bin sides */
+  double Lx, Ly;    /* periodic box sides (0 in open space) */
+} afv_grid;
+
 /* Geometry of a whole tissue, filled by afv_compute (or afv_geometry).
 ** Zero-initialise (afv_geom g = {0};) before first use; free with
 ** afv_geom_free.  Buffers grow as needed and are reused between calls. */
@@ -122,6 +131,7 @@ typedef struct afv_geom {
   double  cand_l;
   int     cand_n;       /* cells they were built for; 0 = none */
   int     cap_cand, n_rebuilds;  /* n_rebuilds: candidate rebuilds so far */
+  afv_grid cand_grid;   /* the cell list of the last rebuild */
   double *edge;         /* per slot s: u = D/d (2), d/2, half-chord
                         ** sqrt(l^2 - d^2/4), set by afv_neighbours */
   double *grad;         /* per neighbour slot s: dE_i/dr_nbr[s] (zeroed by
@@ -155,6 +165,14 @@ int  afv_geometry_prepare(afv_geom *g, int n, const double *r, double l,
 ** cell list refreshes only when cells have moved (geom.c, Verlet skin). */
 int  afv_neighbours(afv_geom *g, int n, const double *r, double l,
                     const afv_box *b);
+/* The cells that may now lie within R of the point (x, y), from the cell
+** list of g's last candidate rebuild (a superset: the caller tests the
+** distance), written to out[] (room for g->n), each once; returns how
+** many.  g must come from afv_neighbours (or afv_compute) at positions
+** from which no cell has since moved more than `moved`.  Cost: the cells
+** in the bins within about R + 0.15 l + moved, not O(N). */
+int  afv_cells_around(const afv_geom *g, double x, double y, double R,
+                      double moved, int *out);
 /* A spatial order of the cells (the cell list's, bins of side >= 2l row by
 ** row): perm[k] = the cell to put k-th.  Numbering cells in this order
 ** keeps neighbours close in memory: large N runs faster than with a random
@@ -284,7 +302,7 @@ typedef struct afv_sim {
   int       *fast;     /* private, sub-steps: the fast cells (n) */
   int       *region;   /* private, sub-steps: cells around them (n) */
   int       *in_region; /* private, sub-steps: 1 if cell i is in it (n) */
-  int       *fbin_start, *fbin_cell; /* private: coarse bins of fast cells */
+  int       *around;   /* private, sub-steps: cells around a fast one (n) */
   double    *sub;      /* private: the region's positions, forces and
                        ** per-cell parameters (8n) */
   afv_geom   sub_geom; /* private: the region's geometry */

@@ -228,9 +228,8 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   /* r, f, r_start, pol (2n each), theta, move_len (n each), six optional
   ** per-cell arrays (n each); the local sub-steps' region (8n) */
   s->own = malloc((size_t)(24 * n + 1) * sizeof(double));
-  /* fast cells, region, in_region (n each), binned fast cells (n), coarse
-  ** bins (<= 2n + 17) */
-  s->iown = malloc((size_t)(6 * n + 18) * sizeof(int));
+  /* fast cells, region, in_region, around (n each) */
+  s->iown = calloc((size_t)(4 * n + 1), sizeof(int));
   if (!s->own || !s->iown) {
     afv_sim_free(s);
     return AFV_ENOMEM;
@@ -239,8 +238,7 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   s->fast = s->iown;
   s->region = s->iown + n;
   s->in_region = s->iown + 2 * n;
-  s->fbin_cell = s->iown + 3 * n;
-  s->fbin_start = s->iown + 4 * n;
+  s->around = s->iown + 3 * n;
   s->n = n;
   s->r = s->own;
   s->f = s->own + 2 * n;
@@ -434,129 +432,38 @@ static int list_fast(afv_sim *s, double split)
   return nf;
 }
 
-/* A coarse grid (bins of side >= R, as many as that allows up to 2N + 16)
-** holding the fast cells, to find the cells within R of any of them in
-** O(N + fast) instead of O(N fast): a cell looks only at the fast cells in
-** the 3 x 3 bins around it.  (Bins fewer than that, O(fast) of them, made
-** every cell test nearly every fast cell: at N = 4000 in the random
-** benchmark state that was a fifth of the step.) */
-typedef struct coarse_grid {
-  int nbx, nby, periodic;
-  double x0, y0, wx, wy;
-} coarse_grid;
-
-static void coarse_grid_init(coarse_grid *G, const afv_sim *s, double R)
+static int cmp_int(const void *a, const void *b)
 {
-  double most = 2.0 * s->n + 16, fx, fy, xmax, ymax;   /* O(N) bins */
-  int i;
-  G->periodic = s->box.periodic;
-  G->x0 = G->y0 = 0;
-  xmax = s->box.Lx;
-  ymax = s->box.Ly;
-  if (!G->periodic) {                 /* the bounding box of all cells */
-    G->x0 = xmax = s->r[0];
-    G->y0 = ymax = s->r[1];
-    for (i = 1; i < s->n; i++) {
-      G->x0 = fmin(G->x0, s->r[2*i]);
-      G->y0 = fmin(G->y0, s->r[2*i+1]);
-      xmax = fmax(xmax, s->r[2*i]);
-      ymax = fmax(ymax, s->r[2*i+1]);
-    }
-  }
-  fx = fmax(1, floor((xmax - G->x0) / R));
-  fy = fmax(1, floor((ymax - G->y0) / R));
-  while (fx * fy > most) {
-    fx = fx > 1 ? floor(fx / 2) : 1;
-    fy = fy > 1 ? floor(fy / 2) : 1;
-  }
-  G->nbx = (int)fx;
-  G->nby = (int)fy;
-  /* bins at least R wide; in open space the last bin takes the rest */
-  G->wx = G->periodic ? s->box.Lx / fx : fmax(R, (xmax - G->x0) / fx);
-  G->wy = G->periodic ? s->box.Ly / fy : fmax(R, (ymax - G->y0) / fy);
-}
-
-static void coarse_bin(const coarse_grid *G, const afv_box *b, double x,
-                       double y, int *bx, int *by)
-{
-  double fx, fy;
-  if (G->periodic) afv_wrap(b, &x, &y);
-  fx = floor((x - G->x0) / G->wx);
-  fy = floor((y - G->y0) / G->wy);
-  *bx = !(fx > 0) ? 0 : fx >= G->nbx ? G->nbx - 1 : (int)fx;
-  *by = !(fy > 0) ? 0 : fy >= G->nby ? G->nby - 1 : (int)fy;
-}
-
-/* One component of the minimum image of the displacement of two wrapped
-** positions (|dx| < L): one fold, no division (as in geom.c). */
-static double fold_image(double dx, int periodic, double L)
-{
-  if (periodic && dx > 0.5 * L) return dx - L;
-  if (periodic && dx < -0.5 * L) return dx + L;
-  return dx;
-}
-
-/* 1 if the point (x, y) (wrapped into the box) lies within R of a fast
-** cell in bin (bx, by). */
-static int near_fast_in_bin(const afv_sim *s, const coarse_grid *G, double x,
-                            double y, int bx, int by, double R)
-{
-  int q, bin, per = G->periodic;
-  if (per) {
-    bx = (bx + G->nbx) % G->nbx;
-    by = (by + G->nby) % G->nby;
-  } else if (bx < 0 || by < 0 || bx >= G->nbx || by >= G->nby) {
-    return 0;
-  }
-  bin = by * G->nbx + bx;
-  for (q = s->fbin_start[bin]; q < s->fbin_start[bin + 1]; q++) {
-    int i = s->fbin_cell[q];
-    double xi = s->r[2*i], yi = s->r[2*i+1], dx, dy;
-    afv_wrap(&s->box, &xi, &yi);
-    dx = fold_image(x - xi, per, s->box.Lx);
-    dy = fold_image(y - yi, per, s->box.Ly);
-    if (dx * dx + dy * dy < R * R) return 1;
-  }
-  return 0;
+  int x = *(const int *)a, y = *(const int *)b;
+  return (x > y) - (x < y);
 }
 
 /* The cells within R of a fast cell, in increasing order, into region;
-** returns how many (the fast cells are among them). */
-static int list_region(afv_sim *s, int nf, double R)
+** returns how many (the fast cells are among them).  Each fast cell asks
+** the cell list of the last force evaluation for the cells around it
+** (afv_cells_around): O(fast cells), not O(N), per step with sub-steps.
+** Since that evaluation only the other cells have moved (move_unmarked),
+** each by at most `moved` = split + max|v0| dt.  in_region marks the
+** cells listed so far (all 0 between calls). */
+static int list_region(afv_sim *s, int nf, double R, double moved)
 {
-  coarse_grid G;
-  int k, q, nb, nr = 0, xlo = -1, xhi = 1, ylo = -1, yhi = 1;
-  coarse_grid_init(&G, s, R);
-  nb = G.nbx * G.nby;
-  memset(s->fbin_start, 0, (size_t)(nb + 1) * sizeof(int));
+  int q, k, nr = 0;
   for (q = 0; q < nf; q++) {
-    int bx, by, i = s->fast[q];
-    coarse_bin(&G, &s->box, s->r[2*i], s->r[2*i+1], &bx, &by);
-    s->fbin_start[by * G.nbx + bx + 1]++;
+    int f = s->fast[q], m = afv_cells_around(&s->geom, s->r[2*f], s->r[2*f+1],
+                                             R, moved, s->around);
+    for (k = 0; k < m; k++) {
+      int j = s->around[k];
+      double dx = s->r[2*j] - s->r[2*f], dy = s->r[2*j+1] - s->r[2*f+1];
+      if (s->in_region[j]) continue;
+      afv_min_image(&s->box, &dx, &dy);
+      if (dx * dx + dy * dy < R * R) {
+        s->in_region[j] = 1;
+        s->region[nr++] = j;
+      }
+    }
   }
-  for (k = 0; k < nb; k++) s->fbin_start[k + 1] += s->fbin_start[k];
-  for (q = 0; q < nf; q++) {          /* counting sort, fast order kept */
-    int bx, by, i = s->fast[q];
-    coarse_bin(&G, &s->box, s->r[2*i], s->r[2*i+1], &bx, &by);
-    s->fbin_cell[s->fbin_start[by * G.nbx + bx]++] = i;
-  }
-  for (k = nb; k > 0; k--) s->fbin_start[k] = s->fbin_start[k - 1];
-  s->fbin_start[0] = 0;
-  if (G.periodic && G.nbx < 3) { xlo = 0; xhi = G.nbx - 1; }
-  if (G.periodic && G.nby < 3) { ylo = 0; yhi = G.nby - 1; }
-  AFV_PARALLEL_FOR
-  for (k = 0; k < s->n; k++) {          /* each cell on its own ... */
-    int bx, by, ox, oy, hit = 0;
-    double x = s->r[2*k], y = s->r[2*k+1];
-    afv_wrap(&s->box, &x, &y);
-    coarse_bin(&G, &s->box, x, y, &bx, &by);
-    for (oy = ylo; oy <= yhi && !hit; oy++)
-      for (ox = xlo; ox <= xhi && !hit; ox++)
-        hit = near_fast_in_bin(s, &G, x, y, bx + ox, by + oy, R);
-    s->in_region[k] = hit;
-  }
-  for (k = 0; k < s->n; k++)            /* ... then listed in order */
-    if (s->in_region[k]) s->region[nr++] = k;
+  qsort(s->region, (size_t)nr, sizeof(int), cmp_int);
+  for (k = 0; k < nr; k++) s->in_region[s->region[k]] = 0;
   return nr;
 }
 
@@ -637,7 +544,8 @@ static int advance(afv_sim *s, double v0_max)
   for (k = 0; k < nf; k++) s->move_len[s->fast[k]] = -1;   /* mark */
   move_unmarked(s);                     /* every other cell: Euler */
   if (nf > 0) {
-    int nr = list_region(s, nf, REGION_RADIUS * s->par.l);
+    int nr = list_region(s, nf, REGION_RADIUS * s->par.l,
+                         split + v0_max * s->dyn.dt);
     s->sub_geom.cand_n = 0;    /* a new region: no Verlet candidates yet */
     if ((st = fast_pieces(s, nf, nr, split)) != AFV_OK) return st;
   }

@@ -183,13 +183,7 @@ void afv_wrap(const afv_box *b, double *x, double *y)
 ** grid_periodic / grid_open (the candidates pass half their search range
 ** (2 + SKIN) l there), so a scan of the 3 x 3 bins around a cell finds
 ** every cell within that range. */
-typedef struct grid {
-  int nbx, nby;     /* bins along x and y (>= 1) */
-  int periodic;     /* 1: the bins tile the periodic box */
-  double x0, y0;    /* lower-left corner of bin (0, 0) */
-  double wx, wy;    /* bin sides */
-  double Lx, Ly;    /* periodic box sides (0 in open space) */
-} grid;
+typedef afv_grid grid;   /* afv.h: nbx, nby, periodic, x0, y0, wx, wy, Lx, Ly */
 
 /* Bins of side >= 2 half_range dividing the box evenly, at most
 ** BINS_PER_CELL per cell (+ BINS_SLACK): a sparse box gets fewer, wider
@@ -470,6 +464,7 @@ static int build_candidates(afv_geom *g, int n, const double *r, double l,
            sizeof(int)))
     return AFV_ENOMEM;
   scan_all(g, &G, range, 1);
+  g->cand_grid = G;
   memcpy(g->cand_r0, r, (size_t)(2 * n) * sizeof(double));
   g->cand_box.periodic = b && b->periodic;
   g->cand_box.Lx = g->cand_box.periodic ? b->Lx : 0;
@@ -478,6 +473,51 @@ static int build_candidates(afv_geom *g, int n, const double *r, double l,
   g->cand_n = n;
   g->n_rebuilds++;
   return AFV_OK;
+}
+
+/* The bins along one axis (nb bins of side w from x0) that come within Q of
+** the coordinate x (wrapped into the box if periodic): *count of them from
+** *first on, to be wrapped mod nb if periodic (each bin once). */
+static void bin_range(double x, double Q, double x0, double w, int nb,
+                      int periodic, int *first, int *count)
+{
+  double lo = floor((x - Q - x0) / w), hi = floor((x + Q - x0) / w);
+  if (periodic) {
+    *first = (int)fmax(lo, -nb);    /* fmax: no int overflow for a huge Q */
+    *count = hi - lo + 1 >= nb ? nb : (int)(hi - lo) + 1;
+    *first = ((*first % nb) + nb) % nb;
+    return;
+  }
+  lo = fmin(fmax(lo, 0), nb - 1);   /* cells beyond the grid sit in its */
+  hi = fmin(fmax(hi, 0), nb - 1);   /* edge bins (bin_of clamps them) */
+  *first = (int)lo;
+  *count = (int)(hi - lo) + 1;
+}
+
+int afv_cells_around(const afv_geom *g, double x, double y, double R,
+                     double moved, int *out)
+{
+  const grid *G = &g->cand_grid;
+  /* a cell now within R of (x, y) was binned within Q of it: since the
+  ** rebuild it moved at most SKIN l / 2 up to the last afv_neighbours
+  ** (candidates_valid), then at most `moved`; 1e-9 l covers rounding */
+  double Q = R + 0.5 * SKIN * g->cand_l + moved + 1e-9 * g->cand_l;
+  int fx, nx, fy, ny, a, c, m = 0;
+  if (G->periodic) {
+    x = wrap1(x, G->Lx);
+    y = wrap1(y, G->Ly);
+  }
+  bin_range(x, Q, G->x0, G->wx, G->nbx, G->periodic, &fx, &nx);
+  bin_range(y, Q, G->y0, G->wy, G->nby, G->periodic, &fy, &ny);
+  for (c = 0; c < ny; c++) {
+    int by = (fy + c) % G->nby;
+    for (a = 0; a < nx; a++) {
+      int bin = by * G->nbx + (fx + a) % G->nbx, k;
+      for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++)
+        out[m++] = g->bin_cell[k];
+    }
+  }
+  return m;
 }
 
 /* ---- neighbour lists --------------------------------------------------- */

@@ -243,6 +243,86 @@ done:
   free(f2);
 }
 
+/* afv_cells_around (the sub-steps' region search) misses no cell, in the
+** worst case: for each query point p the candidates stay those built at
+** r0, every cell moves 0.14 l straight towards p (within the skin: no
+** rebuild), the lists are refreshed there, and every cell moves `moved`
+** further towards p.  Every cell then within R of p must be listed, none
+** twice.  Periodic boxes of many and of few bins a side, and open space.
+** (Leaving out either slack, 0.15 l or moved, makes this fail.) */
+static void toward(const afv_box *b, double px, double py, double len,
+                   double *r, int n)
+{
+  int i;
+  for (i = 0; i < n; i++) {
+    double dx = px - r[2*i], dy = py - r[2*i+1], d;
+    afv_min_image(b, &dx, &dy);
+    d = hypot(dx, dy);
+    if (d > len) {
+      r[2*i] += len * dx / d;
+      r[2*i+1] += len * dy / d;
+    }
+  }
+}
+
+static void check_cells_around(int n, int periodic, double R, double moved)
+{
+  afv_box b;
+  afv_geom g;
+  double *r0 = malloc((size_t)(2 * n) * sizeof(double));
+  double *r = malloc((size_t)(2 * n) * sizeof(double));
+  int *out = malloc((size_t)n * sizeof(int)), *seen = calloc((size_t)n, 4);
+  int i, q, missed = 0, twice = 0, total = 0, rebuilds;
+  memset(&g, 0, sizeof g);
+  CHECK(r0 && r && out && seen, "out of memory");
+  if (!r0 || !r || !out || !seen) goto done;
+  random_tissue(n, 0.5, r0, &b);
+  b.periodic = periodic;
+  CHECK(afv_neighbours(&g, n, r0, 1.0, &b) == AFV_OK, "lists");
+  rebuilds = g.n_rebuilds;
+  for (q = 0; q < 200; q++) {
+    double px = b.Lx * (1.2 * uniform01() - 0.1);
+    double py = b.Ly * (1.2 * uniform01() - 0.1);
+    int m, k;
+    memcpy(r, r0, (size_t)(2 * n) * sizeof(double));
+    toward(&b, px, py, 0.14, r, n);
+    CHECK(afv_neighbours(&g, n, r, 1.0, &b) == AFV_OK, "lists");
+    toward(&b, px, py, moved, r, n);
+    m = afv_cells_around(&g, px, py, R, moved, out);
+    total += m;
+    for (k = 0; k < m; k++) twice += seen[out[k]]++ > 0;
+    for (i = 0; i < n; i++) {
+      double dx = r[2*i] - px, dy = r[2*i+1] - py;
+      afv_min_image(&b, &dx, &dy);
+      if (dx * dx + dy * dy < R * R && !seen[i]) missed++;
+    }
+    for (k = 0; k < m; k++) seen[out[k]] = 0;
+  }
+  CHECK(g.n_rebuilds == rebuilds, "the moves rebuilt the candidates");
+  CHECK(missed == 0 && twice == 0, "%s, %d cells, R %g, moved %g: %d "
+        "cells missed, %d listed twice", periodic ? "periodic" : "open", n,
+        R, moved, missed, twice);
+  if (n >= 2000)
+    CHECK(total < 200 * n / 10, "the search is not local: %d cells per "
+          "query", total / 200);
+done:
+  afv_geom_free(&g);
+  free(r0);
+  free(r);
+  free(out);
+  free(seen);
+}
+
+static void test_cells_around(void)
+{
+  check_cells_around(2000, 1, 5.0, 0.06);
+  check_cells_around(2000, 1, 5.0, 0.3);
+  check_cells_around(2000, 0, 5.0, 0.06);
+  check_cells_around(300, 1, 5.0, 0.06);     /* 43 l box: 18 bins a side */
+  check_cells_around(25, 1, 5.0, 0.06);      /* 12.5 l box: 5 bins a side,
+                                             ** all within reach */
+}
+
 /* afv_spatial_order is a permutation, and renumbering the cells by it
 ** changes no cell's shape or force in any bit: a list is ordered by the
 ** directions of the neighbours, not by their numbers. */
@@ -299,5 +379,6 @@ void suite_perf(void)
   RUN(test_threads_bit_identical);
   RUN(test_no_allocation_when_repeated);
   RUN(test_candidates_change_nothing);
+  RUN(test_cells_around);
   RUN(test_spatial_order_renumbering);
 }
