@@ -682,42 +682,51 @@ static void fill_edge_pair(afv_geom *g, int s, int t, double l)
   f[3] = e[3];
 }
 
-/* Per neighbour pair: nbr_rev[s], the slot of i in the list of j = nbr[s],
-** and the reverse for j; the edge cache of both slots (fill_edge_pair);
-** and zero in both gradient slots, where afv_cell_shape_gradient adds.
-** The lists are exactly symmetric (fold is odd, so d^2 has the same bits
-** both ways), so the reverse slot exists, and each pair is searched once,
-** from its smaller cell, which fills both directions.  Every entry has
-** exactly one writer (the pair's smaller cell) and nothing here reads what
-** it writes, so threads may share the cells and the result does not
-** depend on them. */
-static void link_pairs(afv_geom *g, int n, double l)
+/* The pairs of cell i with its smaller neighbours j < i: nbr_rev[s], the
+** slot of j in the list of i, and the reverse for j; the edge cache of
+** both slots (fill_edge_pair); and zero in both gradient slots, where
+** afv_cell_shape_gradient adds.  The lists are exactly symmetric (fold is
+** odd, so d^2 has the same bits both ways), so the reverse slot exists.
+** Each pair is linked once, from its larger cell, which writes both
+** directions: every entry has exactly one writer.  j's list must be
+** filtered already. */
+static void link_cell(afv_geom *g, int i, double l)
 {
-  int i;
-  AFV_PARALLEL_FOR
-  for (i = 0; i < n; i++) {
-    int s, t;
-    for (s = g->nbr_start[i]; s < g->nbr_end[i]; s++) {
-      int j = g->nbr[s];
-      if (j < i) continue;
-      for (t = g->nbr_start[j]; t < g->nbr_end[j]; t++)
-        if (g->nbr[t] == i) {
-          g->nbr_rev[s] = t;
-          g->nbr_rev[t] = s;
-          fill_edge_pair(g, s, t, l);
-          g->grad[2*s] = g->grad[2*s+1] = 0;
-          g->grad[2*t] = g->grad[2*t+1] = 0;
-          break;
-        }
-    }
+  int s, t;
+  for (s = g->nbr_start[i]; s < g->nbr_end[i]; s++) {
+    int j = g->nbr[s];
+    if (j > i) continue;
+    for (t = g->nbr_start[j]; t < g->nbr_end[j]; t++)
+      if (g->nbr[t] == i) {
+        g->nbr_rev[s] = t;
+        g->nbr_rev[t] = s;
+        fill_edge_pair(g, t, s, l);
+        g->grad[2*s] = g->grad[2*s+1] = 0;
+        g->grad[2*t] = g->grad[2*t+1] = 0;
+        break;
+      }
   }
 }
 
-/* The exact lists from the candidates, in one filtering pass: cell i
-** writes its list in place at its candidate offset, nbr_start[i] =
-** cand_start[i] (room for every candidate), up to nbr_end[i].  The slots
+/* Cell i's list, written in place at its candidate offset, nbr_start[i] =
+** cand_start[i] (room for every candidate), up to nbr_end[i]; the slots
 ** between nbr_end[i] and nbr_start[i+1] are unused: no compaction to pay
-** for.  Each cell writes only its own entries. */
+** for.  Returns 0, or -1 - j if cell j has the same centre as i. */
+static int list_cell(afv_geom *g, int i, double l, const afv_box *b)
+{
+  int c = g->cand_start[i];
+  int count = filter_cell(g, i, l, b, g->nbr + c, g->nbr_d + 2 * c);
+  g->nbr_start[i] = c;
+  g->nbr_end[i] = count < 0 ? count : c + count;
+  return count < 0 ? count : 0;
+}
+
+/* The exact lists from the candidates, then the pairs linked.  Serially,
+** one pass: cell i is linked right after it is listed, to its smaller
+** neighbours, listed moments before, whose slots are still in cache (at
+** N = 40000 a second pass found them evicted).  With OpenMP, a smaller
+** neighbour may belong to another thread, so every list is filtered
+** before any is linked.  Either way each entry gets the same bits. */
 int afv_neighbours(afv_geom *g, int n, const double *r, double l,
                    const afv_box *b)
 {
@@ -734,16 +743,20 @@ int afv_neighbours(afv_geom *g, int n, const double *r, double l,
   } else {
     wrap_all(g, n, r, b);
   }
-  AFV_PARALLEL_FOR
-  for (i = 0; i < n; i++) {
-    int c = g->cand_start[i];
-    g->nbr_start[i] = c;
-    g->nbr_end[i] = filter_cell(g, i, l, b, g->nbr + c, g->nbr_d + 2 * c);
-  }
   g->nbr_start[n] = g->cand_start[n];
+#ifdef _OPENMP
+  AFV_PARALLEL_FOR
+  for (i = 0; i < n; i++) list_cell(g, i, l, b);
   if ((st = find_coincident(g, g->nbr_end, n)) != AFV_OK) return st;
-  for (i = 0; i < n; i++) g->nbr_end[i] += g->nbr_start[i];   /* count -> end */
-  link_pairs(g, n, l);
+  AFV_PARALLEL_FOR
+  for (i = 0; i < n; i++) link_cell(g, i, l);
+#else
+  for (i = 0; i < n; i++) {
+    if (list_cell(g, i, l, b) < 0)   /* the first such cell: as after */
+      return find_coincident(g, g->nbr_end, i + 1);   /* a whole pass */
+    link_cell(g, i, l);
+  }
+#endif
   return AFV_OK;
 }
 
