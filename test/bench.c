@@ -19,7 +19,9 @@
 ** in both the cells are then numbered in afv_spatial_order.
 ** Both are first relaxed at v0 = 0 by afv_relax, as afv run does (to
 ** max |F| <= RELAX_TOL, or RELAX_BUDGET cell-steps but at least
-** RELAX_MIN_STEPS: the large states are only partly relaxed).
+** RELAX_MIN_STEPS: the large cluster is only partly relaxed).  The random
+** state at N >= TILED_FROM is TILES x TILES copies of the relaxed random
+** state of N / TILES^2 cells (see tiled_random_state).
 ** A step is one afv_sim_step: the move of every cell, then neighbour
 ** search, shapes, energy and forces.  The states random-force and
 ** cluster-force time afv_compute alone (one force evaluation per "step")
@@ -52,6 +54,8 @@
 #define RELAX_TOL 1e-6     /* afv run's default relaxation tolerance */
 #define RELAX_BUDGET 1e7   /* relaxation cell-steps: keeps make bench short */
 #define RELAX_MIN_STEPS 20
+#define TILES 10           /* the random state at N >= TILED_FROM: TILES^2 */
+#define TILED_FROM 40000   /* copies of the relaxed state of N / TILES^2 */
 #define CELL_STEPS_PER_REPEAT 200000.0  /* sizes a repeat (about 0.1 s) */
 #define MIN_STEPS 4        /* per repeat: enough that the occasional rebuild
                            ** of the neighbour candidates (geom.c) falls in
@@ -78,6 +82,52 @@ static int spatial_order(int n, double *r, const afv_box *b)
   return st;
 }
 
+/* The random state at n = TILES^2 m cells (m >= 400): TILES x TILES copies
+** of the relaxed random state of m cells (same seed), in a box TILES times
+** as wide, with n fresh angles.  A relaxation of n cells within the budget
+** would stop far from converged at large n (about 25 FIRE iterations at
+** n = 400000), and a less relaxed tissue costs more per cell (larger
+** forces: more sub-steps and candidate rebuilds); the tiles give every n
+** the local structure of a relaxed random tissue, so that the per-cell
+** figures compare the code at different n, not different states. */
+static int make_state(afv_sim *s, int cluster, int n);
+
+static int tiled_random_state(afv_sim *s, int n)
+{
+  afv_sim tile;
+  afv_params p;
+  afv_box b;
+  afv_dyn d;
+  int m = n / (TILES * TILES), a, c, k, st;
+  double *r = malloc((size_t)n * 2 * sizeof *r);
+  double *th = malloc((size_t)n * sizeof *th);
+  memset(&tile, 0, sizeof tile);
+  st = r && th ? make_state(&tile, 0, m) : AFV_ENOMEM;
+  if (st == AFV_OK) {
+    b = tile.box;
+    b.Lx *= TILES;
+    b.Ly *= TILES;
+    for (a = 0; a < TILES; a++)
+      for (c = 0; c < TILES; c++)
+        for (k = 0; k < m; k++) {
+          double x = tile.r[2*k], y = tile.r[2*k+1];
+          int q = (a * TILES + c) * m + k;
+          afv_wrap(&tile.box, &x, &y);
+          r[2*q] = x + a * tile.box.Lx;
+          r[2*q+1] = y + c * tile.box.Ly;
+        }
+    p = tile.par;
+    d = tile.dyn;
+    afv_init_angles(n, SEED, th);
+    st = spatial_order(n, r, &b);
+  }
+  if (st == AFV_OK) st = afv_sim_init(s, n, r, th, &p, &b, &d);
+  afv_sim_free(&tile);
+  free(r);
+  free(th);
+  return st;
+}
+
 /* The starting simulation of a state; 0 on success, else a status. */
 static int make_state(afv_sim *s, int cluster, int n)
 {
@@ -88,6 +138,11 @@ static int make_state(afv_sim *s, int cluster, int n)
   double *r = malloc((size_t)n * 2 * sizeof *r);
   double *th = malloc((size_t)n * sizeof *th);
   int st = AFV_ENOMEM;
+  if (!cluster && n >= TILED_FROM && n % (TILES * TILES) == 0) {
+    free(r);
+    free(th);
+    return tiled_random_state(s, n);
+  }
   if (!r || !th) goto done;
   afv_params_default(&p);
   afv_dyn_default(&d);
