@@ -115,6 +115,10 @@ static int grow_cells(afv_geom *g, int n)
   if (grow((void **)&g->rw, &c, n + 1, 2 * sizeof(double))) return AFV_ENOMEM;
   c = cap;
   if (grow((void **)&g->cand_start, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
+  if (grow((void **)&g->mover, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
+  if (grow((void **)&g->around, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
   g->cap_cells = c;
   return AFV_OK;
 }
@@ -147,7 +151,7 @@ void afv_geom_free(afv_geom *g)
   free(g->nbr_rev);
   free(g->bin_start); free(g->bin_cell); free(g->bin_xy); free(g->edge);
   free(g->cand_start); free(g->cand); free(g->cand_r0); free(g->rw);
-  free(g->grad); free(g->work);
+  free(g->grad); free(g->work); free(g->mover); free(g->around);
   memset(g, 0, sizeof *g);
 }
 
@@ -428,20 +432,83 @@ static int same_box(const afv_box *a, const afv_box *b)
   return a->periodic && a->Lx == b->Lx && a->Ly == b->Ly;
 }
 
-/* 1 if the candidates were built for this n, l, box and no cell has moved
-** more than SKIN l / 2 since. */
-static int candidates_valid(const afv_geom *g, int n, const double *r,
-                            double l, const afv_box *b)
+/* MOVERS.  A cell that has moved more than SKIN l / 2 since the rebuild
+** (a "mover": typically a fast cell taking sub-steps) does not by itself
+** invalidate the candidates; a pair closer than 2l that is not a candidate
+** pair does.  A pair of two other cells is a candidate pair (each moved at
+** most SKIN l / 2, so it approached by at most SKIN l), so while the
+** movers are few the pairs that involve them are checked one by one:
+** a mover's non-mover neighbours are found in the cell list of the rebuild
+** (afv_cells_around, within its skin), the movers among themselves
+** directly.  Without this, one fast cell anywhere forced a rebuild of the
+** whole tissue: at N = 40000 in the random benchmark state every 3.9
+** steps.  Above MOVERS_MAX, the checks (O(movers^2)) would cost more than
+** a rebuild.  And the movers are checked again at every call, as they go
+** on moving: once the pair tests since the rebuild reach CHECKS_PER_CELL
+** per cell, about the cost of a rebuild (a rebuild takes about 1000
+** instructions per cell, a pair test about 40), the candidates are rebuilt
+** (the ski-rental rule: never more than twice the cost of the better
+** choice made in hindsight). */
+#define MOVERS_MAX(n) (2 * (int)sqrt((double)(n)) + 16)
+#define CHECKS_PER_CELL 25
+
+static int is_candidate(const afv_geom *g, int i, int j)
+{
+  int c;
+  for (c = g->cand_start[i]; c < g->cand_start[i + 1]; c++)
+    if (g->cand[c] == j) return 1;
+  return 0;
+}
+
+/* 1 if cells i and j are closer than 2l (+ a margin for the rounding of
+** the lists' own test) and not a candidate pair. */
+static int missing_pair(const afv_geom *g, const double *r, double l,
+                        const afv_box *b, int i, int j)
+{
+  double dx = r[2*j] - r[2*i], dy = r[2*j+1] - r[2*i+1], reach = 2 * l
+              * (1 + 1e-9);
+  afv_min_image(b, &dx, &dy);
+  return i != j && dx * dx + dy * dy < reach * reach && !is_candidate(g, i, j);
+}
+
+/* 1 if every pair closer than 2l that involves one of the nm movers is a
+** candidate pair. */
+static int movers_covered(afv_geom *g, const double *r, double l,
+                          const afv_box *b, int nm)
+{
+  int a, k;
+  for (a = 0; a < nm; a++) {
+    int m = g->mover[a];
+    int count = afv_cells_around(g, r[2*m], r[2*m+1], 2 * l, 0, g->around);
+    g->cand_checks += count + nm - a;
+    for (k = 0; k < count; k++)
+      if (missing_pair(g, r, l, b, m, g->around[k])) return 0;
+    for (k = a + 1; k < nm; k++)
+      if (missing_pair(g, r, l, b, m, g->mover[k])) return 0;
+  }
+  return 1;
+}
+
+/* 1 if the candidates were built for this n, l and box and still hold
+** every pair closer than 2l: no cell has moved more than SKIN l / 2 since,
+** or a few have (MOVERS) and their pairs are candidates. */
+static int candidates_valid(afv_geom *g, int n, const double *r, double l,
+                            const afv_box *b)
 {
   double lim2 = 0.25 * SKIN * SKIN * l * l;
-  int i;
+  int i, nm = 0, most = MOVERS_MAX(n);
   if (g->cand_n != n || g->cand_l != l || !same_box(&g->cand_box, b))
     return 0;
   for (i = 0; i < n; i++) {
     double dx = r[2*i] - g->cand_r0[2*i], dy = r[2*i+1] - g->cand_r0[2*i+1];
-    if (!(dx * dx + dy * dy <= lim2)) return 0;
+    double d2 = dx * dx + dy * dy;
+    if (d2 <= lim2) continue;
+    if (!isfinite(d2) || nm == most) return 0;
+    g->mover[nm++] = i;
   }
-  return 1;
+  if (nm == 0) return 1;
+  return g->cand_checks < (double)CHECKS_PER_CELL * n
+         && movers_covered(g, r, l, b, nm);
 }
 
 /* Two passes over the cell list (count, then fill) let every cell write its
@@ -471,6 +538,7 @@ static int build_candidates(afv_geom *g, int n, const double *r, double l,
   g->cand_box.Ly = g->cand_box.periodic ? b->Ly : 0;
   g->cand_l = l;
   g->cand_n = n;
+  g->cand_checks = 0;
   g->n_rebuilds++;
   return AFV_OK;
 }

@@ -243,6 +243,133 @@ done:
   free(f2);
 }
 
+/* Kept candidates with a few cells moved beyond the skin ("movers",
+** geom.c): the same bits as a fresh evaluation, and the rebuild is skipped
+** when the movers' pairs are all candidates.  Two kinds of trial from a
+** random tissue: one cell moved 0.2 l (beyond SKIN l / 2 = 0.15 l) in a
+** random direction; and two cells 2.4 l apart (not a candidate pair,
+** which needs 2.3 l) moved 0.25 l towards each other, into contact range,
+** with every other cell held: that pair is new, so the candidates must be
+** rebuilt; two cells 4.5 l apart brought to 1.9 l by moves of 1.2 l and
+** 1.4 l; and two cells alone in a corridor of a sparse lattice, 8 l apart,
+** brought to 1.9 l.  (Taking every mover's pairs as covered makes this
+** fail, and so does leaving out the check of the movers among themselves:
+** the corridor.) */
+static int movers_trial(const double *r0, int n, const afv_params *p,
+                        const afv_box *b, int a, double ax, double ay, int c,
+                        double cx, double cy, int *rebuilt)
+{
+  afv_geom kept, fresh;
+  double *r = malloc((size_t)(2 * n) * sizeof(double));
+  double *f1 = malloc((size_t)(2 * n) * sizeof(double));
+  double *f2 = malloc((size_t)(2 * n) * sizeof(double));
+  int nbits = -1, rebuilds;
+  *rebuilt = 0;
+  memset(&kept, 0, sizeof kept);
+  memset(&fresh, 0, sizeof fresh);
+  if (r && f1 && f2 && afv_compute(&kept, n, r0, p, b, f1) == AFV_OK) {
+    memcpy(r, r0, (size_t)(2 * n) * sizeof(double));
+    r[2*a] += ax;
+    r[2*a+1] += ay;
+    if (c >= 0) {
+      r[2*c] += cx;
+      r[2*c+1] += cy;
+    }
+    rebuilds = kept.n_rebuilds;
+    if (afv_compute(&kept, n, r, p, b, f1) == AFV_OK
+        && afv_compute(&fresh, n, r, p, b, f2) == AFV_OK) {
+      max_diff(f1, f2, 2 * n, &nbits);
+      if (memcmp(&kept.energy, &fresh.energy, sizeof kept.energy) != 0)
+        nbits++;
+    }
+    *rebuilt = kept.n_rebuilds > rebuilds;
+  }
+  afv_geom_free(&kept);
+  afv_geom_free(&fresh);
+  free(r);
+  free(f1);
+  free(f2);
+  return nbits;
+}
+
+static void test_candidates_with_movers(void)
+{
+  afv_params p;
+  afv_box b;
+  int n = 1500, i, j, trial, skipped = 0, rebuilt = 0, bad, pair = 0;
+  double *r = malloc((size_t)(2 * n) * sizeof(double));
+  CHECK(r != NULL, "out of memory");
+  if (!r) return;
+  afv_params_default(&p);
+  random_tissue(n, 1.0, r, &b);
+  for (trial = 0; trial < 20; trial++) {
+    double t = 2 * PI * uniform01();
+    int a = (int)(n * uniform01());
+    bad = movers_trial(r, n, &p, &b, a, 0.2 * cos(t), 0.2 * sin(t), -1, 0,
+                       0, &rebuilt);
+    CHECK(bad == 0, "cell %d moved 0.2 l: %d values differ from a fresh "
+          "evaluation", a, bad);
+    skipped += !rebuilt;
+  }
+  CHECK(skipped > 0, "every single mover forced a rebuild");
+  for (i = 0; i < n && pair < 3; i++)
+    for (j = i + 1; j < n && pair < 3; j++) {
+      double dx = r[2*j] - r[2*i], dy = r[2*j+1] - r[2*i+1], d;
+      afv_min_image(&b, &dx, &dy);
+      d = hypot(dx, dy);
+      if (d < 2.38 || d > 2.42) continue;
+      pair++;
+      bad = movers_trial(r, n, &p, &b, i, 0.25 * dx / d, 0.25 * dy / d, j,
+                         -0.25 * dx / d, -0.25 * dy / d, &rebuilt);
+      CHECK(bad == 0 && rebuilt, "cells %d and %d brought from %.3f l to "
+            "%.3f l: %d values differ from a fresh evaluation, %s", i, j, d,
+            d - 0.5, bad, rebuilt ? "rebuilt" : "not rebuilt");
+    }
+  CHECK(pair == 3, "only %d pairs at 2.4 l", pair);
+  /* two movers: cells 4.5 l apart come 1.2 l and 1.4 l towards each
+  ** other; neither's place in the cell list is near the other */
+  for (i = 0, pair = 0; i < n && pair < 5; i++)
+    for (j = 0; j < n && pair < 5; j++) {
+      double dx = r[2*j] - r[2*i], dy = r[2*j+1] - r[2*i+1], d;
+      afv_min_image(&b, &dx, &dy);
+      d = hypot(dx, dy);
+      if (d < 4.45 || d > 4.55) continue;
+      pair++;
+      bad = movers_trial(r, n, &p, &b, i, 1.2 * dx / d, 1.2 * dy / d, j,
+                         -1.4 * dx / d, -1.4 * dy / d, &rebuilt);
+      CHECK(bad == 0, "cells %d and %d brought from %.3f l to %.3f l: %d "
+            "values differ from a fresh evaluation", i, j, d, d - 2.6, bad);
+    }
+  CHECK(pair == 5, "only %d pairs at 4.5 l", pair);
+  {   /* two cells 8 l apart in a corridor of a sparse lattice (spacing
+      ** 2.6 l, so the cell list has bins of 2.3 l), brought to 1.9 l by
+      ** moves of 3 l and 3.1 l: only their own pair is new, and neither's
+      ** place in the cell list is near the other */
+    afv_box box = {1, 39, 39};
+    double *q = malloc(2 * 230 * sizeof(double));
+    int m = 2, x, y;
+    if (q) {
+      q[0] = 10;
+      q[1] = 19.5;
+      q[2] = 18;
+      q[3] = 19.5;
+      for (x = 0; x < 15; x++)
+        for (y = 0; y < 15; y++)
+          if (fabs(2.6 * y + 1 - 19.5) > 3.5) {
+            q[2*m] = 2.6 * x + 1;
+            q[2*m+1] = 2.6 * y + 1;
+            m++;
+          }
+      bad = movers_trial(q, m, &p, &box, 0, 3, 0, 1, -3.1, 0, &rebuilt);
+      CHECK(bad == 0 && rebuilt, "two cells brought from 8 l to 1.9 l: %d "
+            "values differ from a fresh evaluation, %s", bad,
+            rebuilt ? "rebuilt" : "not rebuilt");
+    }
+    free(q);
+  }
+  free(r);
+}
+
 /* afv_cells_around (the sub-steps' region search) misses no cell, in the
 ** worst case: for each query point p the candidates stay those built at
 ** r0, every cell moves 0.14 l straight towards p (within the skin: no
@@ -379,6 +506,7 @@ void suite_perf(void)
   RUN(test_threads_bit_identical);
   RUN(test_no_allocation_when_repeated);
   RUN(test_candidates_change_nothing);
+  RUN(test_candidates_with_movers);
   RUN(test_cells_around);
   RUN(test_spatial_order_renumbering);
 }
