@@ -292,11 +292,35 @@ static int movers_trial(const double *r0, int n, const afv_params *p,
   return nbits;
 }
 
+/* movers_trial for the first `want` pairs of cells about d apart (within
+** 0.05 l), brought towards each other by moves of mi and mj: the same bits
+** as a fresh evaluation, and a rebuild (the pair ends closer than 2l). */
+static void check_pairs(const double *r, int n, const afv_params *p,
+                        const afv_box *b, double d0, double mi, double mj,
+                        int want)
+{
+  int i, j, pair = 0, bad, rebuilt = 0;
+  for (i = 0; i < n && pair < want; i++)
+    for (j = i + 1; j < n && pair < want; j++) {
+      double dx = r[2*j] - r[2*i], dy = r[2*j+1] - r[2*i+1], d;
+      afv_min_image(b, &dx, &dy);
+      d = hypot(dx, dy);
+      if (fabs(d - d0) > 0.05) continue;
+      pair++;
+      bad = movers_trial(r, n, p, b, i, mi * dx / d, mi * dy / d, j,
+                         -mj * dx / d, -mj * dy / d, &rebuilt);
+      CHECK(bad == 0 && rebuilt, "cells %d and %d brought from %.3f l to "
+            "%.3f l: %d values differ from a fresh evaluation, %s", i, j, d,
+            d - mi - mj, bad, rebuilt ? "rebuilt" : "not rebuilt");
+    }
+  CHECK(pair == want, "only %d pairs at %g l", pair, d0);
+}
+
 static void test_candidates_with_movers(void)
 {
   afv_params p;
   afv_box b;
-  int n = 1500, i, j, trial, skipped = 0, rebuilt = 0, bad, pair = 0;
+  int n = 1500, trial, skipped = 0, rebuilt = 0, bad;
   double *r = malloc((size_t)(2 * n) * sizeof(double));
   CHECK(r != NULL, "out of memory");
   if (!r) return;
@@ -312,35 +336,10 @@ static void test_candidates_with_movers(void)
     skipped += !rebuilt;
   }
   CHECK(skipped > 0, "every single mover forced a rebuild");
-  for (i = 0; i < n && pair < 3; i++)
-    for (j = i + 1; j < n && pair < 3; j++) {
-      double dx = r[2*j] - r[2*i], dy = r[2*j+1] - r[2*i+1], d;
-      afv_min_image(&b, &dx, &dy);
-      d = hypot(dx, dy);
-      if (d < 2.38 || d > 2.42) continue;
-      pair++;
-      bad = movers_trial(r, n, &p, &b, i, 0.25 * dx / d, 0.25 * dy / d, j,
-                         -0.25 * dx / d, -0.25 * dy / d, &rebuilt);
-      CHECK(bad == 0 && rebuilt, "cells %d and %d brought from %.3f l to "
-            "%.3f l: %d values differ from a fresh evaluation, %s", i, j, d,
-            d - 0.5, bad, rebuilt ? "rebuilt" : "not rebuilt");
-    }
-  CHECK(pair == 3, "only %d pairs at 2.4 l", pair);
+  check_pairs(r, n, &p, &b, 2.4, 0.25, 0.25, 3);
   /* two movers: cells 4.5 l apart come 1.2 l and 1.4 l towards each
   ** other; neither's place in the cell list is near the other */
-  for (i = 0, pair = 0; i < n && pair < 5; i++)
-    for (j = 0; j < n && pair < 5; j++) {
-      double dx = r[2*j] - r[2*i], dy = r[2*j+1] - r[2*i+1], d;
-      afv_min_image(&b, &dx, &dy);
-      d = hypot(dx, dy);
-      if (d < 4.45 || d > 4.55) continue;
-      pair++;
-      bad = movers_trial(r, n, &p, &b, i, 1.2 * dx / d, 1.2 * dy / d, j,
-                         -1.4 * dx / d, -1.4 * dy / d, &rebuilt);
-      CHECK(bad == 0, "cells %d and %d brought from %.3f l to %.3f l: %d "
-            "values differ from a fresh evaluation", i, j, d, d - 2.6, bad);
-    }
-  CHECK(pair == 5, "only %d pairs at 4.5 l", pair);
+  check_pairs(r, n, &p, &b, 4.5, 1.2, 1.4, 5);
   {   /* two cells 8 l apart in a corridor of a sparse lattice (spacing
       ** 2.6 l, so the cell list has bins of 2.3 l), brought to 1.9 l by
       ** moves of 3 l and 3.1 l: only their own pair is new, and neither's
