@@ -30,7 +30,8 @@
 ** break the one-counter-per-draw bookkeeping.  The uniforms have 53 random
 ** bits and lie in (0, 1], so log(u) is finite and
 ** |xi| <= sqrt(2 * 53 ln 2) = 8.57.  Bit-for-bit equality across machines
-** relies on the C library's log, cos and sin returning the same bits.
+** relies on the C library's log returning the same bits (cos and sin are
+** afv_sincos's own arithmetic).
 */
 #include "afv.h"
 

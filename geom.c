@@ -27,8 +27,8 @@
 ** Cost: O(k^2) per cell for k neighbours (k is about 6 in a tissue), so
 ** O(N) for the tissue; the cell list is O(N) time and memory.  Measured
 ** (README, Performance): about 1125 instructions per cell and evaluation
-** for the shape in the cluster benchmark state, 3250 for a whole step;
-** about 1 kB per cell at N = 400000.
+** for the shape in the cluster benchmark state, 3025 for a whole step;
+** about 1.1 kB per cell at N = 400000.
 ** Every per-cell loop may run on OpenMP threads with the same result bits.
 */
 #include "afv.h"
@@ -420,10 +420,12 @@ static int find_coincident(afv_geom *g, const int *count, int n)
 ** sorts them by direction, so the neighbour lists are a function of the
 ** positions alone: the same bits whether or not the candidates were rebuilt
 ** (a resumed run repeats an uninterrupted one).
-** SKIN = 0.3 l: (2.3/2)^2 = 1.3x the pairs of a 2l search; rebuilt about
-** every 6 steps in the random benchmark state (v0 = 1, dt = 0.01), less
-** than once in 300 steps in the relaxed cluster (v0 = 0.1).  0.2 and 0.5
-** cost more instructions per step over the two (measured, test/bench.c). */
+** A few cells that have moved farther do not force a rebuild (MOVERS,
+** below).  SKIN = 0.3 l: (2.3/2)^2 = 1.3x the pairs of a 2l search;
+** rebuilt every 19 steps in the random benchmark state at N = 400 (v0 = 1,
+** dt = 0.01; every 10 at N = 40000), every 1000 in the relaxed cluster
+** (v0 = 0.1).  0.2 and 0.5 cost more instructions per step over the two
+** (measured, test/bench.c, before MOVERS). */
 #define SKIN 0.3
 
 static int same_box(const afv_box *a, const afv_box *b)
