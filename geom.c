@@ -752,8 +752,9 @@ static void fill_edge_pair(afv_geom *g, int s, int t, double l)
   f[3] = e[3];
 }
 
-/* The pairs of cell i with its smaller neighbours j < i: nbr_rev[s], the
-** slot of j in the list of i, and the reverse for j; the edge cache of
+/* The pairs of cell i with its smaller neighbours j < i: for the slot s of
+** j in the list of i, nbr_rev[s] = t, the slot of i in the list of j, and
+** nbr_rev[t] = s; the edge cache of
 ** both slots (fill_edge_pair); and zero in both gradient slots, where
 ** afv_cell_shape_gradient adds.  The lists are exactly symmetric (fold is
 ** odd, so d^2 has the same bits both ways), so the reverse slot exists.
@@ -856,7 +857,7 @@ typedef struct bisector {
   double ux, uy, h, d, sc;
 } bisector;
 
-/* The line of slot s, from the edge cache (link_pairs). */
+/* The line of slot s, from the edge cache (link_cell). */
 static bisector bisector_of(const afv_geom *g, int s)
 {
   const double *e = g->edge + 4 * s;
