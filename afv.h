@@ -368,7 +368,8 @@ void afv_init_angles(int n, unsigned long long seed, double *theta);
 
 /* The counter-clockwise angle from +x to the vector (x, y), in [0, 2 pi]
 ** (2 pi only by rounding, for y a hair below 0): atan2(y, x) + (2 pi if
-** negative), within 8.9e-16 (measured), in plain arithmetic (geom.c). */
+** negative), within 8.9e-16 (measured), in plain arithmetic (geom.c);
+** NaN if both components are infinite. */
 double afv_angle(double y, double x);
 /* sin x and cos x to within 2.22e-16 of the C library's (measured), in
 ** plain arithmetic (dynamics.c: about 70 instructions without a branch,

@@ -754,9 +754,9 @@ static void fill_edge_pair(afv_geom *g, int s, int t, double l)
 
 /* The pairs of cell i with its smaller neighbours j < i: for the slot s of
 ** j in the list of i, nbr_rev[s] = t, the slot of i in the list of j, and
-** nbr_rev[t] = s; the edge cache of
-** both slots (fill_edge_pair); and zero in both gradient slots, where
-** afv_cell_shape_gradient adds.  The lists are exactly symmetric (fold is
+** nbr_rev[t] = s; the edge cache of both slots (fill_edge_pair); and zero
+** in both gradient slots, where afv_cell_shape_gradient adds.  The lists
+** are exactly symmetric (fold is
 ** odd, so d^2 has the same bits both ways), so the reverse slot exists.
 ** Each pair is linked once, from its larger cell, which writes both
 ** directions: every entry has exactly one writer.  j's list must be
@@ -987,7 +987,8 @@ static afv_piece *store_piece(const afv_geom *g, afv_piece *pc, int slot,
 **      atan(7/16) as a sum of two doubles (computed to 60 digits).
 ** Measured against the C library's atan2 (+ 2 pi if negative, test_core.c):
 ** within 8.9e-16, an ulp of 2 pi.  The error is absolute: an angle below
-** 1e-17 may come out as 0. */
+** 1e-17 may come out as 0.  (Both components infinite give NaN, where
+** atan2 gives a multiple of pi/4; the geometry never asks.) */
 #define ATAN_C      0.4375                  /* c = 7/16 */
 #define ATAN_C_HI   0.4124104415973873      /* atan(7/16) = HI + LO */
 #define ATAN_C_LO   (-1.587652227770689e-17)
