@@ -756,11 +756,10 @@ static void fill_edge_pair(afv_geom *g, int s, int t, double l)
 ** j in the list of i, nbr_rev[s] = t, the slot of i in the list of j, and
 ** nbr_rev[t] = s; the edge cache of both slots (fill_edge_pair); and zero
 ** in both gradient slots, where afv_cell_shape_gradient adds.  The lists
-** are exactly symmetric (fold is
-** odd, so d^2 has the same bits both ways), so the reverse slot exists.
-** Each pair is linked once, from its larger cell, which writes both
-** directions: every entry has exactly one writer.  j's list must be
-** filtered already. */
+** are exactly symmetric (fold is odd, so d^2 has the same bits both ways),
+** so the reverse slot exists.  Each pair is linked once, from its larger
+** cell, which writes both directions: every entry has exactly one writer.
+** j's list must be filtered already. */
 static void link_cell(afv_geom *g, int i, double l)
 {
   int s, t;
