@@ -434,6 +434,18 @@ static int same_box(const afv_box *a, const afv_box *b)
   return a->periodic && a->Lx == b->Lx && a->Ly == b->Ly;
 }
 
+/* The centre of cell i as the lists see it: wrapped into the box. */
+static void wrap_all(afv_geom *g, int n, const double *r, const afv_box *b)
+{
+  int i;
+  AFV_PARALLEL_FOR
+  for (i = 0; i < 2 * n; i += 2) {
+    g->rw[i] = r[i];
+    g->rw[i+1] = r[i+1];
+    afv_wrap(b, &g->rw[i], &g->rw[i+1]);
+  }
+}
+
 /* MOVERS.  A cell that has moved more than SKIN l / 2 since the rebuild
 ** (a "mover": typically a fast cell taking sub-steps) does not by itself
 ** invalidate the candidates; a pair closer than 2l that is not a candidate
@@ -462,19 +474,21 @@ static int is_candidate(const afv_geom *g, int i, int j)
   return 0;
 }
 
-/* 1 if cells i and j are closer than 2l (+ a margin for the rounding of
-** the lists' own test) and not a candidate pair. */
-static int missing_pair(const afv_geom *g, const double *r, double l,
-                        const afv_box *b, int i, int j)
+/* 1 if cells i and j are closer than 2l and not a candidate pair: the
+** same distance test, on the same wrapped centres, as filter_cell's. */
+static int missing_pair(const afv_geom *g, double l, const afv_box *b, int i,
+                        int j)
 {
-  double dx = r[2*j] - r[2*i], dy = r[2*j+1] - r[2*i+1], reach = 2 * l
-              * (1 + 1e-9);
-  afv_min_image(b, &dx, &dy);
-  return i != j && dx * dx + dy * dy < reach * reach && !is_candidate(g, i, j);
+  double dx = g->rw[2*j] - g->rw[2*i], dy = g->rw[2*j+1] - g->rw[2*i+1];
+  if (b && b->periodic) {
+    dx = fold(dx, b->Lx);
+    dy = fold(dy, b->Ly);
+  }
+  return i != j && dx * dx + dy * dy < 4 * l * l && !is_candidate(g, i, j);
 }
 
 /* 1 if every pair closer than 2l that involves one of the nm movers is a
-** candidate pair. */
+** candidate pair (rw: the wrapped centres, wrap_all). */
 static int movers_covered(afv_geom *g, const double *r, double l,
                           const afv_box *b, int nm)
 {
@@ -484,9 +498,9 @@ static int movers_covered(afv_geom *g, const double *r, double l,
     int count = afv_cells_around(g, r[2*m], r[2*m+1], 2 * l, 0, g->around);
     g->cand_checks += count + nm - a;
     for (k = 0; k < count; k++)
-      if (missing_pair(g, r, l, b, m, g->around[k])) return 0;
+      if (missing_pair(g, l, b, m, g->around[k])) return 0;
     for (k = a + 1; k < nm; k++)
-      if (missing_pair(g, r, l, b, m, g->mover[k])) return 0;
+      if (missing_pair(g, l, b, m, g->mover[k])) return 0;
   }
   return 1;
 }
@@ -591,17 +605,6 @@ int afv_cells_around(const afv_geom *g, double x, double y, double R,
 }
 
 /* ---- neighbour lists --------------------------------------------------- */
-/* The centre of cell i as the lists see it: wrapped into the box. */
-static void wrap_all(afv_geom *g, int n, const double *r, const afv_box *b)
-{
-  int i;
-  AFV_PARALLEL_FOR
-  for (i = 0; i < 2 * n; i += 2) {
-    g->rw[i] = r[i];
-    g->rw[i+1] = r[i+1];
-    afv_wrap(b, &g->rw[i], &g->rw[i+1]);
-  }
-}
 
 /* 0 for a direction in [0, pi) counter-clockwise from +x, 1 in [pi, 2 pi). */
 static int lower_half(double dx, double dy)
@@ -805,13 +808,11 @@ int afv_neighbours(afv_geom *g, int n, const double *r, double l,
   g->n = n;
   g->nbr_start[0] = 0;
   if (n == 0) return AFV_OK;
+  wrap_all(g, n, r, b);
   if (!candidates_valid(g, n, r, l, b)) {
     if ((st = build_candidates(g, n, r, l, b)) != AFV_OK) return st;
     if (grow_nbr(g, g->cand_start[n] + 1)) return AFV_ENOMEM;
-    wrap_all(g, n, r, b);
     sort_candidates(g, n, b);
-  } else {
-    wrap_all(g, n, r, b);
   }
   g->nbr_start[n] = g->cand_start[n];
 #ifdef _OPENMP
