@@ -794,6 +794,26 @@ static int list_cell(afv_geom *g, int i, double l, const afv_box *b)
   return count < 0 ? count : 0;
 }
 
+/* Piece storage, set when the candidates are rebuilt: cell i with k
+** candidates has at most k neighbours and 2k + 1 pieces (an edge per
+** neighbour, an arc after each, or one full circle), so its pieces go at
+** piece_start[i] = 2 cand_start[i] + i, like its list at its candidate
+** offset: no pass per call to place them.  g->max_cand sizes the work
+** space. */
+static int reserve_pieces(afv_geom *g, int n)
+{
+  int i;
+  g->max_cand = 0;
+  for (i = 0; i < n; i++) {
+    int k = g->cand_start[i + 1] - g->cand_start[i];
+    if (k > g->max_cand) g->max_cand = k;
+    g->piece_start[i] = 2 * g->cand_start[i] + i;
+  }
+  g->piece_start[n] = 2 * g->cand_start[n] + n;
+  return grow((void **)&g->pieces, &g->cap_pieces, g->piece_start[n] + 1,
+              sizeof(afv_piece));
+}
+
 /* The exact lists from the candidates, then the pairs linked.  Serially,
 ** one pass: cell i is linked right after it is listed, to its smaller
 ** neighbours, listed moments before, whose slots are still in cache (at
@@ -806,12 +826,15 @@ int afv_neighbours(afv_geom *g, int n, const double *r, double l,
   int i, st;
   if (grow_cells(g, n)) return AFV_ENOMEM;
   g->n = n;
-  g->nbr_start[0] = 0;
+  g->nbr_start[0] = g->piece_start[0] = 0;
   if (n == 0) return AFV_OK;
   wrap_all(g, n, r, b);
   if (!candidates_valid(g, n, r, l, b)) {
     if ((st = build_candidates(g, n, r, l, b)) != AFV_OK) return st;
-    if (grow_nbr(g, g->cand_start[n] + 1)) return AFV_ENOMEM;
+    if (grow_nbr(g, g->cand_start[n] + 1) || reserve_pieces(g, n)) {
+      g->cand_n = 0;                /* no space: rebuild at the next call */
+      return AFV_ENOMEM;
+    }
     sort_candidates(g, n, b);
   }
   g->nbr_start[n] = g->cand_start[n];
@@ -1127,28 +1150,11 @@ static int reserve_work(afv_geom *g, int max_nn)
               sizeof(double));
 }
 
-/* Piece storage: cell i with k neighbours has at most 2k + 1 pieces (an
-** edge per neighbour, an arc after each, or one full circle). */
-static int reserve_pieces(afv_geom *g, int n, int *max_nn)
-{
-  int i, total = 0;
-  *max_nn = 0;
-  for (i = 0; i < n; i++) {
-    int k = g->nbr_end[i] - g->nbr_start[i];
-    if (k > *max_nn) *max_nn = k;
-    g->piece_start[i] = total;
-    total += 2 * k + 1;
-  }
-  g->piece_start[n] = total;
-  return grow((void **)&g->pieces, &g->cap_pieces, total + 1,
-              sizeof(afv_piece));
-}
-
 /* Everything afv_cell_shape needs: neighbour lists, piece and work space. */
 int afv_geometry_prepare(afv_geom *g, int n, const double *r, double l,
                          const afv_box *b)
 {
-  int st, max_nn, i;
+  int st, i;
   g->bad_i = g->bad_j = -1;
   for (i = 0; i < 2 * n; i++)
     if (!isfinite(r[i])) {
@@ -1156,6 +1162,5 @@ int afv_geometry_prepare(afv_geom *g, int n, const double *r, double l,
       return AFV_ENONFINITE;
     }
   if ((st = afv_neighbours(g, n, r, l, b)) != AFV_OK) return st;
-  if ((st = reserve_pieces(g, n, &max_nn)) != AFV_OK) return st;
-  return reserve_work(g, max_nn);
+  return reserve_work(g, g->max_cand);
 }
