@@ -304,7 +304,7 @@ typedef struct afv_sim {
   double    *pol;      /* private: v0_i n_i during a step (2n) */
   int       *fast;     /* private, sub-steps: the fast cells (n) */
   int       *region;   /* private, sub-steps: cells around them (n) */
-  int       *in_region; /* private, sub-steps: 1 if cell i is in it (n) */
+  int       *in_region; /* private, sub-steps: marks while listing (n) */
   int       *around;   /* private, sub-steps: cells around a fast one (n) */
   double    *sub;      /* private: the region's positions, forces and
                        ** per-cell parameters (8n) */
