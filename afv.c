@@ -151,6 +151,7 @@ double afv_cell_energy(const afv_params *p, int i, double A, double P, double L)
 /* The edge of neighbour slot s, seen from its cell. */
 typedef struct edge {
   double dx, dy, d;    /* D = r_j - r_i and its length */
+  double inv_d;        /* 1 / d: one division per edge serves its terms */
   double ux, uy;       /* u = D / d */
   double tx, ty;       /* t = R u, counter-clockwise along the edge */
   double s;            /* half-chord sqrt(l^2 - d^2/4) */
@@ -167,6 +168,7 @@ static edge edge_of(const afv_geom *g, int s)
   E.ux = e[0];
   E.uy = e[1];
   E.d = 2 * e[2];       /* the cache holds h = d/2 */
+  E.inv_d = 1 / E.d;
   E.s = e[3];
   E.tx = -E.uy;
   E.ty = E.ux;
@@ -185,7 +187,7 @@ static void area_term(const edge *E, const afv_piece *pc, double wA,
 {
   double mx = pc->x + 0.5 * pc->length * E->tx;
   double my = pc->y + 0.5 * pc->length * E->ty;
-  double c = wA * pc->length / E->d;
+  double c = wA * pc->length * E->inv_d;
   add(grad, c * (E->dx - mx), c * (E->dy - my));
 }
 
@@ -196,27 +198,36 @@ static void arc_end_term(const edge *E, double l, double cap, int sigma,
   double s = E->s;
   double s_div = 2 * s < cap ? 0.5 * cap : s;
   double tw = E->tx * wx + E->ty * wy;
-  double gx = 0.5 * wx + sigma * (s / E->d) * wy;   /* R^T w = (w_y, -w_x) */
-  double gy = 0.5 * wy - sigma * (s / E->d) * wx;
+  double gx = 0.5 * wx + sigma * (s * E->inv_d) * wy; /* R^T w = (w_y, -w_x) */
+  double gy = 0.5 * wy - sigma * (s * E->inv_d) * wx;
   if (s_div > 0) {
-    double c = sigma * l * l / (E->d * s_div) * tw;
+    double c = sigma * l * l * E->inv_d / s_div * tw;
     gx -= c * E->ux;
     gy -= c * E->uy;
   }
   add(grad, gx, gy);
 }
 
-/* (V2): adds (dV/dr_j)^T w for the triple junction V on edge Ej, which
-** slides along the other edge Ek.  Parallel lines make no junction, so a
-** zero denominator only arises for a degenerate, zero-length vertex. */
-static void junction_term(const edge *Ej, const edge *Ek, double vx,
-                          double vy, double wx, double wy, double *grad)
+/* (V2): adds (dV/dr_j)^T w for the triple junction V of edges Ej and Ek
+** to gj, and (dV/dr_k)^T w to gk: V slides along the other edge, so
+**   (dV/dr_j)^T w = (V - D_j) (t_k.w) / den_j,  den_j = -D_j.t_k
+**                                                     = d_j (u_j x u_k),
+**   (dV/dr_k)^T w = (V - D_k) (t_j.w) / den_k,  den_k = -D_k.t_j
+**                                                     = -d_k (u_j x u_k),
+** with a x b = a_x b_y - a_y b_x: one division, 1 / (u_j x u_k), serves
+** both.  Parallel lines make no junction, so a zero cross product only
+** arises for a degenerate, zero-length vertex. */
+static void junction_terms(const edge *Ej, const edge *Ek, double vx,
+                           double vy, double wx, double wy, double *gj,
+                           double *gk)
 {
-  double den = -(Ej->dx * Ek->tx + Ej->dy * Ek->ty);
-  double c;
-  if (den == 0) return;
-  c = (Ek->tx * wx + Ek->ty * wy) / den;
-  add(grad, c * (vx - Ej->dx), c * (vy - Ej->dy));
+  double cross = Ej->ux * Ek->uy - Ej->uy * Ek->ux, q, cj, ck;
+  if (cross == 0) return;
+  q = 1 / cross;
+  cj = (Ek->tx * wx + Ek->ty * wy) * q * Ej->inv_d;
+  ck = -(Ej->tx * wx + Ej->ty * wy) * q * Ek->inv_d;
+  add(gj, cj * (vx - Ej->dx), cj * (vy - Ej->dy));
+  add(gk, ck * (vx - Ek->dx), ck * (vy - Ek->dy));
 }
 
 /* The tangent of the circle (counter-clockwise) at the point (x, y) on it. */
@@ -242,8 +253,8 @@ static void edge_vertex_terms(const edge *E, const afv_piece *pc, int prev_arc,
                  wP * (ay - E->ty) + wL * ay, grad + 2 * pc->slot);
   } else {                                    /* triple junction (i,k,j) */
     double wx = wP * (K->tx - E->tx), wy = wP * (K->ty - E->ty);
-    junction_term(E, K, pc->x, pc->y, wx, wy, grad + 2 * pc->slot);
-    junction_term(K, E, pc->x, pc->y, wx, wy, grad + 2 * prev_slot);
+    junction_terms(E, K, pc->x, pc->y, wx, wy, grad + 2 * pc->slot,
+                   grad + 2 * prev_slot);
   }
   if (next_arc) {                             /* arc leaves: sigma = +1 */
     double vx = pc->x + pc->length * E->tx, vy = pc->y + pc->length * E->ty;

@@ -946,12 +946,14 @@ static int clip_chords(const afv_geom *g, int i, segment *seg)
     seg[a].start_on_circle = seg[a].end_on_circle = 1;
   }
   for (a = 0; a < nn; a++) {
-    const double *ea = edge + 4 * a;
+    /* slot a's line in locals: stores to seg[] could alias edge[] for all
+    ** the compiler knows, and would force a reload for every pair */
+    const double uax = edge[4*a], uay = edge[4*a+1], ha = edge[4*a+2];
     for (b = a + 1; b < nn; b++) {
       const double *eb = edge + 4 * b;
-      double c = ea[0] * eb[1] - ea[1] * eb[0];         /* t_a.u_b */
-      double cu = ea[0] * eb[0] + ea[1] * eb[1];        /* u_a.u_b */
-      double ra = eb[2] - ea[2] * cu, rb = ea[2] - eb[2] * cu;
+      double c = uax * eb[1] - uay * eb[0];             /* t_a.u_b */
+      double cu = uax * eb[0] + uay * eb[1];            /* u_a.u_b */
+      double ra = eb[2] - ha * cu, rb = ha - eb[2] * cu;
       if (c > 0) {
         bound_above(&seg[a], ra, c);
         bound_below(&seg[b], rb, -c);
@@ -996,22 +998,31 @@ static afv_piece *store_piece(const afv_geom *g, afv_piece *pc, int slot,
 }
 
 /* ---- the angle of a vector ---------------------------------------------- */
-/* The angle of every arc is an atan2; the C library's took about 150
-** instructions a call (callgrind), a twentieth of a step in the random
-** benchmark state.  afv_angle does it in about 60, without a branch on the
-** quadrant:
-**   1. t = min(|x|, |y|) / max(|x|, |y|) in [0, 1], and the angle is
-**      off + sgn atan(t), (off, sgn) from a table by which of |x|, |y| is
-**      larger and by the signs of x and y;
-**   2. atan(t) = atan(c) + atan(t'),  t' = (t - c) / (1 + t c),  with
-**      c = 7/16, so that t' lies in [-7/16, 9/23];
-**   3. atan(t') by the odd polynomial of fdlibm's atan (s_atan.c, Sun
-**      Microsystems 1993) for |t'| <= 7/16, good to about 2^-58;
-**      atan(7/16) as a sum of two doubles (computed to 60 digits).
+/* The angle of every arc is an atan2.  What it costs is its latency more
+** than its instructions: the cell's area, hence every term of its gradient,
+** waits for it.  Measured on the random state's force evaluation (N = 400,
+** in one process, interleaved): a stub of a few instructions and little
+** latency in its place was 23% faster; a stub as short but with a chain of
+** divisions as long as the function's was only 6% faster; and the C
+** library's atan2 (150 instructions) was as fast as this function's former
+** 60-instruction version, which had two divisions and a 10-deep polynomial
+** in series.  So afv_angle is written for a short dependency chain (force
+** evaluation 12% faster than that former version), without a branch on
+** the quadrant:
+**   1. lo = min(|x|, |y|), hi = max(|x|, |y|), and the angle is
+**      off + sgn atan(lo / hi), (off, sgn) from a table by which of |x|,
+**      |y| is larger and by the signs of x and y;
+**   2. atan(lo / hi) = atan(c) + atan(u),  u = (lo - c hi) / (hi + c lo)
+**      (one division), with c = 7/16, so that u lies in [-7/16, 9/23];
+**   3. atan(u) = u - u z Q(z), z = u^2, with Q the polynomial of fdlibm's
+**      atan (s_atan.c, Sun Microsystems 1993) for |u| <= 7/16, good to
+**      about 2^-58, evaluated by Estrin's scheme (pairs of terms, then
+**      pairs of pairs): depth 4 instead of Horner's 10;  atan(7/16) as a
+**      sum of two doubles (computed to 60 digits).
 ** Measured against the C library's atan2 (+ 2 pi if negative, test_core.c):
 ** within 8.9e-16, an ulp of 2 pi.  The error is absolute: an angle below
-** 1e-17 may come out as 0.  (Both components infinite give NaN, where
-** atan2 gives a multiple of pi/4; the geometry never asks.) */
+** 1e-17 may come out as 0.  (An infinite component gives NaN, where atan2
+** gives an angle; the geometry never asks.) */
 #define ATAN_C      0.4375                  /* c = 7/16 */
 #define ATAN_C_HI   0.4124104415973873      /* atan(7/16) = HI + LO */
 #define ATAN_C_LO   (-1.587652227770689e-17)
@@ -1029,25 +1040,26 @@ double afv_angle(double y, double x)
   static const double off[8] = {0, PI / 2, PI, PI / 2, TWO_PI, 1.5 * PI, PI,
                                 1.5 * PI};
   static const double sgn[8] = {1, -1, -1, 1, -1, 1, 1, -1};
-  double v[2], lo, hi, t, u, z, w, s1, s2, a;
-  int steep, k;
-  /* the smaller and the larger of |x| and |y| picked by index: a branch
-  ** here would be mispredicted about half the time */
-  v[0] = fabs(x);
-  v[1] = fabs(y);
-  steep = v[1] > v[0];
-  lo = v[!steep];
-  hi = v[steep];
-  t = hi > 0 ? lo / hi : 0;                   /* (0, 0): angle 0 */
-  u = (t - ATAN_C) / (1 + t * ATAN_C);
-  z = u * u;
-  w = z * z;
-  s1 = z * (aT[0] + w * (aT[2] + w * (aT[4] + w * (aT[6] + w * (aT[8]
-       + w * aT[10])))));
-  s2 = w * (aT[1] + w * (aT[3] + w * (aT[5] + w * (aT[7] + w * aT[9]))));
-  a = ATAN_C_HI + (ATAN_C_LO + (u - u * (s1 + s2)));
-  k = steep + 2 * (x < 0) + 4 * (y < 0);
+  double ax = fabs(x), ay = fabs(y), lo, hi, num, den, u, z, z2, z4, Q, a;
+  int steep = ay > ax, k;
   if (isnan(x) || isnan(y)) return x + y;
+  lo = ay < ax ? ay : ax;                     /* min and max (minsd, maxsd */
+  hi = ay > ax ? ay : ax;                     /* on x86): no branch */
+  num = lo - ATAN_C * hi;
+  den = hi + ATAN_C * lo;
+  if (!(den > 0)) {                           /* (0, 0): angle 0 */
+    num = -ATAN_C;
+    den = 1;
+  }
+  u = num / den;
+  z = u * u;
+  z2 = z * z;
+  z4 = z2 * z2;
+  Q = ((aT[0] + aT[1] * z) + (aT[2] + aT[3] * z) * z2)
+      + ((aT[4] + aT[5] * z) + (aT[6] + aT[7] * z) * z2) * z4
+      + ((aT[8] + aT[9] * z) + aT[10] * z2) * (z4 * z4);
+  a = ATAN_C_HI + (ATAN_C_LO + (u - u * (z * Q)));
+  k = steep + 2 * (x < 0) + 4 * (y < 0);
   return off[k] + sgn[k] * a;
 }
 
