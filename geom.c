@@ -26,8 +26,8 @@
 ** copied every polygon vertex for every neighbour.)
 ** Cost: O(k^2) per cell for k neighbours (k is about 6 in a tissue), so
 ** O(N) for the tissue; the cell list is O(N) time and memory.  Measured
-** (README, Performance): about 1125 instructions per cell and evaluation
-** for the shape in the cluster benchmark state, 3002 for a whole step;
+** (README, Performance): about 1090 instructions per cell and evaluation
+** for the shape in the cluster benchmark state, 2928 for a whole step;
 ** about 1.1 kB per cell at N = 400000.
 ** Every per-cell loop may run on OpenMP threads with the same result bits.
 */
