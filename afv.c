@@ -273,7 +273,7 @@ void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
 {
   const afv_piece *pieces = g->pieces + g->piece_start[i];
   int np = g->n_pieces[i], k, prev_slot, prev_arc;
-  edge K;                                     /* read only after an edge */
+  edge K = {0};     /* read only after an edge; zeroed: gcc -O2 cannot see that */
   if (np == 0) return;
   prev_slot = pieces[np - 1].slot;            /* the piece before piece 0 */
   prev_arc = pieces[np - 1].nbr == AFV_ARC;
