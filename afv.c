@@ -150,7 +150,7 @@ double afv_cell_energy(const afv_params *p, int i, double A, double P, double L)
 /* ---- shape derivatives -------------------------------------------------- */
 /* The edge of neighbour slot s, seen from its cell. */
 typedef struct edge {
-  double dx, dy, d;    /* D = r_j - r_i and its length */
+  double dx, dy;       /* D = r_j - r_i, of length d */
   double inv_d;        /* 1 / d: one division per edge serves its terms */
   double ux, uy;       /* u = D / d */
   double tx, ty;       /* t = R u, counter-clockwise along the edge */
@@ -167,8 +167,8 @@ static edge edge_of(const afv_geom *g, int s)
   E.dy = g->nbr_d[2*s+1];
   E.ux = e[0];
   E.uy = e[1];
-  E.d = 2 * e[2];       /* the cache holds h = d/2 */
-  E.inv_d = 1 / E.d;
+  E.inv_d = 0.5 / e[2]; /* the cache holds h = d/2 (exactly); 0.5/h is
+                        ** 1/d rounded once, the same bits as 1/(2h) */
   E.s = e[3];
   E.tx = -E.uy;
   E.ty = E.ux;
