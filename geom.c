@@ -335,15 +335,24 @@ static int bin_coord(int c, int nb, int periodic, double L, double *shift)
   return c < 0 ? c + nb : c - nb;
 }
 
-/* The cells closer than `range` to the cell at bin-order position k, in
-** bin (bx, by), written to out[] (if not NULL) in the order the bins are
-** visited.  Returns their number, or -1 - j if cell j has the same centre. */
-static int scan_cell(const afv_geom *g, const grid *G, int k, int bx, int by,
-                     double range, int *out)
+/* A run of consecutive positions in bin order, bin_xy[first .. end-1],
+** and the shift (sx, sy) that carries their cells next to the scanning
+** cell's bin (bin_coord). */
+typedef struct bin_run {
+  int first, end;
+  double sx, sy;
+} bin_run;
+
+/* The 3 x 3 bins around bin (bx, by) as runs, in the order a scan visits
+** them (rows, then columns): bins side by side in a row with the same
+** shift are consecutive in bin order and make one run, so an interior bin
+** has three runs, one per row, not nine bins.  Returns how many (<= 9);
+** fewer bins at the edges of an open grid, or with fewer than 3 periodic
+** bins along an axis (stencil). */
+static int stencil_runs(const afv_geom *g, const grid *G, int bx, int by,
+                        bin_run *run)
 {
-  double xi = g->bin_xy[2*k], yi = g->bin_xy[2*k+1], range2 = range * range;
-  int count = 0, xlo, xhi, ylo, yhi, ox, oy, m;
-  int small = G->periodic && (G->nbx < 3 || G->nby < 3);
+  int xlo, xhi, ylo, yhi, ox, oy, nr = 0, last = -2;
   stencil(G->nbx, G->periodic, &xlo, &xhi);
   stencil(G->nby, G->periodic, &ylo, &yhi);
   for (oy = ylo; oy <= yhi; oy++) {
@@ -352,43 +361,81 @@ static int scan_cell(const afv_geom *g, const grid *G, int k, int bx, int by,
     if (cy < 0) continue;
     for (ox = xlo; ox <= xhi; ox++) {
       int cx = bin_coord(bx + ox, G->nbx, G->periodic, G->Lx, &sx), bin;
-      int end;
       if (cx < 0) continue;
       bin = cy * G->nbx + cx;
-      end = g->bin_start[bin + 1];
-      for (m = g->bin_start[bin]; m < end; m++) {
-        double dx = g->bin_xy[2*m] - xi + sx, dy = g->bin_xy[2*m+1] - yi + sy;
-        double d2;
-        if (small) {
-          dx = fold(dx, G->Lx);
-          dy = fold(dy, G->Ly);
-        }
-        d2 = dx * dx + dy * dy;
-        if (d2 >= range2 || m == k) continue;
-        if (d2 == 0) return -1 - g->bin_cell[m];
-        if (out) out[count] = g->bin_cell[m];
-        count++;
+      if (bin == last + 1 && run[nr - 1].sx == sx && run[nr - 1].sy == sy) {
+        run[nr - 1].end = g->bin_start[bin + 1];   /* extends the run */
+      } else {
+        run[nr].first = g->bin_start[bin];
+        run[nr].end = g->bin_start[bin + 1];
+        run[nr].sx = sx;
+        run[nr].sy = sy;
+        nr++;
       }
+      last = bin;
     }
   }
-  return count;
+  return nr;
 }
 
-/* Runs scan_cell for every cell, bin by bin (neighbouring cells are then
-** visited together, which keeps the scanned bins in cache).  Counting pass
-** (fill = 0): cand_start[i+1] = count of cell i (or the negative code of a
-** coincidence).  Filling pass: the lists, at cand_start[i].  Each
-** cell writes only its own entries, so the bins may be shared among threads. */
+/* The cells closer than `range` to the cell at bin-order position k, found
+** in the nr runs of its bin's stencil (stencil_runs), written to out[] (if
+** not NULL; it has room for exactly `room` of them, the count of the
+** counting pass) in the order of the runs.  Returns their number, or
+** -1 - j if cell j has the same centre.
+** The loop has no branch on the distance: about a third of the cells
+** scanned are candidates, in no order a predictor could learn (in the
+** random state a branch there made the scan three times slower than its
+** instructions).  Every cell scanned is stored at the next free place,
+** which the next candidate overwrites if it was none; once the list is
+** full the stores go to a scratch word instead. */
+static int scan_cell(const afv_geom *g, const grid *G, int k,
+                     const bin_run *run, int nr, double range, int *out,
+                     int room)
+{
+  double xi = g->bin_xy[2*k], yi = g->bin_xy[2*k+1], range2 = range * range;
+  int count = 0, same = -1, scratch, q, m;
+  int small = G->periodic && (G->nbx < 3 || G->nby < 3);
+  for (q = 0; q < nr; q++) {
+    double sx = run[q].sx, sy = run[q].sy;
+    int end = run[q].end;
+    for (m = run[q].first; m < end; m++) {
+      double dx = g->bin_xy[2*m] - xi + sx, dy = g->bin_xy[2*m+1] - yi + sy;
+      double d2;
+      int other = m != k;
+      if (small) {
+        dx = fold(dx, G->Lx);
+        dy = fold(dy, G->Ly);
+      }
+      d2 = dx * dx + dy * dy;
+      if (out) *(count < room ? out + count : &scratch) = g->bin_cell[m];
+      count += (d2 < range2) & other;
+      same = same < 0 && d2 == 0 && other ? m : same;   /* the first */
+    }
+  }
+  return same < 0 ? count : -1 - g->bin_cell[same];
+}
+
+/* Runs scan_cell for every cell, bin by bin: the cells of a bin share its
+** stencil's runs, and neighbouring cells are visited together, which keeps
+** the scanned bins in cache.  Counting pass (fill = 0): cand_start[i+1] =
+** count of cell i (or the negative code of a coincidence).  Filling pass:
+** the lists, at cand_start[i].  Each cell writes only its own entries, so
+** the bins may be shared among threads. */
 static void scan_all(afv_geom *g, const grid *G, double range, int fill)
 {
   int nb = G->nbx * G->nby, b;
   AFV_PARALLEL_FOR
   for (b = 0; b < nb; b++) {
-    int k;
+    bin_run run[9];
+    int k, nr;
+    if (g->bin_start[b] == g->bin_start[b + 1]) continue;
+    nr = stencil_runs(g, G, b % G->nbx, b / G->nbx, run);
     for (k = g->bin_start[b]; k < g->bin_start[b + 1]; k++) {
       int i = g->bin_cell[k];
       int *out = fill ? g->cand + g->cand_start[i] : NULL;
-      int c = scan_cell(g, G, k, b % G->nbx, b / G->nbx, range, out);
+      int room = fill ? g->cand_start[i + 1] - g->cand_start[i] : 0;
+      int c = scan_cell(g, G, k, run, nr, range, out, room);
       if (!fill) g->cand_start[i + 1] = c;
     }
   }
