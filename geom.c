@@ -384,11 +384,11 @@ static int stencil_runs(const afv_geom *g, const grid *G, int bx, int by,
 ** counting pass) in the order of the runs.  Returns their number, or
 ** -1 - j if cell j has the same centre.
 ** The loop has no branch on the distance: about a third of the cells
-** scanned are candidates, in no order a predictor could learn (in the
-** random state a branch there made the scan three times slower than its
-** instructions).  Every cell scanned is stored at the next free place,
-** which the next candidate overwrites if it was none; once the list is
-** full the stores go to a scratch word instead. */
+** scanned are candidates, and in the random state in no order a predictor
+** learns (with the branch, a scanned cell cost 9 ns there against 1.9 ns
+** in the cluster's lattice, N = 40000).  Every cell scanned is stored at
+** the next free place, which the next candidate overwrites if it was
+** none; once the list is full the stores go to a scratch word instead. */
 static int scan_cell(const afv_geom *g, const grid *G, int k,
                      const bin_run *run, int nr, double range, int *out,
                      int room)
@@ -469,10 +469,11 @@ static int find_coincident(afv_geom *g, const int *count, int n)
 ** (a resumed run repeats an uninterrupted one).
 ** A few cells that have moved farther do not force a rebuild (MOVERS,
 ** below).  SKIN = 0.3 l: (2.3/2)^2 = 1.3x the pairs of a 2l search;
-** rebuilt every 19 steps in the random benchmark state at N = 400 (v0 = 1,
-** dt = 0.01; every 10 at N = 40000), every 1000 in the relaxed cluster
-** (v0 = 0.1).  0.2 and 0.5 cost more instructions per step over the two
-** (measured, test/bench.c, before MOVERS). */
+** rebuilt in the random benchmark state (v0 = 1, dt = 0.01) every 47
+** steps at N = 400, 17 at 4000, 8 at 40000 and 6 at 400000, and every 1100
+** in the relaxed cluster (v0 = 0.1) (test/bench.c, timed repeats).  0.2
+** and 0.5 cost more instructions per step over the two (measured, before
+** MOVERS). */
 #define SKIN 0.3
 
 static int same_box(const afv_box *a, const afv_box *b)
