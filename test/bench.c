@@ -57,13 +57,12 @@
 #define TILES 10           /* the random state at N >= TILED_FROM: TILES^2 */
 #define TILED_FROM 40000   /* copies of the relaxed state of N / TILES^2 */
 /* A repeat must hold several rebuilds of the neighbour candidates (geom.c):
-** in the random state they come every 8 steps at N >= 40000 (every 33 at
-** N = 400), and one costs about as much as a step.  Repeats of 4 or 5 steps
-** held a rebuild or none, and their median then depended on where the
-** rebuilds fell (up to 20% apart at N = 40000). */
+** in the random state they come every 8 steps at N = 40000, 6 at 400000
+** (47 at N = 400), and one costs about a step.  Repeats of 4 or 5 steps
+** held a rebuild or none (at N = 40000 one with a rebuild took up to 1.8x
+** one without), so their median depended on where the rebuilds fell. */
 #define CELL_STEPS_PER_REPEAT 800000.0  /* sizes a repeat (about 0.2 s) */
-#define MIN_STEPS 16       /* per repeat: two rebuild periods at large N;
-                           ** N = 400000 then takes about 10 s a state */
+#define MIN_STEPS 16       /* per repeat: two rebuild periods at large N */
 
 /* ---- states ------------------------------------------------------------ */
 /* Renumbers the cells in the order of afv_spatial_order, so that neighbours
