@@ -470,9 +470,10 @@ static int find_coincident(afv_geom *g, const int *count, int n)
 ** (a resumed run repeats an uninterrupted one).
 ** A few cells that have moved farther do not force a rebuild (MOVERS,
 ** below).  SKIN = 0.3 l: (2.3/2)^2 = 1.3x the pairs of a 2l search;
-** rebuilt in the random benchmark state (v0 = 1, dt = 0.01) every 47
-** steps at N = 400, 17 at 4000, 8 at 40000 and 6 at 400000, and every 1100
-** in the relaxed cluster (v0 = 0.1) (test/bench.c, timed repeats).  0.2
+** rebuilt in the random benchmark state (v0 = 1, dt = 0.01) every 8
+** steps at N = 40000 and 6 at 400000 (steps 20 - 120 after relaxing), at
+** N = 400 every 21 steps (steps 200 - 600) and 47 in steps 2000 - 12000,
+** and every 1100 in the relaxed cluster (v0 = 0.1) (test/bench.c).  0.2
 ** and 0.5 cost more instructions per step over the two (measured, before
 ** MOVERS). */
 #define SKIN 0.3

@@ -56,13 +56,18 @@
 #define RELAX_MIN_STEPS 20
 #define TILES 10           /* the random state at N >= TILED_FROM: TILES^2 */
 #define TILED_FROM 40000   /* copies of the relaxed state of N / TILES^2 */
-/* A repeat must hold several rebuilds of the neighbour candidates (geom.c):
-** in the random state they come every 8 steps at N = 40000, 6 at 400000
-** (47 at N = 400), and one costs about a step.  Repeats of 4 or 5 steps
-** held a rebuild or none (at N = 40000 one with a rebuild took up to 1.8x
-** one without), so their median depended on where the rebuilds fell. */
-#define CELL_STEPS_PER_REPEAT 800000.0  /* sizes a repeat (about 0.2 s) */
-#define MIN_STEPS 16       /* per repeat: two rebuild periods at large N */
+/* Steps per repeat, the same for every N, so that every N is timed at the
+** same age of its state (steps 20 to 120 after the relaxation): the random
+** state costs more per cell as it ages (its active cells collide and make
+** contacts; at N = 400 1.3x - 1.4x from steps 20 - 120 to steps 2000 -
+** 12000), so repeats sized by N (2000 steps at N = 400, 20 at 40000, as in
+** an earlier version) compared an old small state with a young large one.
+** 20 steps also hold two or three rebuilds of the neighbour candidates at
+** large N (geom.c: one every 8 steps at N = 40000, 6 at 400000, each
+** costing about a step) and one at N = 400: with 4 or 5 steps a repeat held
+** a rebuild or none (at N = 40000 one with a rebuild took up to 1.8x one
+** without). */
+#define STEPS_PER_REPEAT 20
 
 /* ---- states ------------------------------------------------------------ */
 /* Renumbers the cells in the order of afv_spatial_order, so that neighbours
@@ -246,8 +251,11 @@ int main(int argc, char **argv)
     fprintf(stderr, "bench: N must be >= 2\n");
     return 2;
   }
-  steps = argc > 3 ? atoi(argv[3]) : (int)ceil(CELL_STEPS_PER_REPEAT / n);
-  if (steps < MIN_STEPS) steps = MIN_STEPS;
+  steps = argc > 3 ? atoi(argv[3]) : STEPS_PER_REPEAT;
+  if (steps < 1) {
+    fprintf(stderr, "bench: STEPS must be >= 1\n");
+    return 2;
+  }
   memset(&sim, 0, sizeof sim);
   if ((st = make_state(&sim, state % 2, n)) != AFV_OK) {
     fprintf(stderr, "bench: %s\n", afv_strerror(st));
