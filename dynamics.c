@@ -311,19 +311,20 @@ static void move_of(const afv_sim *s, int i, double h, double *dx, double *dy)
   *dy = h * (mu * s->f[2*i+1] + s->pol[2*i+1]);
 }
 
-/* The index of the largest of m[0..n-1] (the first such; a NaN wins, so
-** it is seen), that value in *best.  Serial: the same answer whatever the
-** thread count. */
-static int first_largest(const double *m, int n, double *best)
+/* The index of the largest of the squares m[0..n-1] (the first such; a
+** NaN wins, so it is seen), its square root in *root.  Serial: the same
+** answer whatever the thread count. */
+static int first_largest(const double *m, int n, double *root)
 {
+  double best = -1;
   int i, worst = 0;
-  *best = -1;
   for (i = 0; i < n; i++)
-    if (!(m[i] <= *best)) {
-      *best = m[i];
+    if (!(m[i] <= best)) {
+      best = m[i];
       worst = i;
-      if (isnan(*best)) break;
+      if (isnan(best)) break;
     }
+  *root = sqrt(best);
   return worst;
 }
 
@@ -334,15 +335,13 @@ static int first_largest(const double *m, int n, double *best)
 static int largest_force_move(afv_sim *s, double h, double *len)
 {
   double *m = s->move_len, hmu = h * s->dyn.mu;
-  int i, worst;
+  int i;
   AFV_PARALLEL_FOR
   for (i = 0; i < s->n; i++) {
     double mx = hmu * s->f[2*i], my = hmu * s->f[2*i+1];
     m[i] = mx * mx + my * my;
   }
-  worst = first_largest(m, s->n, len);
-  *len = sqrt(*len);
-  return worst;
+  return first_largest(m, s->n, len);
 }
 
 /* The cell farthest from its position at the start of the step, and that
@@ -350,16 +349,14 @@ static int largest_force_move(afv_sim *s, double h, double *len)
 static int farthest_from_start(afv_sim *s, double *len)
 {
   double *m = s->move_len;
-  int i, worst;
+  int i;
   AFV_PARALLEL_FOR
   for (i = 0; i < s->n; i++) {
     double dx = s->r[2*i] - s->r_start[2*i];
     double dy = s->r[2*i+1] - s->r_start[2*i+1];
     m[i] = dx * dx + dy * dy;
   }
-  worst = first_largest(m, s->n, len);
-  *len = sqrt(*len);
-  return worst;
+  return first_largest(m, s->n, len);
 }
 
 static int unstable(afv_sim *s, int cell, double len)

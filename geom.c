@@ -496,6 +496,19 @@ static void wrap_all(afv_geom *g, int n, const double *r, const afv_box *b)
   }
 }
 
+/* D = r_j - r_i from the wrapped centres, minimum image by fold (the
+** wrapped centres differ by less than a box side). */
+static void displacement(const afv_geom *g, int i, int j, const afv_box *b,
+                         double *dx, double *dy)
+{
+  *dx = g->rw[2*j] - g->rw[2*i];
+  *dy = g->rw[2*j+1] - g->rw[2*i+1];
+  if (b && b->periodic) {
+    *dx = fold(*dx, b->Lx);
+    *dy = fold(*dy, b->Ly);
+  }
+}
+
 /* MOVERS.  A cell that has moved more than SKIN l / 2 since the rebuild
 ** (a "mover": typically a fast cell taking sub-steps) does not by itself
 ** invalidate the candidates; a pair closer than 2l that is not a candidate
@@ -529,11 +542,8 @@ static int is_candidate(const afv_geom *g, int i, int j)
 static int missing_pair(const afv_geom *g, double l, const afv_box *b, int i,
                         int j)
 {
-  double dx = g->rw[2*j] - g->rw[2*i], dy = g->rw[2*j+1] - g->rw[2*i+1];
-  if (b && b->periodic) {
-    dx = fold(dx, b->Lx);
-    dy = fold(dy, b->Ly);
-  }
+  double dx, dy;
+  displacement(g, i, j, b, &dx, &dy);
   return i != j && dx * dx + dy * dy < 4 * l * l && !is_candidate(g, i, j);
 }
 
@@ -709,19 +719,6 @@ static void sort_slots(int *nbr, double *d, int m)
       d[2*q - 2] = tx;
       d[2*q - 1] = ty;
     }
-}
-
-/* D = r_j - r_i from the wrapped centres, minimum image by fold (the
-** wrapped centres differ by less than a box side). */
-static void displacement(const afv_geom *g, int i, int j, const afv_box *b,
-                         double *dx, double *dy)
-{
-  *dx = g->rw[2*j] - g->rw[2*i];
-  *dy = g->rw[2*j+1] - g->rw[2*i+1];
-  if (b && b->periodic) {
-    *dx = fold(*dx, b->Lx);
-    *dy = fold(*dy, b->Ly);
-  }
 }
 
 /* Right after a rebuild, sorts each cell's candidates by comes_after (their

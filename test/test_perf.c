@@ -167,8 +167,6 @@ done:
   free(f);
 }
 
-/* Largest |a - b| over n entries, and the number of entries that differ
-** in any bit. */
 /* The number of neighbour slots in use (each pair counts twice). */
 static int slot_count(const afv_geom *g)
 {
@@ -177,6 +175,8 @@ static int slot_count(const afv_geom *g)
   return m;
 }
 
+/* Largest |a - b| over n entries, and the number of entries that differ
+** in any bit. */
 static double max_diff(const double *a, const double *b, int n, int *nbits)
 {
   double worst = 0;
@@ -397,7 +397,8 @@ static void check_cells_around(int n, int periodic, double R, double moved)
   afv_geom g;
   double *r0 = malloc((size_t)(2 * n) * sizeof(double));
   double *r = malloc((size_t)(2 * n) * sizeof(double));
-  int *out = malloc((size_t)n * sizeof(int)), *seen = calloc((size_t)n, 4);
+  int *out = malloc((size_t)n * sizeof(int));
+  int *seen = calloc((size_t)n, sizeof(int));
   int i, q, missed = 0, twice = 0, total = 0, rebuilds;
   memset(&g, 0, sizeof g);
   CHECK(r0 && r && out && seen, "out of memory");
