@@ -134,6 +134,8 @@ typedef struct afv_geom {
   afv_grid cand_grid;   /* the cell list of the last rebuild */
   int    *mover, *around; /* cells moved beyond the skin; search results */
   double  cand_checks;  /* mover pair tests since the rebuild */
+  double  cand_moved;   /* largest move of a cell since the rebuild, as of
+                        ** the last call (afv_cells_around widens by it) */
   int     max_cand;     /* most candidates of a cell (sizes the work) */
   double *edge;         /* per slot s: u = D/d (2), d/2, half-chord
                         ** sqrt(l^2 - d^2/4), set by afv_neighbours */

@@ -470,9 +470,9 @@ static int find_coincident(afv_geom *g, const int *count, int n)
 ** (a resumed run repeats an uninterrupted one).
 ** A few cells that have moved farther do not force a rebuild (MOVERS,
 ** below).  SKIN = 0.3 l: (2.3/2)^2 = 1.3x the pairs of a 2l search;
-** rebuilt in the random benchmark state (v0 = 1, dt = 0.01) every 8
-** steps at N = 40000 and 6 at 400000 (steps 20 - 120 after relaxing), at
-** N = 400 every 21 steps (steps 200 - 600) and 47 in steps 2000 - 12000,
+** rebuilt in the random benchmark state (v0 = 1, dt = 0.01) every 16.7
+** steps at N = 400, 14.3 at 4000, 12.5 at 40000 and 10 at 400000 (steps
+** 20 - 120 after relaxing; at N = 400 47 in steps 2000 - 12000),
 ** and every 1100 in the relaxed cluster (v0 = 0.1) (test/bench.c).  0.2
 ** and 0.5 cost more instructions per step over the two (measured, before
 ** MOVERS). */
@@ -514,19 +514,22 @@ static void displacement(const afv_geom *g, int i, int j, const afv_box *b,
 ** invalidate the candidates; a pair closer than 2l that is not a candidate
 ** pair does.  A pair of two other cells is a candidate pair (each moved at
 ** most SKIN l / 2, so it approached by at most SKIN l), so while the
-** movers are few the pairs that involve them are checked one by one:
-** a mover's non-mover neighbours are found in the cell list of the rebuild
-** (afv_cells_around, within its skin), the movers among themselves
-** directly.  Without this, one fast cell anywhere forced a rebuild of the
-** whole tissue: at N = 40000 in the random benchmark state every 3.9
-** steps.  Above MOVERS_MAX, the checks (O(movers^2)) would cost more than
-** a rebuild.  And the movers are checked again at every call, as they go
-** on moving: once the pair tests since the rebuild reach CHECKS_PER_CELL
-** per cell, about the cost of a rebuild (a rebuild takes about 1000
-** instructions per cell, a pair test about 40), the candidates are rebuilt
-** (the ski-rental rule: never more than twice the cost of the better
-** choice made in hindsight). */
-#define MOVERS_MAX(n) (2 * (int)sqrt((double)(n)) + 16)
+** movers are few the pairs that involve them are checked one by one: each
+** mover's cells within 2l, movers included, are found in the cell list of
+** the rebuild (afv_cells_around, which widens its search by the largest
+** move since the rebuild, g->cand_moved).  Without this, one fast cell
+** anywhere forced a rebuild of the whole tissue: at N = 40000 in the
+** random benchmark state every 3.9 steps.  The checks cost O(movers), so
+** MOVERS_MAX is a fixed fraction of the cells and the rebuilds come as
+** often at every N.  (An earlier version tested the movers' pairs among
+** themselves directly, O(movers^2), so it allowed only 2 sqrt(N) + 16
+** movers: the random state at N = 40000 was rebuilt every 8 steps, at
+** N = 400 every 21.)  And the movers are checked again at every call, as
+** they go on moving: once the pair tests since the rebuild reach
+** CHECKS_PER_CELL per cell, about the cost of a rebuild (a pair test takes
+** about 40 instructions), the candidates are rebuilt (the ski-rental rule:
+** never more than twice the cost of the better choice made in hindsight). */
+#define MOVERS_MAX(n) ((n) / 8 + 16)
 #define CHECKS_PER_CELL 25
 
 static int is_candidate(const afv_geom *g, int i, int j)
@@ -548,7 +551,7 @@ static int missing_pair(const afv_geom *g, double l, const afv_box *b, int i,
 }
 
 /* 1 if every pair closer than 2l that involves one of the nm movers is a
-** candidate pair (rw: the wrapped centres, wrap_all). */
+** candidate pair (rw: the wrapped centres, wrap_all; g->cand_moved set). */
 static int movers_covered(afv_geom *g, const double *r, double l,
                           const afv_box *b, int nm)
 {
@@ -556,32 +559,34 @@ static int movers_covered(afv_geom *g, const double *r, double l,
   for (a = 0; a < nm; a++) {
     int m = g->mover[a];
     int count = afv_cells_around(g, r[2*m], r[2*m+1], 2 * l, 0, g->around);
-    g->cand_checks += count + nm - a;
+    g->cand_checks += count;
     for (k = 0; k < count; k++)
       if (missing_pair(g, l, b, m, g->around[k])) return 0;
-    for (k = a + 1; k < nm; k++)
-      if (missing_pair(g, l, b, m, g->mover[k])) return 0;
   }
   return 1;
 }
 
 /* 1 if the candidates were built for this n, l and box and still hold
 ** every pair closer than 2l: no cell has moved more than SKIN l / 2 since,
-** or a few have (MOVERS) and their pairs are candidates. */
+** or a few have (MOVERS) and their pairs are candidates.  Sets
+** g->cand_moved, the largest distance of a cell from where it was at the
+** rebuild. */
 static int candidates_valid(afv_geom *g, int n, const double *r, double l,
                             const afv_box *b)
 {
-  double lim2 = 0.25 * SKIN * SKIN * l * l;
+  double lim2 = 0.25 * SKIN * SKIN * l * l, most2 = 0;
   int i, nm = 0, most = MOVERS_MAX(n);
   if (g->cand_n != n || g->cand_l != l || !same_box(&g->cand_box, b))
     return 0;
   for (i = 0; i < n; i++) {
     double dx = r[2*i] - g->cand_r0[2*i], dy = r[2*i+1] - g->cand_r0[2*i+1];
     double d2 = dx * dx + dy * dy;
+    if (d2 > most2) most2 = d2;
     if (d2 <= lim2) continue;
     if (!isfinite(d2) || nm == most) return 0;
     g->mover[nm++] = i;
   }
+  g->cand_moved = sqrt(most2);
   if (nm == 0) return 1;
   return g->cand_checks < (double)CHECKS_PER_CELL * n
          && movers_covered(g, r, l, b, nm);
@@ -615,6 +620,7 @@ static int build_candidates(afv_geom *g, int n, const double *r, double l,
   g->cand_l = l;
   g->cand_n = n;
   g->cand_checks = 0;
+  g->cand_moved = 0;
   g->n_rebuilds++;
   return AFV_OK;
 }
@@ -643,9 +649,9 @@ int afv_cells_around(const afv_geom *g, double x, double y, double R,
 {
   const grid *G = &g->cand_grid;
   /* a cell now within R of (x, y) was binned within Q of it: since the
-  ** rebuild it moved at most SKIN l / 2 up to the last afv_neighbours
+  ** rebuild it moved at most cand_moved up to the last afv_neighbours
   ** (candidates_valid), then at most `moved`; 1e-9 l covers rounding */
-  double Q = R + 0.5 * SKIN * g->cand_l + moved + 1e-9 * g->cand_l;
+  double Q = R + g->cand_moved + moved + 1e-9 * g->cand_l;
   int fx, nx, fy, ny, a, c, m = 0;
   if (G->periodic) {
     x = wrap1(x, G->Lx);

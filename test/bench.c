@@ -62,9 +62,9 @@
 ** contacts; at N = 400 1.3x - 1.4x from steps 20 - 120 to steps 2000 -
 ** 12000), so repeats sized by N (2000 steps at N = 400, 20 at 40000, as in
 ** an earlier version) compared an old small state with a young large one.
-** 20 steps also hold two or three rebuilds of the neighbour candidates at
-** large N (geom.c: one every 8 steps at N = 40000, 6 at 400000, each
-** costing about a step) and one at N = 400: with 4 or 5 steps a repeat held
+** 20 steps also hold one to three rebuilds of the neighbour candidates
+** (geom.c: one every 16.7 steps at N = 400, 12.5 at 40000, 10 at 400000,
+** each costing about half a step): with 4 or 5 steps a repeat held
 ** a rebuild or none (at N = 40000 one with a rebuild took up to 1.8x one
 ** without). */
 #define STEPS_PER_REPEAT 20
