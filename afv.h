@@ -175,7 +175,9 @@ int  afv_neighbours(afv_geom *g, int n, const double *r, double l,
 ** distance), written to out[] (room for g->n), each once; returns how
 ** many.  g must come from afv_neighbours (or afv_compute) at positions
 ** from which no cell has since moved more than `moved`.  Cost: the cells
-** in the bins within about R + 0.15 l + moved, not O(N). */
+** in the bins within about R + cand_moved + moved, not O(N) (cand_moved,
+** the largest move since the rebuild, is at most 0.15 l unless some
+** cells have moved farther: geom.c, MOVERS). */
 int  afv_cells_around(const afv_geom *g, double x, double y, double R,
                       double moved, int *out);
 /* A spatial order of the cells (the cell list's, bins of side >= 2l row by

@@ -253,8 +253,9 @@ done:
 ** rebuilt; two cells 4.5 l apart brought to 1.9 l by moves of 1.2 l and
 ** 1.4 l; and two cells alone in a corridor of a sparse lattice, 8 l apart,
 ** brought to 1.9 l.  (Taking every mover's pairs as covered makes this
-** fail, and so does leaving out the check of the movers among themselves:
-** the corridor.) */
+** fail, and so does a cell-list search that does not widen by the moves
+** since the rebuild (geom.c, cand_moved), which misses a mover's pair
+** with another mover: the corridor.) */
 static int movers_trial(const double *r0, int n, const afv_params *p,
                         const afv_box *b, int a, double ax, double ay, int c,
                         double cx, double cy, int *rebuilt)
