@@ -132,7 +132,7 @@ typedef struct afv_geom {
   int     cand_n;       /* cells they were built for; 0 = none */
   int     cap_cand, n_rebuilds;  /* n_rebuilds: candidate rebuilds so far */
   afv_grid cand_grid;   /* the cell list of the last rebuild */
-  int    *mover, *around; /* cells moved beyond the skin; search results */
+  unsigned char *is_mover; /* 1 for a cell moved beyond the skin */
   double  cand_checks;  /* mover pair tests since the rebuild */
   double  cand_moved;   /* largest move of a cell since the rebuild, as of
                         ** the last call (afv_cells_around widens by it) */

@@ -42,12 +42,17 @@
 #define TWO_PI 6.28318530717958647692
 
 /* OpenMP (make OPENMP=1, see geom.c): the per-cell loops of a step touch
-** only their own cell, and the noise is drawn per (cell, step), so every
-** thread count gives the same bits.  Empty in the plain C99 build. */
+** only their own cell, the noise is drawn per (cell, step), and the only
+** reductions are a maximum and an or, so every thread count gives the same
+** bits.  Empty in the plain C99 build. */
 #ifdef _OPENMP
-#define AFV_PARALLEL_FOR _Pragma("omp parallel for schedule(static)")
+#define AFV_PRAGMA(text) _Pragma(#text)
+#define AFV_PARALLEL_FOR AFV_PRAGMA(omp parallel for schedule(static))
+#define AFV_PARALLEL_REDUCE(clauses) \
+  AFV_PRAGMA(omp parallel for schedule(static) clauses)
 #else
 #define AFV_PARALLEL_FOR
+#define AFV_PARALLEL_REDUCE(clauses)
 #endif
 
 /* ---- sine and cosine ---------------------------------------------------- */
@@ -287,23 +292,8 @@ double afv_sim_max_force(const afv_sim *s)
   return sqrt(m2);
 }
 
-/* pol = v0_i n_i = v0_i (cos theta_i, sin theta_i): fixed during a step
-** (sub-steps included), so computed once at its start rather than in
-** every move_of. */
-static void polarity_all(afv_sim *s)
-{
-  int i;
-  AFV_PARALLEL_FOR
-  for (i = 0; i < s->n; i++) {
-    double v0 = s->dyn.v0_i ? s->dyn.v0_i[i] : s->dyn.v0, c, sn;
-    afv_sincos(s->theta[i], &sn, &c);
-    s->pol[2*i] = v0 * c;
-    s->pol[2*i+1] = v0 * sn;
-  }
-}
-
 /* Displacement of cell i over a time h: h (mu F_i + v0_i n_i); needs pol
-** (polarity_all) for this step. */
+** for this step (euler_all). */
 static void move_of(const afv_sim *s, int i, double h, double *dx, double *dy)
 {
   double mu = s->dyn.mu;
@@ -311,52 +301,31 @@ static void move_of(const afv_sim *s, int i, double h, double *dx, double *dy)
   *dy = h * (mu * s->f[2*i+1] + s->pol[2*i+1]);
 }
 
-/* The index of the largest of the squares m[0..n-1] (the first such; a
-** NaN wins, so it is seen), its square root in *root.  Serial: the same
-** answer whatever the thread count. */
-static int first_largest(const double *m, int n, double *root)
+/* The first i with m[i] = largest, or NaN if largest is: for the report of
+** a refused step, so serial and off the common path. */
+static int first_at(const double *m, int n, double largest)
 {
-  double best = -1;
-  int i, worst = 0;
+  int i;
   for (i = 0; i < n; i++)
-    if (!(m[i] <= best)) {
-      best = m[i];
-      worst = i;
-      if (isnan(best)) break;
-    }
-  *root = sqrt(best);
-  return worst;
+    if (m[i] == largest || (isnan(m[i]) && isnan(largest))) return i;
+  return 0;
 }
 
-/* The cell with the largest force-driven move h mu F_i, and that move's
-** length in *len.  The squared lengths stay in move_len: squares order the
-** cells as the lengths do, and save a hypot per cell (a NaN stays NaN; a
-** square that overflows to inf still counts as fast). */
-static int largest_force_move(afv_sim *s, double h, double *len)
+/* The largest squared distance of a cell from its position at the start
+** of the step (NaN if one is NaN); the squares stay in move_len. */
+static double farthest_from_start(afv_sim *s)
 {
-  double *m = s->move_len, hmu = h * s->dyn.mu;
-  int i;
-  AFV_PARALLEL_FOR
-  for (i = 0; i < s->n; i++) {
-    double mx = hmu * s->f[2*i], my = hmu * s->f[2*i+1];
-    m[i] = mx * mx + my * my;
-  }
-  return first_largest(m, s->n, len);
-}
-
-/* The cell farthest from its position at the start of the step, and that
-** distance in *len (squared distances in move_len, as above). */
-static int farthest_from_start(afv_sim *s, double *len)
-{
-  double *m = s->move_len;
-  int i;
-  AFV_PARALLEL_FOR
+  double *m = s->move_len, most = 0;
+  int i, nan = 0;
+  AFV_PARALLEL_REDUCE(reduction(max: most) reduction(|: nan))
   for (i = 0; i < s->n; i++) {
     double dx = s->r[2*i] - s->r_start[2*i];
     double dy = s->r[2*i+1] - s->r_start[2*i+1];
     m[i] = dx * dx + dy * dy;
+    if (isnan(m[i])) nan = 1;
+    else if (m[i] > most) most = m[i];
   }
-  return first_largest(m, s->n, len);
+  return nan ? NAN : most;
 }
 
 static int unstable(afv_sim *s, int cell, double len)
@@ -410,23 +379,53 @@ static void move_cells(afv_sim *s, const int *list, int m, double h)
   }
 }
 
-/* Euler step of dt for every cell not marked fast (move_len < 0). */
-static void move_unmarked(afv_sim *s)
+/* The step's one pass over every cell (each cell's data read once):
+**   r_start_i = r_i;
+**   pol_i = v0_i n_i = v0_i (cos theta_i, sin theta_i), fixed during the
+**     step (sub-steps included), so computed once here, not in each move_of;
+**   move_len_i = |dt mu F_i|^2, the square of the force-driven move;
+**   the paper's Euler step of dt, for every cell whose force-driven move
+**     is at most `split` (every cell if split <= 0); the others are the
+**     fast cells (SUB-STEPS, below).
+** Returns the largest move_len_i: NaN if a force is NaN (the cells have
+** then moved, and the refused step restores r_start).  Squares order the
+** cells as the lengths do, and save a hypot per cell (a square that
+** overflows to inf still counts as fast). */
+static double euler_all(afv_sim *s, double split)
 {
-  int i;
-  AFV_PARALLEL_FOR
-  for (i = 0; i < s->n; i++)
-    if (s->move_len[i] >= 0) {
-      double dx, dy;
-      move_of(s, i, s->dyn.dt, &dx, &dy);
-      s->r[2*i] += dx;
-      s->r[2*i+1] += dy;
+  /* locals, not s->...: the stores through r could alias the struct */
+  double *r = s->r, *r_start = s->r_start, *pol = s->pol, *m = s->move_len;
+  const double *f = s->f, *theta = s->theta, *v0_i = s->dyn.v0_i;
+  double split2 = split > 0 ? split * split : INFINITY, most = 0;
+  double dt = s->dyn.dt, mu = s->dyn.mu, hmu = dt * mu, v0 = s->dyn.v0;
+  int i, n = s->n, nan = 0;
+  AFV_PARALLEL_REDUCE(reduction(max: most) reduction(|: nan))
+  for (i = 0; i < n; i++) {
+    double fx = f[2*i], fy = f[2*i+1], x = r[2*i], y = r[2*i+1];
+    double v = v0_i ? v0_i[i] : v0, c, sn, px, py, mx, my, move2;
+    afv_sincos(theta[i], &sn, &c);
+    px = v * c;
+    py = v * sn;
+    mx = hmu * fx;
+    my = hmu * fy;
+    move2 = mx * mx + my * my;
+    r_start[2*i] = x;
+    r_start[2*i+1] = y;
+    pol[2*i] = px;
+    pol[2*i+1] = py;
+    m[i] = move2;
+    if (isnan(move2)) nan = 1;
+    else if (move2 > most) most = move2;
+    if (!(move2 > split2)) {          /* move_of(s, i, dt, ...) */
+      r[2*i] = x + dt * (mu * fx + px);
+      r[2*i+1] = y + dt * (mu * fy + py);
     }
+  }
+  return nan ? NAN : most;
 }
 
 /* Lists the fast cells (force move over dt above `split`; move_len holds
-** its square, from largest_force_move) in increasing order; returns how
-** many. */
+** its square, from euler_all) in increasing order; returns how many. */
 static int list_fast(afv_sim *s, double split)
 {
   double split2 = split * split;
@@ -446,7 +445,7 @@ static int cmp_int(const void *a, const void *b)
 ** returns how many (the fast cells are among them).  Each fast cell asks
 ** the cell list of the last force evaluation for the cells around it
 ** (afv_cells_around): O(fast cells), not O(N), per step with sub-steps.
-** Since that evaluation only the other cells have moved (move_unmarked),
+** Since that evaluation only the other cells have moved (euler_all),
 ** each by at most `moved` = split + max|v0| dt.  in_region marks the
 ** cells listed so far (all 0 between calls). */
 static int list_region(afv_sim *s, int nf, double R, double moved)
@@ -541,12 +540,12 @@ static int fast_pieces(afv_sim *s, int nf, int nr, double split)
 /* The moves of a step (v0_max = max |v0_i|, from too_fast). */
 static int advance(afv_sim *s, double v0_max)
 {
-  double len, split = s->dyn.max_move * s->par.l;
-  int cell = largest_force_move(s, s->dyn.dt, &len), nf = 0, k, st;
-  if (isnan(len)) return unstable(s, cell, len);
-  if (split > 0 && len > split) nf = list_fast(s, split);
-  for (k = 0; k < nf; k++) s->move_len[s->fast[k]] = -1;   /* mark */
-  move_unmarked(s);                     /* every other cell: Euler */
+  double split = s->dyn.max_move * s->par.l, most = euler_all(s, split);
+  double limit = AFV_MAX_STEP_DISP * s->par.l;
+  int nf = 0, st;
+  if (isnan(most))
+    return unstable(s, first_at(s->move_len, s->n, most), most);
+  if (split > 0 && most > split * split) nf = list_fast(s, split);
   if (nf > 0) {
     int nr = list_region(s, nf, REGION_RADIUS * s->par.l,
                          split + v0_max * s->dyn.dt);
@@ -555,10 +554,10 @@ static int advance(afv_sim *s, double v0_max)
   }
   /* Without fast cells every move is at most split + |v0_i| dt: when that
   ** cannot exceed the limit, the scan of all the moves is skipped. */
-  if (nf > 0 || !(split > 0 && split + v0_max * s->dyn.dt
-                                  <= AFV_MAX_STEP_DISP * s->par.l)) {
-    cell = farthest_from_start(s, &len);
-    if (!(len <= AFV_MAX_STEP_DISP * s->par.l)) return unstable(s, cell, len);
+  if (nf > 0 || !(split > 0 && split + v0_max * s->dyn.dt <= limit)) {
+    double far2 = farthest_from_start(s), far = sqrt(far2);
+    if (!(far <= limit))
+      return unstable(s, first_at(s->move_len, s->n, far2), far);
   }
   return afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
 }
@@ -618,8 +617,6 @@ int afv_sim_step(afv_sim *s)
   double v0_max;
   int i, pairs, st;
   if ((st = too_fast(s, &v0_max)) != AFV_OK) return st;
-  memcpy(s->r_start, s->r, bytes);
-  polarity_all(s);
   if ((st = advance(s, v0_max)) != AFV_OK) {
     /* a refused step leaves the state as it was, sub-steps included */
     s->substeps = substeps;

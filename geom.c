@@ -60,11 +60,18 @@
 /* OpenMP (make OPENMP=1): the per-cell loops marked AFV_PARALLEL_FOR write
 ** only their own cell's entries, so any thread count gives the same bits.
 ** Static schedule: each thread gets one contiguous, spatially coherent
-** block.  Without OpenMP the macro is empty and the file is plain C99. */
+** block.  AFV_PARALLEL_REDUCE adds reduction clauses, used only for
+** reductions whose result does not depend on the order (max, min, | and
+** sums of integers), so again any thread count gives the same bits.
+** Without OpenMP the macros are empty and the file is plain C99. */
 #ifdef _OPENMP
-#define AFV_PARALLEL_FOR _Pragma("omp parallel for schedule(static)")
+#define AFV_PRAGMA(text) _Pragma(#text)
+#define AFV_PARALLEL_FOR AFV_PRAGMA(omp parallel for schedule(static))
+#define AFV_PARALLEL_REDUCE(clauses) \
+  AFV_PRAGMA(omp parallel for schedule(static) clauses)
 #else
 #define AFV_PARALLEL_FOR
+#define AFV_PARALLEL_REDUCE(clauses)
 #endif
 
 /* ---- buffers ----------------------------------------------------------- */
@@ -116,9 +123,7 @@ static int grow_cells(afv_geom *g, int n)
   c = cap;
   if (grow((void **)&g->cand_start, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->mover, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
-  c = cap;
-  if (grow((void **)&g->around, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  if (grow((void **)&g->is_mover, &c, n + 1, 1)) return AFV_ENOMEM;
   g->cap_cells = c;
   return AFV_OK;
 }
@@ -151,7 +156,7 @@ void afv_geom_free(afv_geom *g)
   free(g->nbr_rev);
   free(g->bin_start); free(g->bin_cell); free(g->bin_xy); free(g->edge);
   free(g->cand_start); free(g->cand); free(g->cand_r0); free(g->rw);
-  free(g->grad); free(g->work); free(g->mover); free(g->around);
+  free(g->grad); free(g->work); free(g->is_mover);
   memset(g, 0, sizeof *g);
 }
 
@@ -509,6 +514,70 @@ static void displacement(const afv_geom *g, int i, int j, const afv_box *b,
   }
 }
 
+/* The bins along one axis (nb bins of side w from x0) that come within Q of
+** the coordinate x (wrapped into the box if periodic): *count of them from
+** *first on, to be wrapped mod nb if periodic (each bin once). */
+static void bin_range(double x, double Q, double x0, double w, int nb,
+                      int periodic, int *first, int *count)
+{
+  double lo = floor((x - Q - x0) / w), hi = floor((x + Q - x0) / w);
+  if (periodic) {
+    *first = (int)fmax(lo, -nb);    /* fmax: no int overflow for a huge Q */
+    *count = hi - lo + 1 >= nb ? nb : (int)(hi - lo) + 1;
+    *first = ((*first % nb) + nb) % nb;
+    return;
+  }
+  lo = fmin(fmax(lo, 0), nb - 1);   /* cells beyond the grid sit in its */
+  hi = fmin(fmax(hi, 0), nb - 1);   /* edge bins (bin_of clamps them) */
+  *first = (int)lo;
+  *count = (int)(hi - lo) + 1;
+}
+
+/* The bins of the rebuild's cell list that may hold a cell now within R of
+** (x, y): nx by ny bins from (fx, fy) on (wrapped mod the grid if
+** periodic).  A cell now within R was binned within Q of (x, y): since the
+** rebuild it moved at most cand_moved up to the last afv_neighbours
+** (candidates_valid), then at most `moved`; 1e-9 l covers rounding. */
+typedef struct bin_window {
+  int fx, nx, fy, ny;
+} bin_window;
+
+static bin_window window_around(const afv_geom *g, double x, double y,
+                                double R, double moved)
+{
+  const grid *G = &g->cand_grid;
+  double Q = R + g->cand_moved + moved + 1e-9 * g->cand_l;
+  bin_window w;
+  if (G->periodic) {
+    x = wrap1(x, G->Lx);
+    y = wrap1(y, G->Ly);
+  }
+  bin_range(x, Q, G->x0, G->wx, G->nbx, G->periodic, &w.fx, &w.nx);
+  bin_range(y, Q, G->y0, G->wy, G->nby, G->periodic, &w.fy, &w.ny);
+  return w;
+}
+
+/* Bin q (0 <= q < nx ny) of the window, row by row. */
+static int window_bin(const afv_geom *g, const bin_window *w, int q)
+{
+  const grid *G = &g->cand_grid;
+  int bx = (w->fx + q % w->nx) % G->nbx, by = (w->fy + q / w->nx) % G->nby;
+  return by * G->nbx + bx;
+}
+
+int afv_cells_around(const afv_geom *g, double x, double y, double R,
+                     double moved, int *out)
+{
+  bin_window w = window_around(g, x, y, R, moved);
+  int q, k, m = 0;
+  for (q = 0; q < w.nx * w.ny; q++) {
+    int bin = window_bin(g, &w, q);
+    for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++)
+      out[m++] = g->bin_cell[k];
+  }
+  return m;
+}
+
 /* MOVERS.  A cell that has moved more than SKIN l / 2 since the rebuild
 ** (a "mover": typically a fast cell taking sub-steps) does not by itself
 ** invalidate the candidates; a pair closer than 2l that is not a candidate
@@ -516,8 +585,10 @@ static void displacement(const afv_geom *g, int i, int j, const afv_box *b,
 ** most SKIN l / 2, so it approached by at most SKIN l), so while the
 ** movers are few the pairs that involve them are checked one by one: each
 ** mover's cells within 2l, movers included, are found in the cell list of
-** the rebuild (afv_cells_around, which widens its search by the largest
-** move since the rebuild, g->cand_moved).  Without this, one fast cell
+** the rebuild (window_around, which widens its search by the largest move
+** since the rebuild, g->cand_moved).  Both the marking of the movers and
+** their checks are parallel loops: a serial scan here took about 7% of
+** the first thread's time in a 2-thread step (random, N = 40000, perf).  Without this, one fast cell
 ** anywhere forced a rebuild of the whole tissue: at N = 40000 in the
 ** random benchmark state every 3.9 steps.  The checks cost O(movers), so
 ** MOVERS_MAX is a fixed fraction of the cells and the rebuilds come as
@@ -552,46 +623,66 @@ static int missing_pair(const afv_geom *g, double l, const afv_box *b, int i,
   return i != j && dx * dx + dy * dy < 4 * l * l && !is_candidate(g, i, j);
 }
 
-/* 1 if every pair closer than 2l that involves one of the nm movers is a
-** candidate pair (rw: the wrapped centres, wrap_all; g->cand_moved set). */
-static int movers_covered(afv_geom *g, const double *r, double l,
-                          const afv_box *b, int nm)
+/* 1 if mover m has a pair closer than 2l that is not a candidate pair;
+** adds the cells it tests to *tests. */
+static int mover_missing_pair(const afv_geom *g, int m, const double *r,
+                              double l, const afv_box *b, double *tests)
 {
-  int a, k;
-  for (a = 0; a < nm; a++) {
-    int m = g->mover[a];
-    int count = afv_cells_around(g, r[2*m], r[2*m+1], 2 * l, 0, g->around);
-    g->cand_checks += count;
-    for (k = 0; k < count; k++)
-      if (missing_pair(g, l, b, m, g->around[k])) return 0;
+  bin_window w = window_around(g, r[2*m], r[2*m+1], 2 * l, 0);
+  int q, k;
+  for (q = 0; q < w.nx * w.ny; q++) {
+    int bin = window_bin(g, &w, q);
+    *tests += g->bin_start[bin + 1] - g->bin_start[bin];
+    for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++)
+      if (missing_pair(g, l, b, m, g->bin_cell[k])) return 1;
   }
-  return 1;
+  return 0;
+}
+
+/* 1 if every pair closer than 2l that involves a mover (is_mover) is a
+** candidate pair (rw: the wrapped centres, wrap_all; g->cand_moved set).
+** The movers are shared among threads; each thread stops testing at its
+** first missing pair. */
+static int movers_covered(afv_geom *g, int n, const double *r, double l,
+                          const afv_box *b)
+{
+  double tests = 0;           /* an integer: the same sum in any order */
+  int i, missing = 0;
+  AFV_PARALLEL_REDUCE(reduction(+: tests) reduction(|: missing))
+  for (i = 0; i < n; i++)
+    if (g->is_mover[i] && !missing)
+      missing = mover_missing_pair(g, i, r, l, b, &tests);
+  g->cand_checks += tests;
+  return !missing;
 }
 
 /* 1 if the candidates were built for this n, l and box and still hold
 ** every pair closer than 2l: no cell has moved more than SKIN l / 2 since,
 ** or a few have (MOVERS) and their pairs are candidates.  Sets
 ** g->cand_moved, the largest distance of a cell from where it was at the
-** rebuild. */
+** rebuild, and marks the movers in is_mover. */
 static int candidates_valid(afv_geom *g, int n, const double *r, double l,
                             const afv_box *b)
 {
   double lim2 = 0.25 * SKIN * SKIN * l * l, most2 = 0;
-  int i, nm = 0, most = MOVERS_MAX(n);
+  int i, movers = 0, nonfinite = 0;
   if (g->cand_n != n || g->cand_l != l || !same_box(&g->cand_box, b))
     return 0;
+  AFV_PARALLEL_REDUCE(reduction(max: most2) reduction(+: movers)
+                      reduction(|: nonfinite))
   for (i = 0; i < n; i++) {
     double dx = r[2*i] - g->cand_r0[2*i], dy = r[2*i+1] - g->cand_r0[2*i+1];
     double d2 = dx * dx + dy * dy;
-    if (d2 > most2) most2 = d2;
-    if (d2 <= lim2) continue;
-    if (!isfinite(d2) || nm == most) return 0;
-    g->mover[nm++] = i;
+    g->is_mover[i] = !(d2 <= lim2);
+    movers += g->is_mover[i];
+    if (!isfinite(d2)) nonfinite = 1;
+    else if (d2 > most2) most2 = d2;
   }
+  if (nonfinite || movers > MOVERS_MAX(n)) return 0;
   g->cand_moved = sqrt(most2);
-  if (nm == 0) return 1;
+  if (movers == 0) return 1;
   return g->cand_checks < (double)CHECKS_PER_CELL * n
-         && movers_covered(g, r, l, b, nm);
+         && movers_covered(g, n, r, l, b);
 }
 
 /* Two passes over the cell list (count, then fill) let every cell write its
@@ -625,51 +716,6 @@ static int build_candidates(afv_geom *g, int n, const double *r, double l,
   g->cand_moved = 0;
   g->n_rebuilds++;
   return AFV_OK;
-}
-
-/* The bins along one axis (nb bins of side w from x0) that come within Q of
-** the coordinate x (wrapped into the box if periodic): *count of them from
-** *first on, to be wrapped mod nb if periodic (each bin once). */
-static void bin_range(double x, double Q, double x0, double w, int nb,
-                      int periodic, int *first, int *count)
-{
-  double lo = floor((x - Q - x0) / w), hi = floor((x + Q - x0) / w);
-  if (periodic) {
-    *first = (int)fmax(lo, -nb);    /* fmax: no int overflow for a huge Q */
-    *count = hi - lo + 1 >= nb ? nb : (int)(hi - lo) + 1;
-    *first = ((*first % nb) + nb) % nb;
-    return;
-  }
-  lo = fmin(fmax(lo, 0), nb - 1);   /* cells beyond the grid sit in its */
-  hi = fmin(fmax(hi, 0), nb - 1);   /* edge bins (bin_of clamps them) */
-  *first = (int)lo;
-  *count = (int)(hi - lo) + 1;
-}
-
-int afv_cells_around(const afv_geom *g, double x, double y, double R,
-                     double moved, int *out)
-{
-  const grid *G = &g->cand_grid;
-  /* a cell now within R of (x, y) was binned within Q of it: since the
-  ** rebuild it moved at most cand_moved up to the last afv_neighbours
-  ** (candidates_valid), then at most `moved`; 1e-9 l covers rounding */
-  double Q = R + g->cand_moved + moved + 1e-9 * g->cand_l;
-  int fx, nx, fy, ny, a, c, m = 0;
-  if (G->periodic) {
-    x = wrap1(x, G->Lx);
-    y = wrap1(y, G->Ly);
-  }
-  bin_range(x, Q, G->x0, G->wx, G->nbx, G->periodic, &fx, &nx);
-  bin_range(y, Q, G->y0, G->wy, G->nby, G->periodic, &fy, &ny);
-  for (c = 0; c < ny; c++) {
-    int by = (fy + c) % G->nby;
-    for (a = 0; a < nx; a++) {
-      int bin = by * G->nbx + (fx + a) % G->nbx, k;
-      for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++)
-        out[m++] = g->bin_cell[k];
-    }
-  }
-  return m;
 }
 
 /* ---- neighbour lists --------------------------------------------------- */
@@ -894,9 +940,13 @@ int afv_neighbours(afv_geom *g, int n, const double *r, double l,
   }
   g->nbr_start[n] = g->cand_start[n];
 #ifdef _OPENMP
-  AFV_PARALLEL_FOR
-  for (i = 0; i < n; i++) list_cell(g, i, l, b);
-  if ((st = find_coincident(g, g->nbr_end, n)) != AFV_OK) return st;
+  {
+    int first = n;                  /* the first cell with a coincidence */
+    AFV_PARALLEL_REDUCE(reduction(min: first))
+    for (i = 0; i < n; i++)
+      if (list_cell(g, i, l, b) < 0 && i < first) first = i;
+    if (first < n) return find_coincident(g, g->nbr_end, first + 1);
+  }
   AFV_PARALLEL_FOR
   for (i = 0; i < n; i++) link_cell(g, i, l);
 #else
@@ -1221,13 +1271,15 @@ static int reserve_work(afv_geom *g, int max_nn)
 int afv_geometry_prepare(afv_geom *g, int n, const double *r, double l,
                          const afv_box *b)
 {
-  int st, i;
+  int st, i, first = 2 * n;       /* the first coordinate not finite */
   g->bad_i = g->bad_j = -1;
+  AFV_PARALLEL_REDUCE(reduction(min: first))
   for (i = 0; i < 2 * n; i++)
-    if (!isfinite(r[i])) {
-      g->bad_i = i / 2;
-      return AFV_ENONFINITE;
-    }
+    if (!isfinite(r[i]) && i < first) first = i;
+  if (first < 2 * n) {
+    g->bad_i = first / 2;
+    return AFV_ENONFINITE;
+  }
   if ((st = afv_neighbours(g, n, r, l, b)) != AFV_OK) return st;
   return reserve_work(g, g->max_cand);
 }

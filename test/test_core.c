@@ -1058,7 +1058,7 @@ static void test_coincident_and_nonfinite(void)
   afv_params p;
   afv_geom g = {0};
   afv_box bo = test_open_box(), bp = test_periodic_box(5, 5);
-  int st;
+  int st, rebuilds;
   afv_params_default(&p);
   st = afv_compute(&g, 4, r, &p, &bo, f);
   CHECK(st == AFV_ECOINCIDENT && g.bad_i == 1 && g.bad_j == 3,
@@ -1074,6 +1074,23 @@ static void test_coincident_and_nonfinite(void)
   st = afv_compute(&g, 4, r, &p, &bo, f);
   CHECK(st == AFV_ENONFINITE && g.bad_i == 3, "NaN: status %d cell %d", st,
         g.bad_i);
+  r[2] = INFINITY;                  /* the first cell not finite is named */
+  st = afv_compute(&g, 4, r, &p, &bo, f);
+  CHECK(st == AFV_ENONFINITE && g.bad_i == 1, "inf and NaN: status %d cell "
+        "%d (want 1)", st, g.bad_i);
+  /* made coincident by a move within the Verlet skin: caught by the lists
+  ** built from still-valid candidates (no rebuild), with the same names */
+  r[2] = 1.5;
+  r[6] = 1.55;
+  st = afv_compute(&g, 4, r, &p, &bo, f);
+  CHECK(st == AFV_OK, "cells 0.05 l apart: status %d", st);
+  rebuilds = g.n_rebuilds;
+  r[6] = 1.5;
+  st = afv_compute(&g, 4, r, &p, &bo, f);
+  CHECK(st == AFV_ECOINCIDENT && g.bad_i == 1 && g.bad_j == 3
+        && g.n_rebuilds == rebuilds, "moved onto each other: status %d, "
+        "cells %d and %d, rebuilds %d (want 1, 3, %d)", st, g.bad_i, g.bad_j,
+        g.n_rebuilds, rebuilds);
   r[6] = 2.5;
   p.l = 0;
   CHECK(afv_compute(&g, 4, r, &p, &bo, f) == AFV_EINVAL, "l = 0 accepted");
