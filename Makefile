@@ -4,6 +4,7 @@
 #   make test       build and run the test suite (ends "N passed, M failed")
 #   make run        build, then run a short default simulation
 #   make bench      build and run the benchmark
+#   make bench-compare  per-cell cost against N = 400 (and threads, OPENMP=1)
 #   make clean
 #
 # CC and CFLAGS may be overridden (make CC=clang, make CC=tcc).
@@ -25,7 +26,7 @@ LIB_SRC  = geom.c afv.c dynamics.c analysis.c svg.c io.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
-.PHONY: all test run bench bench-quick clean
+.PHONY: all test run bench bench-quick bench-compare clean
 
 all: afv libafv.a
 
@@ -68,6 +69,15 @@ bench: test/bench
 bench-quick: test/bench
 	@st=0; for s in $(BENCH_STATES); do for n in 400 40000; do \
 	  ./test/bench $$s $$n || st=1; done; done; exit $$st
+
+# Comparisons timed in turn within one process (see test/bench.c): the
+# per-cell cost at N = 40000 and 400000 over N = 400 at the same age, and,
+# in an OpenMP build, 1 against 2 threads at N = 40000.
+bench-compare: test/bench
+	@st=0; for s in $(BENCH_STATES); do for n in 40000 400000; do \
+	  ./test/bench --vs-400 $$s $$n || st=1; done; done; \
+	if [ "$(OPENMP)" = 1 ]; then for s in $(BENCH_STATES); do \
+	  ./test/bench --threads $$s 40000 || st=1; done; fi; exit $$st
 
 clean:
 	rm -f *.o libafv.a afv test/run_tests test/bench

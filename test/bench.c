@@ -29,10 +29,25 @@
 ** Each measurement runs in its own process so that the peak memory is that
 ** of one N.  POSIX (clock_gettime, /proc) is fine here: this is not the
 ** library.
+**
+** Two comparisons (make bench-compare) time two things in turn within one
+** process, because separate runs of a virtual machine's wall clock compare
+** poorly (README, Performance):
+**   test/bench --vs-400 random|cluster N [COPIES]
+**     the per-cell cost of N over that of 400 at the same age of the two
+**     states (compare_sizes); prints
+**     compare state=STATE N=N vs=400 us_400=X us_N=Y ratio=R copies=C
+**   test/bench --threads random|cluster N [CHUNKS]     (OpenMP build)
+**     1 against 2 threads on the same steps, and what 2 threads give
+**     for a loop of independent arithmetic at the same moments
+**     (compare_threads); prints
+**     threads state=STATE N=N speedup=X reference_speedup=Y chunks=C
 */
 #define _POSIX_C_SOURCE 200809L
 #include "afv.h"
 
+#include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -231,6 +246,168 @@ static double time_steps(afv_sim *s, int force_only, int steps)
   return now_seconds() - t0;
 }
 
+/* ---- comparisons ------------------------------------------------------- */
+#define SMALL_N 400
+#define COMPARE_WARM 20     /* untimed steps before the timed ones */
+
+/* The per-cell cost of the n-cell state over that of the SMALL_N one, at
+** the same age and in the same machine mode: `copies` fresh copies of the
+** SMALL_N state are each stepped COMPARE_WARM steps untimed, then `copies`
+** steps timed, alone (so that it runs from its own caches, as a small
+** simulation does); between copies the n-cell state (stepped COMPARE_WARM
+** steps first) takes one timed step.  Both are so timed over steps
+** COMPARE_WARM to COMPARE_WARM + copies of their states, interleaved. */
+static int compare_sizes(const char *name, int cluster, int n, int copies)
+{
+  afv_sim small, big, s;
+  double t_small = 0, t_big = 0, t = 0, us_small, us_big;
+  int c, st;
+  memset(&small, 0, sizeof small);
+  memset(&big, 0, sizeof big);
+  st = make_state(&small, cluster, SMALL_N);
+  if (st == AFV_OK) st = make_state(&big, cluster, n);
+  if (st == AFV_OK && time_steps(&big, 0, COMPARE_WARM) < 0) st = -1;
+  for (c = 0; c < copies && st == AFV_OK; c++) {
+    memset(&s, 0, sizeof s);
+    st = afv_sim_init(&s, SMALL_N, small.r, small.theta, &small.par,
+                      &small.box, &small.dyn);
+    if (st == AFV_OK && time_steps(&s, 0, COMPARE_WARM) < 0) st = -1;
+    if (st == AFV_OK && (t = time_steps(&s, 0, copies)) < 0) st = -1;
+    t_small += t;
+    afv_sim_free(&s);
+    if (st == AFV_OK && (t = time_steps(&big, 0, 1)) < 0) st = -1;
+    t_big += t;
+  }
+  afv_sim_free(&small);
+  afv_sim_free(&big);
+  if (st != AFV_OK) {
+    if (st > 0) fprintf(stderr, "bench: %s\n", afv_strerror(st));
+    return 1;
+  }
+  us_small = 1e6 * t_small / ((double)copies * copies * SMALL_N);
+  us_big = 1e6 * t_big / ((double)copies * n);
+  printf("compare state=%s N=%d vs=%d us_%d=%.4g us_N=%.4g ratio=%.3f "
+         "copies=%d\n", name, n, SMALL_N, SMALL_N, us_small, us_big,
+         us_big / us_small, copies);
+  return 0;
+}
+
+#ifdef _OPENMP
+#define CHUNK_STEPS 12
+#define REFERENCE_ITERATIONS 2000000L
+
+/* Seconds for a loop of independent arithmetic with `threads` threads: no
+** memory traffic and no synchronisation inside, so what 2 threads give
+** here is what the machine gives at that moment. */
+static double reference_loop(int threads)
+{
+  double t0 = now_seconds(), sum = 0;
+  long i;
+  omp_set_num_threads(threads);
+#pragma omp parallel for schedule(static) reduction(+: sum)
+  for (i = 0; i < REFERENCE_ITERATIONS; i++) {
+    double x = 1e-9 * (double)i, y = 1;
+    int k;
+    for (k = 0; k < 50; k++) y = 0.999 * y + x;
+    sum += y;
+  }
+  if (sum < 0) printf("%g\n", sum);     /* keeps the loop */
+  return now_seconds() - t0;
+}
+
+/* Two copies of the state, equal bit for bit, step in turn: CHUNK_STEPS
+** steps of one with 1 thread, then the same steps of the other with 2 (the
+** results do not depend on the thread count, so the work is the same; the
+** positions are compared at the end), `chunks` times; after each pair of
+** chunks the reference loop with 1 and with 2 threads.  The virtual
+** cores of a shared machine do not always give 2 threads twice the
+** throughput of one; the reference shows how far they did. */
+static int compare_threads(const char *name, int cluster, int n, int chunks)
+{
+  afv_sim one, two;
+  double t1 = 0, t2 = 0, ref1 = 0, ref2 = 0, t = 0;
+  int saved = omp_get_max_threads(), c, st, same;
+  memset(&one, 0, sizeof one);
+  memset(&two, 0, sizeof two);
+  st = make_state(&one, cluster, n);
+  if (st == AFV_OK) st = make_state(&two, cluster, n);
+  for (c = 0; c < chunks && st == AFV_OK; c++) {
+    omp_set_num_threads(1);
+    if ((t = time_steps(&one, 0, CHUNK_STEPS)) < 0) st = -1;
+    t1 += t;
+    omp_set_num_threads(2);
+    if (st == AFV_OK && (t = time_steps(&two, 0, CHUNK_STEPS)) < 0) st = -1;
+    t2 += t;
+    ref1 += reference_loop(1);
+    ref2 += reference_loop(2);
+  }
+  omp_set_num_threads(saved);
+  same = st == AFV_OK && memcmp(one.r, two.r, (size_t)n * 2 * sizeof *one.r)
+                         == 0;
+  afv_sim_free(&one);
+  afv_sim_free(&two);
+  if (st != AFV_OK) {
+    if (st > 0) fprintf(stderr, "bench: %s\n", afv_strerror(st));
+    return 1;
+  }
+  if (!same) {
+    fprintf(stderr, "bench: 1 and 2 threads gave different positions\n");
+    return 1;
+  }
+  printf("threads state=%s N=%d speedup=%.3f reference_speedup=%.3f "
+         "chunks=%d\n", name, n, t1 / t2, ref1 / ref2, chunks);
+  return 0;
+}
+#endif
+
+/* A whole decimal argument in [lo, INT_MAX] into *v, else 0. */
+static int parse_int(const char *text, long lo, int *v)
+{
+  char *end;
+  long x;
+  errno = 0;
+  x = strtol(text, &end, 10);
+  if (errno || end == text || *end != '\0' || x < lo || x > INT_MAX)
+    return 0;
+  *v = (int)x;
+  return 1;
+}
+
+static int usage(void)
+{
+  fprintf(stderr,
+          "usage: bench random|cluster|random-force|cluster-force N [STEPS]\n"
+          "       bench --vs-400 random|cluster N [COPIES]   (default 100)\n"
+          "       bench --threads random|cluster N [CHUNKS]  (default 20; "
+          "OpenMP build)\n");
+  return 2;
+}
+
+/* The comparisons' command lines: argv[1] is --vs-400 or --threads. */
+static int compare_main(int argc, char **argv)
+{
+  int threads_mode = strcmp(argv[1], "--threads") == 0, cluster, n, count;
+  if (argc < 4 || argc > 5) return usage();
+  if (strcmp(argv[2], "random") != 0 && strcmp(argv[2], "cluster") != 0)
+    return usage();
+  cluster = strcmp(argv[2], "cluster") == 0;
+  count = threads_mode ? 20 : 100;
+  if (!parse_int(argv[3], 2, &n)
+      || (argc > 4 && !parse_int(argv[4], 1, &count))) {
+    fprintf(stderr, "bench: N must be an integer >= 2 and the count an "
+            "integer >= 1\n");
+    return 2;
+  }
+  if (!threads_mode) return compare_sizes(argv[2], cluster, n, count);
+#ifdef _OPENMP
+  return compare_threads(argv[2], cluster, n, count);
+#else
+  fprintf(stderr, "bench: --threads needs the OpenMP build (make clean; "
+          "make OPENMP=1 test/bench)\n");
+  return 2;
+#endif
+}
+
 int main(int argc, char **argv)
 {
   static const char *states[] = {"random", "cluster", "random-force",
@@ -238,22 +415,21 @@ int main(int argc, char **argv)
   afv_sim sim;
   double t[REPEATS];
   int n, steps, k, state = -1, st;
+  if (argc >= 2 && (strcmp(argv[1], "--vs-400") == 0
+                    || strcmp(argv[1], "--threads") == 0))
+    return compare_main(argc, argv);
   if (argc >= 2)
     for (k = 0; k < 4; k++)
       if (strcmp(argv[1], states[k]) == 0) state = k;
-  if (argc < 3 || argc > 4 || state < 0) {
-    fprintf(stderr, "usage: bench random|cluster|random-force|cluster-force "
-            "N [STEPS]\n");
+  if (argc < 3 || argc > 4 || state < 0) return usage();
+  if (!parse_int(argv[2], 2, &n)) {
+    fprintf(stderr, "bench: N must be an integer >= 2, not '%s'\n", argv[2]);
     return 2;
   }
-  n = atoi(argv[2]);
-  if (n < 2) {
-    fprintf(stderr, "bench: N must be >= 2\n");
-    return 2;
-  }
-  steps = argc > 3 ? atoi(argv[3]) : STEPS_PER_REPEAT;
-  if (steps < 1) {
-    fprintf(stderr, "bench: STEPS must be >= 1\n");
+  steps = STEPS_PER_REPEAT;
+  if (argc > 3 && !parse_int(argv[3], 1, &steps)) {
+    fprintf(stderr, "bench: STEPS must be an integer >= 1, not '%s'\n",
+            argv[3]);
     return 2;
   }
   memset(&sim, 0, sizeof sim);
