@@ -71,11 +71,11 @@ bench-quick: test/bench
 	  ./test/bench $$s $$n || st=1; done; done; exit $$st
 
 # Comparisons timed in turn within one process (see test/bench.c): the
-# per-cell cost at N = 40000 and 400000 over N = 400 at the same age, and,
-# in an OpenMP build, 1 against 2 threads at N = 40000.
+# per-cell cost at N = 40000 and 400000 over N = 400 at the same age (one
+# thread), and, in an OpenMP build, 1 against 2 threads at N = 40000.
 bench-compare: test/bench
 	@st=0; for s in $(BENCH_STATES); do for n in 40000 400000; do \
-	  ./test/bench --vs-400 $$s $$n || st=1; done; done; \
+	  OMP_NUM_THREADS=1 ./test/bench --vs-400 $$s $$n || st=1; done; done; \
 	if [ "$(OPENMP)" = 1 ]; then for s in $(BENCH_STATES); do \
 	  ./test/bench --threads $$s 40000 || st=1; done; fi; exit $$st
 

@@ -301,8 +301,8 @@ static void move_of(const afv_sim *s, int i, double h, double *dx, double *dy)
   *dy = h * (mu * s->f[2*i+1] + s->pol[2*i+1]);
 }
 
-/* The first i with m[i] = largest, or NaN if largest is: for the report of
-** a refused step, so serial and off the common path. */
+/* The first i with m[i] equal to `largest` (NaN if `largest` is NaN), for
+** the report of a refused step: serial, and off the common path. */
 static int first_at(const double *m, int n, double largest)
 {
   int i;

@@ -586,11 +586,12 @@ int afv_cells_around(const afv_geom *g, double x, double y, double R,
 ** movers are few the pairs that involve them are checked one by one: each
 ** mover's cells within 2l, movers included, are found in the cell list of
 ** the rebuild (window_around, which widens its search by the largest move
-** since the rebuild, g->cand_moved).  Both the marking of the movers and
-** their checks are parallel loops: a serial scan here took about 7% of
-** the first thread's time in a 2-thread step (random, N = 40000, perf).  Without this, one fast cell
+** since the rebuild, g->cand_moved).  Without this, one fast cell
 ** anywhere forced a rebuild of the whole tissue: at N = 40000 in the
-** random benchmark state every 3.9 steps.  The checks cost O(movers), so
+** random benchmark state every 3.9 steps.  Both the marking of the movers
+** and their checks are parallel loops (a serial scan here took about 7%
+** of the first thread's time in a 2-thread step; random, N = 40000,
+** perf).  The checks cost O(movers), so
 ** MOVERS_MAX is a fixed fraction of the cells and the rebuilds come as
 ** often at every N.  (An earlier version tested the movers' pairs among
 ** themselves directly, O(movers^2), so it allowed only 2 sqrt(N) + 16

@@ -37,6 +37,7 @@
 **     the per-cell cost of N over that of 400 at the same age of the two
 **     states (compare_sizes); prints
 **     compare state=STATE N=N vs=400 us_400=X us_N=Y ratio=R copies=C
+**       threads=T
 **   test/bench --threads random|cluster N [CHUNKS]     (OpenMP build)
 **     1 against 2 threads on the same steps, and what 2 threads give
 **     for a loop of independent arithmetic at the same moments
@@ -287,8 +288,8 @@ static int compare_sizes(const char *name, int cluster, int n, int copies)
   us_small = 1e6 * t_small / ((double)copies * copies * SMALL_N);
   us_big = 1e6 * t_big / ((double)copies * n);
   printf("compare state=%s N=%d vs=%d us_%d=%.4g us_N=%.4g ratio=%.3f "
-         "copies=%d\n", name, n, SMALL_N, SMALL_N, us_small, us_big,
-         us_big / us_small, copies);
+         "copies=%d threads=%d\n", name, n, SMALL_N, SMALL_N, us_small,
+         us_big, us_big / us_small, copies, threads());
   return 0;
 }
 
