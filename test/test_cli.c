@@ -196,13 +196,15 @@ static void test_cli_eval_format(void)
 /* --box LX,LY wraps positions into the box, and the flags reach the model. */
 static void test_cli_eval_options(void)
 {
-  double x, y;
+  double x = NAN, y = NAN;
+  const char *second;
   int st;
   write_file("wrap.xy", "-1 13\n2 2\n");
   st = afv("eval %s/wrap.xy --box 10,12 --l 1.5 --A0 7 --P0 9 --KA 2 "
            "--KP 3 --Lambda 0.5 --cap 0");
   CHECK(st == 0, "exit status %d: %s", st, err);
-  CHECK(sscanf(strchr(out, '\n') + 1, "0 %lf %lf", &x, &y) == 2 && x == 9
+  second = strchr(out, '\n');      /* the first cell's line follows */
+  CHECK(second && sscanf(second + 1, "0 %lf %lf", &x, &y) == 2 && x == 9
         && y == 1, "wrapped position (%g, %g), want (9, 1)", x, y);
   /* an isolated cell of radius 1.5: E = KA (A - A0)^2 + KP (P - P0)^2
   ** + Lambda L for each of the two cells */
