@@ -397,7 +397,7 @@ static double euler_all(afv_sim *s, double split)
   double *r = s->r, *r_start = s->r_start, *pol = s->pol, *m = s->move_len;
   const double *f = s->f, *theta = s->theta, *v0_i = s->dyn.v0_i;
   double split2 = split > 0 ? split * split : INFINITY, most = 0;
-  double dt = s->dyn.dt, mu = s->dyn.mu, hmu = dt * mu, v0 = s->dyn.v0;
+  double dt = s->dyn.dt, hmu = dt * s->dyn.mu, v0 = s->dyn.v0;
   int i, n = s->n, nan = 0;
   AFV_PARALLEL_REDUCE(reduction(max: most) reduction(|: nan))
   for (i = 0; i < n; i++) {
@@ -416,9 +416,11 @@ static double euler_all(afv_sim *s, double split)
     m[i] = move2;
     if (isnan(move2)) nan = 1;
     else if (move2 > most) most = move2;
-    if (!(move2 > split2)) {          /* move_of(s, i, dt, ...) */
-      r[2*i] = x + dt * (mu * fx + px);
-      r[2*i+1] = y + dt * (mu * fy + py);
+    if (!(move2 > split2)) {
+      double dx, dy;
+      move_of(s, i, dt, &dx, &dy);
+      r[2*i] = x + dx;
+      r[2*i+1] = y + dy;
     }
   }
   return nan ? NAN : most;
