@@ -26,20 +26,32 @@ LIB_SRC  = geom.c afv.c dynamics.c analysis.c svg.c io.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
-.PHONY: all test run bench bench-quick bench-compare clean
+.PHONY: all test run bench bench-quick bench-compare clean FORCE
 
 all: afv libafv.a
+
+# Every object and program depends on .build-flags, which holds the
+# compiler and flags of the last build and is rewritten only when they
+# change: switching CC, CFLAGS or OPENMP rebuilds everything (objects of
+# two builds, say with and without -fopenmp, would not link together).
+BUILD_FLAGS = $(CC) $(CFLAGS) $(LDLIBS)
+
+.build-flags: FORCE
+	@printf '%s\n' '$(BUILD_FLAGS)' | cmp -s - $@ \
+	  || printf '%s\n' '$(BUILD_FLAGS)' > $@
+
+FORCE:
 
 libafv.a: $(LIB_OBJ)
 	$(AR) rcs $@ $(LIB_OBJ)
 
-afv: main.o libafv.a
+afv: main.o libafv.a .build-flags
 	$(CC) $(CFLAGS) -o $@ main.o libafv.a $(LDLIBS)
 
-%.o: %.c afv.h
+%.o: %.c afv.h .build-flags
 	$(CC) $(CFLAGS) -c -o $@ $<
 
-test/run_tests: $(TEST_SRC) test/test.h libafv.a afv.h
+test/run_tests: $(TEST_SRC) test/test.h libafv.a afv.h .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ $(TEST_SRC) libafv.a $(LDLIBS)
 
 test: afv test/run_tests
@@ -59,7 +71,7 @@ run: afv
 # The benchmark (test/bench.c): one line per state and N, see its header.
 BENCH_STATES = random cluster
 
-test/bench: test/bench.c libafv.a afv.h
+test/bench: test/bench.c libafv.a afv.h .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ test/bench.c libafv.a $(LDLIBS)
 
 bench: test/bench
@@ -80,4 +92,4 @@ bench-compare: test/bench
 	  ./test/bench --threads $$s 40000 || st=1; done; fi; exit $$st
 
 clean:
-	rm -f *.o libafv.a afv test/run_tests test/bench
+	rm -f *.o libafv.a afv test/run_tests test/bench .build-flags
