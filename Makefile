@@ -32,8 +32,10 @@ all: afv libafv.a
 
 # Every object and program depends on .build-flags, which holds the
 # compiler and flags of the last build and is rewritten only when they
-# change: switching CC, CFLAGS or OPENMP rebuilds everything (objects of
-# two builds, say with and without -fopenmp, would not link together).
+# change: switching CC, CFLAGS or OPENMP rebuilds everything.  (Else the
+# builds mix: after a serial build, make OPENMP=1 test linked the serial
+# library into an OpenMP test program; the other way round, the serial
+# programs failed to link the OpenMP library.)
 BUILD_FLAGS = $(CC) $(CFLAGS) $(LDLIBS)
 
 .build-flags: FORCE
