@@ -403,8 +403,8 @@ static int compare_main(int argc, char **argv)
 #ifdef _OPENMP
   return compare_threads(argv[2], cluster, n, count);
 #else
-  fprintf(stderr, "bench: --threads needs the OpenMP build (make clean; "
-          "make OPENMP=1 test/bench)\n");
+  fprintf(stderr, "bench: --threads needs the OpenMP build (make "
+          "OPENMP=1 test/bench)\n");
   return 2;
 #endif
 }
