@@ -298,8 +298,9 @@ typedef struct afv_sim {
   afv_box    box;      /* boundary */
   afv_dyn    dyn;      /* dynamics; per-cell arrays point into own[] */
   afv_geom   geom;     /* geometry at r (energy, areas, contacts, ...) */
-  long long  substeps;  /* extra sub-step pieces so far (= extra force
-                       ** evaluations) */
+  long long  substeps;  /* extra sub-step pieces so far, summed over the
+                       ** groups of fast cells (= extra force evaluations
+                       ** of their regions; dynamics.c, GROUPS) */
   int        bad_cell; /* on AFV_EUNSTABLE: the offending cell, else -1 */
   double     bad_disp; /* on AFV_EUNSTABLE: its step length / l (NaN if
                        ** the force was not finite) */
@@ -309,7 +310,8 @@ typedef struct afv_sim {
   int       *fast;     /* private, sub-steps: the fast cells (n) */
   int       *region;   /* private, sub-steps: cells around them (n) */
   int       *in_region; /* private, sub-steps: marks while listing (n) */
-  int       *around;   /* private, sub-steps: cells around a fast one (n) */
+  int       *around;   /* private, sub-steps: cells around a fast one,
+                       ** then a group's fast cells (n) */
   double    *sub;      /* private: the region's positions, forces and
                        ** per-cell parameters (8n) */
   afv_geom   sub_geom; /* private: the region's geometry */

@@ -906,6 +906,25 @@ static void test_whole_step_move_bounded(void)
   afv_sim_free(&s);
 }
 
+/* A tissue of N - 1 cells in a cluster at spacing 1.7 l (box one) and one
+** more cell just outside it, `gap` l short of losing its contact with the
+** rightmost cell: the detaching pair makes fast cells (sub-steps).  Its
+** parameters: the defaults, with v0 0.3 and no rotational noise. */
+static void detaching_cluster(int n, const afv_box *one, double gap,
+                              double *r, afv_params *p, afv_dyn *d)
+{
+  int i, rim = 0;
+  afv_params_default(p);
+  afv_dyn_default(d);
+  d->v0 = 0.3;
+  d->Dr = 0;
+  afv_init_cluster(n - 1, 1.7, one, r);
+  for (i = 1; i < n - 1; i++)
+    if (r[2*i] > r[2*rim]) rim = i;
+  r[2*(n-1)] = r[2*rim] + 2 - gap;
+  r[2*(n-1)+1] = r[2*rim+1];
+}
+
 /* Local sub-steps see what the whole tissue would show them: a tissue with
 ** one pair 1e-7 l from detachment, stepped by afv_sim_step, against the
 ** same rule (Euler for the others, pieces for the fast cells) computed by
@@ -923,18 +942,7 @@ static void test_local_substeps_match_whole_tissue(void)
   int i, fast[N], nf = 0, piece;
   memset(&s, 0, sizeof s);
   memset(&g, 0, sizeof g);
-  afv_params_default(&p);
-  afv_dyn_default(&d);
-  d.v0 = 0.3;
-  d.Dr = 0;
-  int rim = 0;
-  afv_init_cluster(N - 1, 1.7, &b, r);
-  for (i = 1; i < N - 1; i++)
-    if (r[2*i] > r[2*rim]) rim = i;
-  /* the last cell sits just outside the cluster, on the verge of losing
-  ** its contact with the rightmost cell */
-  r[2*(N-1)] = r[2*rim] + 2 - 1e-7;
-  r[2*(N-1)+1] = r[2*rim+1];
+  detaching_cluster(N, &b, 1e-7, r, &p, &d);
   CHECK(afv_sim_init(&s, N, r, NULL, &p, &b, &d) == AFV_OK, "init");
   /* by hand: the same pieces, forces from the whole tissue */
   memcpy(ref, s.r, sizeof ref);
@@ -975,6 +983,46 @@ static void test_local_substeps_match_whole_tissue(void)
   afv_sim_free(&s);
 }
 
+/* GROUPS (dynamics.c): fast cells far apart take their pieces apart.  Two
+** such tissues side by side in a box twice as wide, about 10 l apart, the
+** second with its first cell pushed 0.5 l onto a neighbour (so that its
+** fast cells need more pieces: 2 extra against 1; the test checks that
+** they do): after a step the first tissue's cells have the same bits as
+** when it is stepped alone.  (With one piece length for every fast cell, the first
+** tissue would take the second's pieces, and its cells would differ.) */
+static void test_far_groups_step_alone(void)
+{
+  enum { N = 80 };
+  afv_box one = {1, 30, 30}, two = {1, 60, 30};
+  afv_params p;
+  afv_dyn d;
+  afv_sim alone, both;
+  double r[2 * N], rr[4 * N];
+  int i;
+  memset(&alone, 0, sizeof alone);
+  memset(&both, 0, sizeof both);
+  detaching_cluster(N, &one, 1e-7, r, &p, &d);
+  memcpy(rr, r, sizeof r);
+  detaching_cluster(N, &one, 1e-7, rr + 2 * N, &p, &d);
+  rr[2 * N] += 0.5;         /* pushed onto its neighbour: more pieces */
+  for (i = 0; i < N; i++) rr[2 * (N + i)] += 30;
+  CHECK(afv_sim_init(&alone, N, r, NULL, &p, &one, &d) == AFV_OK, "init");
+  CHECK(afv_sim_init(&both, 2 * N, rr, NULL, &p, &two, &d) == AFV_OK,
+        "init of the two");
+  CHECK(afv_sim_step(&alone) == AFV_OK && afv_sim_step(&both) == AFV_OK,
+        "step refused");
+  printf("  extra pieces: %lld alone, %lld with the other tissue\n",
+         alone.substeps, both.substeps);
+  CHECK(alone.substeps > 0 && both.substeps > 2 * alone.substeps,
+        "the second tissue needs no more pieces than the first (%lld, "
+        "%lld): the test would not tell", alone.substeps,
+        both.substeps - alone.substeps);
+  CHECK(memcmp(alone.r, both.r, sizeof r) == 0,
+        "the first tissue moved differently beside the second");
+  afv_sim_free(&alone);
+  afv_sim_free(&both);
+}
+
 void suite_dynamics(void)
 {
   snprintf(tmpdir, sizeof tmpdir, "/tmp/afv_test_dynamics.%ld",
@@ -988,6 +1036,7 @@ void suite_dynamics(void)
   RUN(test_substeps_tame_detachment);
   RUN(test_whole_step_move_bounded);
   RUN(test_local_substeps_match_whole_tissue);
+  RUN(test_far_groups_step_alone);
   RUN(test_free_abp_msd_and_polarity);
   RUN(test_per_cell_v0_and_Dr);
   RUN(test_energy_decrease_first_order);
