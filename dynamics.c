@@ -377,7 +377,7 @@ static int unstable(afv_sim *s, int cell, double len)
 ** follow the finest pieces of any: with more fast cells the pieces per
 ** step grew, and every piece recomputed every region -- in the random
 ** benchmark state (steps 20 - 220) 0.015 region cells per cell and step at
-** N = 400 but 0.034 at N = 400000; by groups 0.014 at every N. */
+** N = 400 but 0.034 at N = 400000; by groups 0.014 - 0.015 at every N. */
 
 /* Moves the m cells of list by h. */
 static void move_cells(afv_sim *s, const int *list, int m, double h)
