@@ -347,8 +347,9 @@ static int unstable(afv_sim *s, int cell, double len)
 ** each piece is the fraction of the time left that moves the fastest cell
 ** of the group max_move l, and the group's forces are recomputed between
 ** pieces from the cells around it (REGION_RADIUS), the rest held where
-** their Euler step put them; at most AFV_MAX_SUBSTEPS pieces.  The singular force pulls the pair back into contact, away from
-** the singularity, so one extra piece usually suffices.  Local pieces cost
+** their Euler step put them; at most AFV_MAX_SUBSTEPS pieces.  The
+** singular force pulls the pair back into contact, away from the
+** singularity, so one extra piece usually suffices.  Local pieces cost
 ** O(cells near the fast ones), so a large tissue with many contacts about
 ** to break does not pay a whole-tissue force evaluation per piece.  As
 ** max_move goes to 0 the fast cells' motion converges to the exact
