@@ -371,9 +371,14 @@ static int unstable(afv_sim *s, int cell, double len)
 ** pieces in its own region.  Two groups start at least 5 l apart and each
 ** cell moves at most l/2 in an accepted step, so a fast cell of one group
 ** stays at least 4 l from those of another: outside what its force depends
-** on, and outside its region at the start of the step.  A group's motion
-** is then that of the group alone, and does not depend on what happens
-** elsewhere in the tissue (test_far_groups_step_alone).  One piece length
+** on, and outside its region at the start of the step.  (The groups are
+** moved one after another, so a later group's region may hold a fast cell
+** of an earlier one where its pieces left it: held, like any region cell,
+** and still at least 4 l from the later group's fast cells, so it changes
+** none of their forces.)  A group's motion is then that of the group
+** alone, and does not depend on what happens elsewhere in the tissue
+** (test_far_groups_step_alone; that test's groups stay 10 l apart, so it
+** does not exercise the parenthesis).  One piece length
 ** for all the fast cells of the tissue, as before, made every fast cell
 ** follow the finest pieces of any: with more fast cells the pieces per
 ** step grew, and every piece recomputed every region -- in the random

@@ -988,8 +988,9 @@ static void test_local_substeps_match_whole_tissue(void)
 ** second with its first cell pushed 0.5 l onto a neighbour (so that its
 ** fast cells need more pieces: 2 extra against 1; the test checks that
 ** they do): after a step the first tissue's cells have the same bits as
-** when it is stepped alone.  (With one piece length for every fast cell, the first
-** tissue would take the second's pieces, and its cells would differ.) */
+** when it is stepped alone.  (With one piece length for every fast cell,
+** the first tissue would take the second's pieces, and its cells would
+** differ.) */
 static void test_far_groups_step_alone(void)
 {
   enum { N = 80 };
