@@ -377,8 +377,8 @@ static int unstable(afv_sim *s, int cell, double len)
 ** and still at least 4 l from the later group's fast cells, so it changes
 ** none of their forces.)  A group's motion is then that of the group
 ** alone, and does not depend on what happens elsewhere in the tissue
-** (test_far_groups_step_alone; that test's groups stay 10 l apart, so it
-** does not exercise the parenthesis).  One piece length
+** (test_far_groups_step_alone, groups 10 l apart;
+** test_near_groups_either_order, the parenthesis).  One piece length
 ** for all the fast cells of the tissue, as before, made every fast cell
 ** follow the finest pieces of any: with more fast cells the pieces per
 ** step grew, and every piece recomputed every region -- in the random

@@ -1024,6 +1024,77 @@ static void test_far_groups_step_alone(void)
   afv_sim_free(&both);
 }
 
+/* GROUPS, the parenthesis: two groups just over REGION_RADIUS (5 l) apart,
+** so that the group moved second finds a fast cell of the first, already
+** moved, inside its region.  Pair A stands upright at x = 0, its cells
+** 1e-7 l from detachment at y = 0 and y = 2 - 1e-7; pair B lies flat to
+** its right, its left cell at (X, 1), X chosen so that that cell is
+** 5 + 1e-4 l from both of A's cells.  A's cells move towards each other
+** (the singular force pulls a detaching pair back into contact), so
+** towards y = 1, into the region of B's left cell.  Numbered A then B, A
+** moves first and B's region holds A's moved cell; numbered B then A, the
+** other way round.  Both must give every cell the bits it gets when its
+** pair is stepped alone.  (Had a group's marks survived it, B would take
+** A's cells into its own group and move them a second time.) */
+static void test_near_groups_either_order(void)
+{
+  enum { N = 4 };
+  const double R = 5.0;       /* REGION_RADIUS in dynamics.c, in l */
+  afv_box b = {1, 30, 30};
+  afv_params p;
+  afv_dyn d;
+  afv_sim ab, ba, a_alone, b_alone;
+  double X = sqrt((R + 1e-4) * (R + 1e-4) - 1), r[2 * N], rba[2 * N];
+  double closest = HUGE_VAL, split;
+  int i, j;
+  memset(&ab, 0, sizeof ab);
+  memset(&ba, 0, sizeof ba);
+  memset(&a_alone, 0, sizeof a_alone);
+  memset(&b_alone, 0, sizeof b_alone);
+  afv_params_default(&p);
+  afv_dyn_default(&d);
+  d.Dr = 0;                   /* v0 = 0: the forces alone move the cells */
+  r[0] = 10;      r[1] = 10;                    /* pair A, upright */
+  r[2] = 10;      r[3] = 12 - 1e-7;
+  r[4] = 10 + X;  r[5] = 11;                    /* pair B, flat */
+  r[6] = 12 + X - 1e-7; r[7] = 11;
+  memcpy(rba, r + 4, 4 * sizeof(double));       /* B then A */
+  memcpy(rba + 4, r, 4 * sizeof(double));
+  CHECK(afv_sim_init(&ab, N, r, NULL, &p, &b, &d) == AFV_OK
+        && afv_sim_init(&ba, N, rba, NULL, &p, &b, &d) == AFV_OK
+        && afv_sim_init(&a_alone, 2, r, NULL, &p, &b, &d) == AFV_OK
+        && afv_sim_init(&b_alone, 2, r + 4, NULL, &p, &b, &d) == AFV_OK,
+        "init");
+  split = d.max_move * p.l;
+  for (i = 0; i < N; i++)
+    CHECK(d.dt * d.mu * hypot(ab.f[2*i], ab.f[2*i+1]) > split,
+          "cell %d is not fast: the pairs would not be groups", i);
+  CHECK(afv_sim_step(&ab) == AFV_OK && afv_sim_step(&ba) == AFV_OK
+        && afv_sim_step(&a_alone) == AFV_OK
+        && afv_sim_step(&b_alone) == AFV_OK, "step refused");
+  /* two groups at the start; A's cells end within R of B's left cell */
+  for (i = 0; i < 2; i++)
+    for (j = 2; j < N; j++)
+      CHECK(hypot(r[2*j] - r[2*i], r[2*j+1] - r[2*i+1]) >= R,
+            "cells %d and %d start within %g l: one group", i, j, R);
+  for (i = 0; i < 2; i++)
+    closest = fmin(closest, hypot(r[4] - ab.r[2*i], r[5] - ab.r[2*i+1]));
+  printf("  A's cells end %.6f l from B's left cell (region radius %g)\n",
+         closest, R);
+  CHECK(closest < R, "no moved cell of A in B's region (%.6f l): the test "
+        "would not tell", closest);
+  CHECK(memcmp(ab.r, a_alone.r, 4 * sizeof(double)) == 0
+        && memcmp(ab.r + 4, b_alone.r, 4 * sizeof(double)) == 0,
+        "numbered A then B, a pair moved differently than alone");
+  CHECK(memcmp(ba.r, b_alone.r, 4 * sizeof(double)) == 0
+        && memcmp(ba.r + 4, a_alone.r, 4 * sizeof(double)) == 0,
+        "numbered B then A, a pair moved differently than alone");
+  afv_sim_free(&ab);
+  afv_sim_free(&ba);
+  afv_sim_free(&a_alone);
+  afv_sim_free(&b_alone);
+}
+
 void suite_dynamics(void)
 {
   snprintf(tmpdir, sizeof tmpdir, "/tmp/afv_test_dynamics.%ld",
@@ -1038,6 +1109,7 @@ void suite_dynamics(void)
   RUN(test_whole_step_move_bounded);
   RUN(test_local_substeps_match_whole_tissue);
   RUN(test_far_groups_step_alone);
+  RUN(test_near_groups_either_order);
   RUN(test_free_abp_msd_and_polarity);
   RUN(test_per_cell_v0_and_Dr);
   RUN(test_energy_decrease_first_order);
