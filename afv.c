@@ -59,9 +59,11 @@
 
 /* OpenMP (make OPENMP=1): see geom.c.  Empty in the plain C99 build. */
 #ifdef _OPENMP
-#define AFV_PARALLEL_FOR _Pragma("omp parallel for schedule(static)")
+#define AFV_PRAGMA(text) _Pragma(#text)
+#define AFV_PARALLEL_FOR(size) \
+  AFV_PRAGMA(omp parallel for schedule(static) if ((size) >= AFV_PARALLEL_MIN))
 #else
-#define AFV_PARALLEL_FOR
+#define AFV_PARALLEL_FOR(size)
 #endif
 
 const char *afv_strerror(int status)
@@ -302,7 +304,7 @@ void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
 static void gather_forces(const afv_geom *g, int n, double *f)
 {
   int j;
-  AFV_PARALLEL_FOR
+  AFV_PARALLEL_FOR(n)
   for (j = 0; j < n; j++) {
     double fx = 0, fy = 0;
     int s;
@@ -333,7 +335,7 @@ static int check_inputs(int n, const afv_params *p, const afv_box *b)
 static void shape_all(afv_geom *g, int n, const afv_params *p, int gradient)
 {
   int i;
-  AFV_PARALLEL_FOR
+  AFV_PARALLEL_FOR(n)
   for (i = 0; i < n; i++) {
     cell_targets c = targets_of(p, i);
     afv_cell_shape(g, i, p->l);

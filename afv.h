@@ -40,6 +40,12 @@ const char *afv_strerror(int status);   /* one-line description of a status */
 ** contact: it is kept in the boundary but not counted in afv_geom.contacts. */
 #define AFV_CONTACT_TOL 1e-9
 
+/* ---- OpenMP build (make OPENMP=1) -------------------------------------- */
+/* A per-cell loop over fewer than AFV_PARALLEL_MIN cells runs on the
+** calling thread alone (see geom.c): starting and joining a team costs
+** more than such a loop.  The bits do not depend on it. */
+#define AFV_PARALLEL_MIN 256
+
 /* ---- parameters -------------------------------------------------------- */
 typedef struct afv_params {
   double l;        /* maximal cell radius; the length unit (> 0) */

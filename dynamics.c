@@ -47,12 +47,14 @@
 ** bits.  Empty in the plain C99 build. */
 #ifdef _OPENMP
 #define AFV_PRAGMA(text) _Pragma(#text)
-#define AFV_PARALLEL_FOR AFV_PRAGMA(omp parallel for schedule(static))
-#define AFV_PARALLEL_REDUCE(clauses) \
-  AFV_PRAGMA(omp parallel for schedule(static) clauses)
+#define AFV_PARALLEL_FOR(size) \
+  AFV_PRAGMA(omp parallel for schedule(static) if ((size) >= AFV_PARALLEL_MIN))
+#define AFV_PARALLEL_REDUCE(size, clauses) \
+  AFV_PRAGMA(omp parallel for schedule(static) \
+             if ((size) >= AFV_PARALLEL_MIN) clauses)
 #else
-#define AFV_PARALLEL_FOR
-#define AFV_PARALLEL_REDUCE(clauses)
+#define AFV_PARALLEL_FOR(size)
+#define AFV_PARALLEL_REDUCE(size, clauses)
 #endif
 
 /* ---- sine and cosine ---------------------------------------------------- */
@@ -317,7 +319,7 @@ static double farthest_from_start(afv_sim *s)
 {
   double *m = s->move_len, most = 0;
   int i, nan = 0;
-  AFV_PARALLEL_REDUCE(reduction(max: most) reduction(|: nan))
+  AFV_PARALLEL_REDUCE(s->n, reduction(max: most) reduction(|: nan))
   for (i = 0; i < s->n; i++) {
     double dx = s->r[2*i] - s->r_start[2*i];
     double dy = s->r[2*i+1] - s->r_start[2*i+1];
@@ -389,7 +391,7 @@ static int unstable(afv_sim *s, int cell, double len)
 static void move_cells(afv_sim *s, const int *list, int m, double h)
 {
   int k;
-  AFV_PARALLEL_FOR
+  AFV_PARALLEL_FOR(m)
   for (k = 0; k < m; k++) {
     int i = list[k];
     double dx, dy;
@@ -419,7 +421,7 @@ static double euler_all(afv_sim *s, double split)
   double split2 = split > 0 ? split * split : INFINITY, most = 0;
   double dt = s->dyn.dt, hmu = dt * s->dyn.mu, v0 = s->dyn.v0;
   int i, n = s->n, nan = 0;
-  AFV_PARALLEL_REDUCE(reduction(max: most) reduction(|: nan))
+  AFV_PARALLEL_REDUCE(n, reduction(max: most) reduction(|: nan))
   for (i = 0; i < n; i++) {
     double fx = f[2*i], fy = f[2*i+1], x = r[2*i], y = r[2*i+1];
     double v = v0_i ? v0_i[i] : v0, c, sn, px, py, mx, my, move2;
@@ -688,7 +690,7 @@ int afv_sim_step(afv_sim *s)
     return st;
   }
   pairs = (s->n + 1) / 2;          /* cells 2p and 2p + 1 share one draw */
-  AFV_PARALLEL_FOR
+  AFV_PARALLEL_FOR(s->n)
   for (i = 0; i < pairs; i += NOISE_BLOCK)
     rotate_block(s, i, pairs - i < NOISE_BLOCK ? pairs - i : NOISE_BLOCK,
                  seed, step);

@@ -118,6 +118,8 @@ static void test_threads_bit_identical(void)
   double *r = malloc((size_t)(2 * n) * sizeof(double));
   CHECK(r != NULL, "out of memory");
   if (!r) return;
+  CHECK(n >= AFV_PARALLEL_MIN, "%d cells: every loop would run on one "
+        "thread (AFV_PARALLEL_MIN %d)", n, AFV_PARALLEL_MIN);
   afv_params_default(&p);
   random_tissue(n, 0.5, r, &b);
   compare_runs("random periodic phi 0.5", n, r, &p, &b);
