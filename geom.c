@@ -67,10 +67,10 @@
 ** AFV_PARALLEL_MIN (afv.h) the loop runs on the calling thread.  The
 ** sub-steps' regions (dynamics.c) are tens of cells, and each of their
 ** force evaluations runs about eight such loops: in the random benchmark
-** state at N = 40000 a step started about 300 teams of 2 threads, and
-** with the threshold it takes 7% less time (in-process A/B), about 1.5
-** microseconds per team.  Without OpenMP the macros are empty and the
-** file is plain C99. */
+** state at N = 40000 a step started about 300 teams of 2 threads; with
+** the threshold it takes 1% to 8% less time (in-process A/B, six runs,
+** README).  Without OpenMP the macros are empty and the file is plain
+** C99. */
 #ifdef _OPENMP
 #define AFV_PRAGMA(text) _Pragma(#text)
 #define AFV_PARALLEL_FOR(size) \
