@@ -57,15 +57,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* OpenMP (make OPENMP=1): see geom.c.  Empty in the plain C99 build. */
-#ifdef _OPENMP
-#define AFV_PRAGMA(text) _Pragma(#text)
-#define AFV_PARALLEL_FOR(size) \
-  AFV_PRAGMA(omp parallel for schedule(static) if ((size) >= AFV_PARALLEL_MIN))
-#else
-#define AFV_PARALLEL_FOR(size)
-#endif
-
 const char *afv_strerror(int status)
 {
   switch (status) {

@@ -46,6 +46,21 @@ const char *afv_strerror(int status);   /* one-line description of a status */
 ** more than such a loop.  The bits do not depend on it. */
 #define AFV_PARALLEL_MIN 256
 
+/* The library's per-cell loops are marked with these (geom.c says why any
+** thread count gives the same bits); `size` is the loop's length in cells
+** (in bins for the cell list's bin loop).  Empty without OpenMP. */
+#ifdef _OPENMP
+#define AFV_PRAGMA(text) _Pragma(#text)
+#define AFV_PARALLEL_FOR(size) \
+  AFV_PRAGMA(omp parallel for schedule(static) if ((size) >= AFV_PARALLEL_MIN))
+#define AFV_PARALLEL_REDUCE(size, clauses) \
+  AFV_PRAGMA(omp parallel for schedule(static) \
+             if ((size) >= AFV_PARALLEL_MIN) clauses)
+#else
+#define AFV_PARALLEL_FOR(size)
+#define AFV_PARALLEL_REDUCE(size, clauses)
+#endif
+
 /* ---- parameters -------------------------------------------------------- */
 typedef struct afv_params {
   double l;        /* maximal cell radius; the length unit (> 0) */

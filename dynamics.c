@@ -44,18 +44,7 @@
 /* OpenMP (make OPENMP=1, see geom.c): the per-cell loops of a step touch
 ** only their own cell, the noise is drawn per (cell, step), and the only
 ** reductions are a maximum and an or, so every thread count gives the same
-** bits.  Empty in the plain C99 build. */
-#ifdef _OPENMP
-#define AFV_PRAGMA(text) _Pragma(#text)
-#define AFV_PARALLEL_FOR(size) \
-  AFV_PRAGMA(omp parallel for schedule(static) if ((size) >= AFV_PARALLEL_MIN))
-#define AFV_PARALLEL_REDUCE(size, clauses) \
-  AFV_PRAGMA(omp parallel for schedule(static) \
-             if ((size) >= AFV_PARALLEL_MIN) clauses)
-#else
-#define AFV_PARALLEL_FOR(size)
-#define AFV_PARALLEL_REDUCE(size, clauses)
-#endif
+** bits.  The macros are in afv.h; empty in the plain C99 build. */
 
 /* ---- sine and cosine ---------------------------------------------------- */
 /* Every step needs cos and sin of every cell's angle (the polarity) and of

@@ -57,10 +57,10 @@
 #define BINS_PER_CELL 2
 #define BINS_SLACK    16
 
-/* OpenMP (make OPENMP=1): the per-cell loops marked AFV_PARALLEL_FOR write
-** only their own cell's entries, so any thread count gives the same bits.
-** Static schedule: each thread gets one contiguous, spatially coherent
-** block.  AFV_PARALLEL_REDUCE adds reduction clauses, used only for
+/* OpenMP (make OPENMP=1; the macros are in afv.h): the per-cell loops
+** marked AFV_PARALLEL_FOR write only their own cell's entries, so any
+** thread count gives the same bits.  Static schedule: each thread gets
+** one contiguous, spatially coherent block.  AFV_PARALLEL_REDUCE adds reduction clauses, used only for
 ** reductions whose result does not depend on the order (max, min, | and
 ** sums of integers), so again any thread count gives the same bits.
 ** `size` is the loop's length in cells (in bins for the bin loop): below
@@ -71,17 +71,6 @@
 ** the threshold it takes 1% to 8% less time (in-process A/B, six runs,
 ** README).  Without OpenMP the macros are empty and the file is plain
 ** C99. */
-#ifdef _OPENMP
-#define AFV_PRAGMA(text) _Pragma(#text)
-#define AFV_PARALLEL_FOR(size) \
-  AFV_PRAGMA(omp parallel for schedule(static) if ((size) >= AFV_PARALLEL_MIN))
-#define AFV_PARALLEL_REDUCE(size, clauses) \
-  AFV_PRAGMA(omp parallel for schedule(static) \
-             if ((size) >= AFV_PARALLEL_MIN) clauses)
-#else
-#define AFV_PARALLEL_FOR(size)
-#define AFV_PARALLEL_REDUCE(size, clauses)
-#endif
 
 /* ---- buffers ----------------------------------------------------------- */
 static int grow(void **ptr, int *cap, int need, size_t elem)

@@ -1026,12 +1026,12 @@ static void test_far_groups_step_alone(void)
 
 /* GROUPS, the parenthesis: two groups just over REGION_RADIUS (5 l) apart,
 ** so that the group moved second finds a fast cell of the first, already
-** moved, inside its region.  Pair A stands upright at x = 0, its cells
-** 1e-7 l from detachment at y = 0 and y = 2 - 1e-7; pair B lies flat to
-** its right, its left cell at (X, 1), X chosen so that that cell is
+** moved, inside its region.  Pair A stands upright, its cells 1e-7 l
+** from detachment at (10, 10) and (10, 12 - 1e-7); pair B lies flat to
+** its right, its left cell at (10 + X, 11), X chosen so that that cell is
 ** 5 + 1e-4 l from both of A's cells.  A's cells move towards each other
 ** (the singular force pulls a detaching pair back into contact), so
-** towards y = 1, into the region of B's left cell.  Numbered A then B, A
+** towards y = 11, into the region of B's left cell.  Numbered A then B, A
 ** moves first and B's region holds A's moved cell; numbered B then A, the
 ** other way round.  Both must give every cell the bits it gets when its
 ** pair is stepped alone.  (Had a group's marks survived it, B would take
