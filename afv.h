@@ -56,9 +56,14 @@ const char *afv_strerror(int status);   /* one-line description of a status */
 #define AFV_PARALLEL_REDUCE(size, clauses) \
   AFV_PRAGMA(omp parallel for schedule(static) \
              if ((size) >= AFV_PARALLEL_MIN) clauses)
+/* A loop over independent tasks of unequal cost (the groups of fast cells,
+** dynamics.c): each thread takes the next task when it is free. */
+#define AFV_PARALLEL_TASKS(count) \
+  AFV_PRAGMA(omp parallel for schedule(dynamic, 1) if ((count) > 1))
 #else
 #define AFV_PARALLEL_FOR(size)
 #define AFV_PARALLEL_REDUCE(size, clauses)
+#define AFV_PARALLEL_TASKS(count)
 #endif
 
 /* ---- parameters -------------------------------------------------------- */
@@ -305,6 +310,26 @@ typedef struct afv_dyn {
 /* Paper defaults: mu 1, v0 0, Dr 0.1, dt 0.01, seed 1; max_move 0.05. */
 void afv_dyn_default(afv_dyn *d);
 
+/* Private (dynamics.c, GROUPS): a group of fast cells in a step.  Its
+** region, the cells within REGION_RADIUS of its fast cells, is
+** group_cells[start .. start + nr - 1] (increasing); its fast cells are
+** the nf entries after that (increasing). */
+typedef struct afv_group {
+  int       start, nr, nf;
+  int       status;    /* how its pieces ended: AFV_OK or an error */
+  int       bad_cell;  /* on AFV_EUNSTABLE, as afv_sim.bad_cell */
+  double    bad_disp;
+  long long pieces;    /* the extra pieces it took */
+} afv_group;
+
+/* Private: what one thread needs to move a group in pieces. */
+typedef struct afv_group_work {
+  afv_geom  geom;      /* the region's geometry */
+  double   *sub;       /* the region's positions, forces and per-cell
+                       ** parameters (8 per cell) */
+  int       cap_sub;   /* cells sub has room for */
+} afv_group_work;
+
 /* A running simulation.  Zero-initialise, then afv_sim_init; free with
 ** afv_sim_free.  Invariant between calls: f and geom hold the forces and
 ** the geometry at r, and geom.energy the energy there. */
@@ -329,13 +354,16 @@ typedef struct afv_sim {
   double    *move_len; /* private: per-cell squared move lengths (n) */
   double    *pol;      /* private: v0_i n_i during a step (2n) */
   int       *fast;     /* private, sub-steps: the fast cells (n) */
-  int       *region;   /* private, sub-steps: cells around them (n) */
+  int       *region;   /* private, sub-steps: a region being listed (n) */
   int       *in_region; /* private, sub-steps: marks while listing (n) */
   int       *around;   /* private, sub-steps: cells around a fast one,
                        ** then a group's fast cells (n) */
-  double    *sub;      /* private: the region's positions, forces and
-                       ** per-cell parameters (8n) */
-  afv_geom   sub_geom; /* private: the region's geometry */
+  afv_group *groups;   /* private, sub-steps: this step's groups */
+  int        n_groups, cap_groups;
+  int       *group_cells; /* private: their regions and fast cells */
+  int        cap_group_cells;
+  afv_group_work *work; /* private: one work space per thread */
+  int        n_work;
   int       *iown;     /* private: one block holding the int arrays */
   double    *own;      /* private: one block holding r, theta, f and the
                        ** copies of the per-cell parameter arrays */

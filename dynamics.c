@@ -35,9 +35,13 @@
 */
 #include "afv.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #define TWO_PI 6.28318530717958647692
 
@@ -214,8 +218,15 @@ static const double *own_copy(const double *src, int n, double **next)
 
 void afv_sim_free(afv_sim *s)
 {
+  int w;
   afv_geom_free(&s->geom);
-  afv_geom_free(&s->sub_geom);
+  for (w = 0; w < s->n_work; w++) {
+    afv_geom_free(&s->work[w].geom);
+    free(s->work[w].sub);
+  }
+  free(s->work);
+  free(s->groups);
+  free(s->group_cells);
   free(s->own);
   free(s->iown);
   memset(s, 0, sizeof *s);
@@ -229,15 +240,14 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   afv_sim_free(s);
   if (n < 0 || dyn_check(d, n) != AFV_OK) return AFV_EINVAL;
   /* r, f, r_start, pol (2n each), theta, move_len (n each), six optional
-  ** per-cell arrays (n each); the local sub-steps' region (8n) */
-  s->own = malloc((size_t)(24 * n + 1) * sizeof(double));
+  ** per-cell arrays (n each) */
+  s->own = malloc((size_t)(16 * n + 1) * sizeof(double));
   /* fast cells, region, in_region, around (n each) */
   s->iown = calloc((size_t)(4 * n + 1), sizeof(int));
   if (!s->own || !s->iown) {
     afv_sim_free(s);
     return AFV_ENOMEM;
   }
-  s->sub = s->own + 16 * n;
   s->fast = s->iown;
   s->region = s->iown + n;
   s->in_region = s->iown + 2 * n;
@@ -359,23 +369,24 @@ static int unstable(afv_sim *s, int cell, double len)
 
 /* GROUPS.  Fast cells closer than REGION_RADIUS to one another, directly
 ** or through other fast cells, form a group, and each group takes its own
-** pieces in its own region.  Two groups start at least 5 l apart and each
-** cell moves at most l/2 in an accepted step, so a fast cell of one group
-** stays at least 4 l from those of another: outside what its force depends
-** on, and outside its region at the start of the step.  (The groups are
-** moved one after another, so a later group's region may hold a fast cell
-** of an earlier one where its pieces left it: held, like any region cell,
-** and still at least 4 l from the later group's fast cells, so it changes
-** none of their forces.)  A group's motion is then that of the group
-** alone, and does not depend on what happens elsewhere in the tissue
-** (test_far_groups_step_alone, groups 10 l apart;
-** test_near_groups_either_order, the parenthesis).  One piece length
-** for all the fast cells of the tissue, as before, made every fast cell
-** follow the finest pieces of any: with more fast cells the pieces per
+** pieces in its own region.  Every group and its region are listed before
+** any fast cell moves, so a region holds no fast cell of another group
+** (one closer than REGION_RADIUS would have joined the group).  Two groups
+** start at least 5 l apart and each cell moves at most l/2 in an accepted
+** step, so a fast cell of one group stays at least 4 l from those of
+** another: outside what its force depends on.  A group's motion is then
+** that of the group alone, and does not depend on what happens elsewhere
+** in the tissue (test_far_groups_step_alone, groups 10 l apart;
+** test_near_groups_either_order, groups that end closer than 5 l).  So the
+** groups may be moved in any order, or at once by OpenMP threads, each
+** with its own work space (afv_group_work): the cells a group writes (its
+** fast cells' positions and forces) are read by no other group, whose
+** regions hold only cells that no longer move in this step.  One piece
+** length for all the fast cells of the tissue, as before, made every fast
+** cell follow the finest pieces of any: with more fast cells the pieces per
 ** step grew, and every piece recomputed every region -- in the random
 ** benchmark state (steps 20 - 220) 0.015 region cells per cell and step at
 ** N = 400 but 0.034 at N = 400000; by groups 0.014 - 0.015 at every N. */
-
 /* Moves the m cells of list by h. */
 static void move_cells(afv_sim *s, const int *list, int m, double h)
 {
@@ -461,15 +472,15 @@ static int cmp_int(const void *a, const void *b)
 
 /* The group of the fast cell `first` (marked FAST_LEFT) and its region
 ** (GROUPS): the region, the cells within R of a fast cell of the group, in
-** increasing order, into region; returns how many (the group's fast cells
-** are among them).  The group's fast cells, in increasing order, go to
-** around[0 .. *ng - 1].  The region list is its own work queue: every
+** increasing order, into s->region; returns how many (the group's fast
+** cells are among them).  The group's fast cells, in increasing order, go
+** to around[0 .. *ng - 1].  The region list is its own work queue: every
 ** fast cell in it is expanded (its cells within R listed) once, so the
 ** group closes over every fast cell within R of one of its own.  Each
 ** fast cell asks the cell list of the last force evaluation for the
 ** cells around it (afv_cells_around): O(cells near the group), not O(N).
 ** Since that evaluation the other cells have moved, each by at most
-** `moved` = split + max|v0| dt. */
+** `moved` = split + max|v0| dt, and the fast cells not at all. */
 static int group_region(afv_sim *s, int first, double R, double moved,
                         int *ng)
 {
@@ -503,34 +514,118 @@ static int group_region(afv_sim *s, int first, double R, double moved,
   return nr;
 }
 
-/* The forces on the fast cells fast[0 .. nf-1] (increasing), from the
-** region's cells alone (at their present positions): exact, since the
-** region holds every cell they depend on.  Per-cell parameters are carried
-** over to the region. */
-static int region_forces(afv_sim *s, const int *fast, int nf, int nr)
+/* Makes room for `need` elements of `size` bytes in *buf (capacity *cap,
+** grown by at least half). */
+static int reserve(void **buf, int *cap, long need, size_t size)
 {
+  void *p;
+  long c = *cap + *cap / 2;
+  if (need <= *cap) return AFV_OK;
+  if (c < need) c = need;
+  if (c > INT_MAX || (p = realloc(*buf, (size_t)c * size)) == NULL)
+    return AFV_ENOMEM;
+  *buf = p;
+  *cap = (int)c;
+  return AFV_OK;
+}
+
+/* Appends the group of the fast cell `first` (group_region) to s->groups;
+** `used`: the entries of group_cells taken so far. */
+static int add_group(afv_sim *s, int first, double moved, int *used)
+{
+  afv_group *G;
+  int ng, nr = group_region(s, first, REGION_RADIUS * s->par.l, moved, &ng);
+  if (reserve((void **)&s->groups, &s->cap_groups, s->n_groups + 1L,
+              sizeof *s->groups) != AFV_OK
+      || reserve((void **)&s->group_cells, &s->cap_group_cells,
+                 (long)*used + nr + ng, sizeof(int)) != AFV_OK)
+    return AFV_ENOMEM;
+  G = &s->groups[s->n_groups++];
+  G->start = *used;
+  G->nr = nr;
+  G->nf = ng;
+  memcpy(s->group_cells + *used, s->region, (size_t)nr * sizeof(int));
+  memcpy(s->group_cells + *used + nr, s->around, (size_t)ng * sizeof(int));
+  *used += nr + ng;
+  return AFV_OK;
+}
+
+/* Lists the groups of the nf fast cells (s->fast, increasing) and their
+** regions (GROUPS), in the order of their first fast cells, before any
+** fast cell moves.  Leaves in_region all 0, also on an error. */
+static int find_groups(afv_sim *s, int nf, double moved)
+{
+  int q, used = 0, st = AFV_OK;
+  s->n_groups = 0;
+  for (q = 0; q < nf; q++) s->in_region[s->fast[q]] = FAST_LEFT;
+  for (q = 0; q < nf && st == AFV_OK; q++)
+    if (s->in_region[s->fast[q]] & FAST_LEFT)
+      st = add_group(s, s->fast[q], moved, &used);
+  for (q = 0; q < nf; q++) s->in_region[s->fast[q]] = 0;
+  return st;
+}
+
+/* One work space per thread that may move a group (afv_group_work). */
+static int reserve_work(afv_sim *s)
+{
+  int threads = 1, w;
+#ifdef _OPENMP
+  threads = omp_get_max_threads();
+#endif
+  if (threads <= s->n_work) return AFV_OK;
+  w = s->n_work;
+  if (reserve((void **)&s->work, &w, threads, sizeof *s->work) != AFV_OK)
+    return AFV_ENOMEM;
+  memset(s->work + s->n_work, 0,
+         (size_t)(w - s->n_work) * sizeof *s->work);
+  s->n_work = w;
+  return AFV_OK;
+}
+
+/* The calling thread's work space. */
+static afv_group_work *own_work(afv_sim *s)
+{
+#ifdef _OPENMP
+  return s->work + omp_get_thread_num();
+#else
+  return s->work;
+#endif
+}
+
+/* The forces on the group's fast cells, from its region's cells alone (at
+** their present positions): exact, since the region holds every cell they
+** depend on.  Per-cell parameters are carried over to the region. */
+static int region_forces(afv_sim *s, const afv_group *G, afv_group_work *W)
+{
+  const int *region = s->group_cells + G->start, *fast = region + G->nr;
+  int nr = G->nr, q, c, k, st;
   afv_params p = s->par;
-  double *sub_r = s->sub, *sub_f = s->sub + 2 * nr, *col = s->sub + 4 * nr;
+  double *sub_r, *sub_f, *col;
   const double *per[4];
   const double **dst[4];
-  int q, c, k, st;
+  if (reserve((void **)&W->sub, &W->cap_sub, 8L * nr, sizeof(double))
+      != AFV_OK)
+    return AFV_ENOMEM;
+  sub_r = W->sub;
+  sub_f = W->sub + 2 * nr;
+  col = W->sub + 4 * nr;
   per[0] = s->par.KA_i; per[1] = s->par.KP_i;
   per[2] = s->par.A0_i; per[3] = s->par.P0_i;
   dst[0] = &p.KA_i; dst[1] = &p.KP_i; dst[2] = &p.A0_i; dst[3] = &p.P0_i;
   for (c = 0; c < 4; c++)
     if (per[c]) {
-      for (q = 0; q < nr; q++) col[q] = per[c][s->region[q]];
+      for (q = 0; q < nr; q++) col[q] = per[c][region[q]];
       *dst[c] = col;
       col += nr;
     }
   for (q = 0; q < nr; q++) {
-    sub_r[2*q] = s->r[2 * s->region[q]];
-    sub_r[2*q+1] = s->r[2 * s->region[q] + 1];
+    sub_r[2*q] = s->r[2 * region[q]];
+    sub_r[2*q+1] = s->r[2 * region[q] + 1];
   }
-  st = afv_compute(&s->sub_geom, nr, sub_r, &p, &s->box, sub_f);
+  st = afv_compute(&W->geom, nr, sub_r, &p, &s->box, sub_f);
   if (st != AFV_OK) return st;
-  for (k = 0, q = 0; k < nf; k++) {   /* both lists are increasing */
-    while (s->region[q] != fast[k]) q++;
+  for (k = 0, q = 0; k < G->nf; k++) {   /* both lists are increasing */
+    while (region[q] != fast[k]) q++;
     s->f[2 * fast[k]] = sub_f[2*q];
     s->f[2 * fast[k] + 1] = sub_f[2*q+1];
   }
@@ -555,40 +650,56 @@ static double fastest(const afv_sim *s, const int *fast, int nf, double h,
   return best;
 }
 
-/* Moves one group's fast cells, fast[0 .. nf-1] (increasing), over the
-** time dt in pieces; region: its nr cells (the others have moved). */
-static int fast_pieces(afv_sim *s, const int *fast, int nf, int nr,
-                       double split)
+/* Moves group G's fast cells over the time dt in pieces (the other cells
+** have moved), with the work space W; sets G's status and pieces. */
+static void fast_pieces(afv_sim *s, afv_group *G, afv_group_work *W,
+                        double split)
 {
+  const int *fast = s->group_cells + G->start + G->nr;
   double left = s->dyn.dt;
-  int piece, cell, st;
-  s->sub_geom.cand_n = 0;      /* a new region: no Verlet candidates yet */
+  int piece, cell;
+  G->pieces = 0;
+  G->status = AFV_OK;
+  W->geom.cand_n = 0;          /* a new region: no Verlet candidates yet */
   for (piece = 1;; piece++) {
-    double h = left, len = fastest(s, fast, nf, left, &cell);
-    if (isnan(len)) return unstable(s, cell, len);
+    double h = left, len = fastest(s, fast, G->nf, left, &cell);
+    if (isnan(len)) {
+      G->status = AFV_EUNSTABLE;
+      G->bad_cell = cell;
+      G->bad_disp = len / s->par.l;
+      return;
+    }
     if (len > split && piece < AFV_MAX_SUBSTEPS) h = left * (split / len);
-    move_cells(s, fast, nf, h);
-    if (h == left) return AFV_OK;
-    s->substeps++;
+    move_cells(s, fast, G->nf, h);
+    if (h == left) return;
+    G->pieces++;
     left -= h;
-    if ((st = region_forces(s, fast, nf, nr)) != AFV_OK) return st;
+    if ((G->status = region_forces(s, G, W)) != AFV_OK) return;
   }
 }
 
-/* The nf fast cells (s->fast) moved over dt, group by group (GROUPS).
-** Leaves in_region all 0, also on an error. */
+/* The nf fast cells (s->fast) moved over dt, group by group (GROUPS): the
+** groups at once on OpenMP threads; any error reported is that of the
+** first group (in the order of find_groups) that failed. */
 static int move_fast_cells(afv_sim *s, int nf, double split, double moved)
 {
-  int q, k, st = AFV_OK;
-  for (q = 0; q < nf; q++) s->in_region[s->fast[q]] = FAST_LEFT;
-  for (q = 0; q < nf && st == AFV_OK; q++)
-    if (s->in_region[s->fast[q]] & FAST_LEFT) {
-      int ng, nr = group_region(s, s->fast[q], REGION_RADIUS * s->par.l,
-                                moved, &ng);
-      st = fast_pieces(s, s->around, ng, nr, split);
+  int g, st;
+  if ((st = find_groups(s, nf, moved)) != AFV_OK
+      || (st = reserve_work(s)) != AFV_OK)
+    return st;
+  AFV_PARALLEL_TASKS(s->n_groups)
+  for (g = 0; g < s->n_groups; g++)
+    fast_pieces(s, &s->groups[g], own_work(s), split);
+  for (g = 0; g < s->n_groups; g++) {
+    const afv_group *G = &s->groups[g];
+    s->substeps += G->pieces;
+    if (G->status == AFV_EUNSTABLE) {
+      s->bad_cell = G->bad_cell;
+      s->bad_disp = G->bad_disp;
     }
-  for (k = q; k < nf; k++) s->in_region[s->fast[k]] = 0;
-  return st;
+    if (G->status != AFV_OK) return G->status;
+  }
+  return AFV_OK;
 }
 
 /* The moves of a step (v0_max = max |v0_i|, from too_fast). */

@@ -1024,18 +1024,19 @@ static void test_far_groups_step_alone(void)
   afv_sim_free(&both);
 }
 
-/* GROUPS, the parenthesis: two groups just over REGION_RADIUS (5 l) apart,
-** so that the group moved second finds a fast cell of the first, already
-** moved, inside its region.  Pair A stands upright, its cells 1e-7 l
-** from detachment at (10, 10) and (10, 12 - 1e-7); pair B lies flat to
-** its right, its left cell at (10 + X, 11), X chosen so that that cell is
-** 5 + 1e-4 l from both of A's cells.  A's cells move towards each other
+/* GROUPS: two groups just over REGION_RADIUS (5 l) apart at the start,
+** whose cells end closer than that.  Pair A stands upright, its cells
+** 1e-7 l from detachment at (10, 10) and (10, 12 - 1e-7); pair B lies flat
+** to its right, its left cell at (10 + X, 11), X chosen so that that cell
+** is 5 + 1e-4 l from both of A's cells.  A's cells move towards each other
 ** (the singular force pulls a detaching pair back into contact), so
-** towards y = 11, into the region of B's left cell.  Numbered A then B, A
-** moves first and B's region holds A's moved cell; numbered B then A, the
-** other way round.  Both must give every cell the bits it gets when its
-** pair is stepped alone.  (Had a group's marks survived it, B would take
-** A's cells into its own group and move them a second time.) */
+** towards y = 11, to within 5 l of B's left cell.  Numbered A then B, and
+** B then A, every cell must get the bits it gets when its pair is stepped
+** alone: whichever group is moved first, the other's region and pieces
+** must not see it, and on OpenMP threads the two move at once.  (The
+** groups are listed before either moves, so B's region holds none of A's
+** cells; when each group was listed after the one before had moved, B's
+** region held A's moved cells, which this test also allowed.) */
 static void test_near_groups_either_order(void)
 {
   enum { N = 4 };

@@ -133,6 +133,81 @@ static void test_threads_bit_identical(void)
 #endif
 }
 
+#ifdef _OPENMP
+/* Steps a copy of the state (n cells at r, theta) with `threads` threads;
+** *most_groups: the most groups of fast cells in one step. */
+static int steps_with(int threads, int n, const double *r, const double *th,
+                      const afv_params *p, const afv_box *b, const afv_dyn *d,
+                      int steps, afv_sim *s, int *most_groups)
+{
+  int k, st;
+  omp_set_num_threads(threads);
+  *most_groups = 0;
+  if ((st = afv_sim_init(s, n, r, th, p, b, d)) != AFV_OK) return st;
+  for (k = 0; k < steps; k++) {
+    if ((st = afv_sim_step(s)) != AFV_OK) return st;
+    if (s->n_groups > *most_groups) *most_groups = s->n_groups;
+  }
+  return AFV_OK;
+}
+#endif
+
+/* Sub-steps on threads (dynamics.c, GROUPS): the groups of fast cells of a
+** step are moved at once, each thread with its own work space; the
+** trajectory must not depend on the thread count. */
+static void test_threads_groups_bit_identical(void)
+{
+#ifdef _OPENMP
+  enum { N = 2000, STEPS = 30 };
+  static const int threads[] = {2, 3};
+  afv_params p;
+  afv_box b;
+  afv_dyn d;
+  afv_sim relax, s1, s2;
+  afv_relax_report rep;
+  double *r = malloc(2 * N * sizeof(double)), *th = malloc(N * sizeof(double));
+  int saved = omp_get_max_threads(), groups1, groups2, t;
+  memset(&relax, 0, sizeof relax);
+  memset(&s1, 0, sizeof s1);
+  CHECK(r && th, "out of memory");
+  if (!r || !th) goto done;
+  afv_params_default(&p);
+  p.P0 = 4.8;
+  afv_dyn_default(&d);
+  random_tissue(N, 0.5, r, &b);
+  CHECK(afv_sim_init(&relax, N, r, NULL, &p, &b, &d) == AFV_OK, "init");
+  afv_relax(&relax, 1e-3, 200, &rep, NULL, NULL);  /* partly: still many */
+  afv_init_angles(N, 5, th);                       /* contacts to break */
+  d.v0 = 1;
+  CHECK(steps_with(1, N, relax.r, th, &p, &b, &d, STEPS, &s1, &groups1)
+        == AFV_OK, "1 thread: step refused");
+  printf("  1 thread: %lld extra pieces, up to %d groups in a step\n",
+         s1.substeps, groups1);
+  CHECK(groups1 >= 2, "never two groups of fast cells in a step (%d): the "
+        "test would not tell", groups1);
+  for (t = 0; t < 2; t++) {
+    memset(&s2, 0, sizeof s2);
+    CHECK(steps_with(threads[t], N, relax.r, th, &p, &b, &d, STEPS, &s2,
+                     &groups2) == AFV_OK, "%d threads: step refused",
+          threads[t]);
+    CHECK(memcmp(s1.r, s2.r, 2 * N * sizeof(double)) == 0
+          && memcmp(s1.f, s2.f, 2 * N * sizeof(double)) == 0
+          && s1.substeps == s2.substeps,
+          "1 and %d threads: positions, forces or pieces differ after %d "
+          "steps", threads[t], STEPS);
+    afv_sim_free(&s2);
+  }
+done:
+  omp_set_num_threads(saved);
+  afv_sim_free(&relax);
+  afv_sim_free(&s1);
+  free(r);
+  free(th);
+#else
+  SKIP("serial build (make OPENMP=1 test runs it)");
+#endif
+}
+
 /* A second evaluation of a slightly moved tissue reuses every buffer: no
 ** allocation inside a time step once the buffers have grown. */
 static void test_no_allocation_when_repeated(void)
@@ -571,6 +646,7 @@ done:
 void suite_perf(void)
 {
   RUN(test_threads_bit_identical);
+  RUN(test_threads_groups_bit_identical);
   RUN(test_no_allocation_when_repeated);
   RUN(test_candidates_change_nothing);
   RUN(test_candidates_with_movers);
