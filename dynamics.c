@@ -459,10 +459,32 @@ static int list_fast(afv_sim *s, double split)
   return nf;
 }
 
-static int cmp_int(const void *a, const void *b)
+/* Moves a[root] down the max-heap a[0 .. n-1] to its place. */
+static void sift_down(int *a, int root, int n)
 {
-  int x = *(const int *)a, y = *(const int *)b;
-  return (x > y) - (x < y);
+  int v = a[root], child;
+  while ((child = 2 * root + 1) < n) {
+    if (child + 1 < n && a[child + 1] > a[child]) child++;
+    if (a[child] <= v) break;
+    a[root] = a[child];
+    root = child;
+  }
+  a[root] = v;
+}
+
+/* Sorts a[0 .. n-1] increasing, in place: a heapsort, O(n log n) and no
+** allocation (the C library's qsort allocates for 256 ints or more, and a
+** step must not allocate once its buffers have grown). */
+static void sort_cells(int *a, int n)
+{
+  int k;
+  for (k = n / 2 - 1; k >= 0; k--) sift_down(a, k, n);
+  for (k = n - 1; k > 0; k--) {
+    int top = a[0];
+    a[0] = a[k];
+    a[k] = top;
+    sift_down(a, 0, k);
+  }
 }
 
 /* Marks in in_region while the groups are found (all 0 between calls). */
@@ -504,7 +526,7 @@ static int group_region(afv_sim *s, int first, double R, double moved,
       }
     }
   }
-  qsort(s->region, (size_t)nr, sizeof(int), cmp_int);
+  sort_cells(s->region, nr);
   *ng = 0;
   for (k = 0; k < nr; k++) {
     int j = s->region[k];
