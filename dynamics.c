@@ -381,12 +381,14 @@ static int unstable(afv_sim *s, int cell, double len)
 ** groups may be moved in any order, or at once by OpenMP threads, each
 ** with its own work space (afv_group_work): the cells a group writes (its
 ** fast cells' positions and forces) are read by no other group, whose
-** regions hold only cells that no longer move in this step.  One piece
-** length for all the fast cells of the tissue, as before, made every fast
-** cell follow the finest pieces of any: with more fast cells the pieces per
-** step grew, and every piece recomputed every region -- in the random
+** region holds, besides its own fast cells, only cells that have taken
+** their whole step already.  One piece length for all the fast cells of
+** the tissue, as before, made every fast cell follow the finest pieces of
+** any: with more fast cells the pieces per step grew, and every piece
+** recomputed every region -- in the random
 ** benchmark state (steps 20 - 220) 0.015 region cells per cell and step at
 ** N = 400 but 0.034 at N = 400000; by groups 0.014 - 0.015 at every N. */
+
 /* Moves the m cells of list by h. */
 static void move_cells(afv_sim *s, const int *list, int m, double h)
 {
