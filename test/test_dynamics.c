@@ -925,62 +925,130 @@ static void detaching_cluster(int n, const afv_box *one, double gap,
   r[2*(n-1)+1] = r[2*rim+1];
 }
 
+/* The groups of the fast cells fast[0 .. nf-1] by hand (dynamics.c,
+** GROUPS): closer than R at positions r, directly or through other fast
+** cells.  gid[k] = the group of fast[k] (0, 1, ...); returns how many. */
+static int groups_by_hand(const double *r, const int *fast, int nf,
+                          const afv_box *b, double R, int *gid)
+{
+  int k, m, groups = 0, changed;
+  for (k = 0; k < nf; k++) gid[k] = -1;
+  for (k = 0; k < nf; k++) {
+    if (gid[k] >= 0) continue;
+    gid[k] = groups++;
+    do {                              /* grow the group until it closes */
+      changed = 0;
+      for (m = 0; m < nf; m++) {
+        int q;
+        if (gid[m] >= 0) continue;
+        for (q = 0; q < nf; q++) {
+          double dx = r[2*fast[m]] - r[2*fast[q]];
+          double dy = r[2*fast[m]+1] - r[2*fast[q]+1];
+          afv_min_image(b, &dx, &dy);
+          if (gid[q] == gid[k] && hypot(dx, dy) < R) {
+            gid[m] = gid[k];
+            changed = 1;
+            break;
+          }
+        }
+      }
+    } while (changed);
+  }
+  return groups;
+}
+
 /* Local sub-steps see what the whole tissue would show them: a tissue with
 ** one pair 1e-7 l from detachment, stepped by afv_sim_step, against the
-** same rule (Euler for the others, pieces for the fast cells) computed by
-** hand with forces of the whole tissue.  A region too small to hold every
-** cell the fast ones depend on would make the two differ. */
-static void test_local_substeps_match_whole_tissue(void)
+** same rule (Euler for the others, then each group of fast cells in its
+** own pieces) computed by hand with forces of the whole tissue.  A region
+** too small to hold every cell the fast ones depend on would make the two
+** differ; so would a region that took the wrong cells' parameters, when
+** they are per cell (per_cell: KA, KP, A0 and P0 vary from cell to cell,
+** which also makes fast cells of the cluster's rim, in several groups:
+** the test checks that there are several). */
+static void local_vs_whole_tissue(int per_cell)
 {
   enum { N = 80 };
+  const double R = 5.0;       /* REGION_RADIUS in dynamics.c, in l */
   afv_box b = {1, 30, 30};
   afv_params p;
   afv_dyn d;
   afv_sim s;
   afv_geom g;
-  double r[2 * N], f[2 * N], ref[2 * N], left, split, worst = 0;
-  int i, fast[N], nf = 0, piece;
+  double r[2 * N], f0[2 * N], f[2 * N], ref[2 * N];
+  double KA[N], KP[N], A0[N], P0[N], split, worst = 0;
+  int i, k, fast[N], gid[N], nf = 0, groups, grp, extra = 0;
   memset(&s, 0, sizeof s);
   memset(&g, 0, sizeof g);
   detaching_cluster(N, &b, 1e-7, r, &p, &d);
+  if (per_cell) {
+    for (i = 0; i < N; i++) {
+      KA[i] = 0.9 + 0.05 * (i % 5);
+      KP[i] = 0.9 + 0.04 * (i % 6);
+      A0[i] = p.A0 * (0.9 + 0.05 * (i % 5));
+      P0[i] = 4 + 0.3 * (i % 7);
+    }
+    p.KA_i = KA;
+    p.KP_i = KP;
+    p.A0_i = A0;
+    p.P0_i = P0;
+  }
   CHECK(afv_sim_init(&s, N, r, NULL, &p, &b, &d) == AFV_OK, "init");
   /* by hand: the same pieces, forces from the whole tissue */
   memcpy(ref, s.r, sizeof ref);
-  memcpy(f, s.f, sizeof f);
+  memcpy(f0, s.f, sizeof f0);
   split = d.max_move;
   for (i = 0; i < N; i++) {
     double vx = d.v0 * cos(s.theta[i]), vy = d.v0 * sin(s.theta[i]);
-    if (d.dt * hypot(f[2*i], f[2*i+1]) > split) {
+    if (d.dt * hypot(f0[2*i], f0[2*i+1]) > split) {
       fast[nf++] = i;
     } else {
-      ref[2*i] += d.dt * (f[2*i] + vx);
-      ref[2*i+1] += d.dt * (f[2*i+1] + vy);
+      ref[2*i] += d.dt * (f0[2*i] + vx);
+      ref[2*i+1] += d.dt * (f0[2*i+1] + vy);
     }
   }
+  groups = groups_by_hand(s.r, fast, nf, &b, R, gid);
+  printf("  %s: %d fast cells in %d groups\n",
+         per_cell ? "per-cell parameters" : "scalar", nf, groups);
   CHECK(nf >= 2, "only %d fast cells", nf);
-  for (left = d.dt, piece = 1;; piece++) {
-    double len = 0, h;
-    int k;
-    for (k = 0; k < nf; k++)
-      len = fmax(len, left * hypot(f[2*fast[k]], f[2*fast[k]+1]));
-    h = len > split && piece < AFV_MAX_SUBSTEPS ? left * (split / len) : left;
-    for (k = 0; k < nf; k++) {
-      int c = fast[k];
-      ref[2*c] += h * (f[2*c] + d.v0 * cos(s.theta[c]));
-      ref[2*c+1] += h * (f[2*c+1] + d.v0 * sin(s.theta[c]));
+  CHECK(!per_cell || groups >= 2, "one group: the test would not tell");
+  for (grp = 0; grp < groups; grp++) {
+    double left = d.dt;
+    int piece;
+    memcpy(f, f0, sizeof f);   /* each group starts from the step's forces */
+    for (piece = 1;; piece++) {
+      double len = 0, h;
+      for (k = 0; k < nf; k++)
+        if (gid[k] == grp)
+          len = fmax(len, left * hypot(f[2*fast[k]], f[2*fast[k]+1]));
+      h = len > split && piece < AFV_MAX_SUBSTEPS ? left * (split / len)
+                                                  : left;
+      for (k = 0; k < nf; k++) {
+        int c = fast[k];
+        if (gid[k] != grp) continue;
+        ref[2*c] += h * (f[2*c] + d.v0 * cos(s.theta[c]));
+        ref[2*c+1] += h * (f[2*c+1] + d.v0 * sin(s.theta[c]));
+      }
+      if (h == left) break;
+      left -= h;
+      extra++;
+      CHECK(afv_compute(&g, N, ref, &p, &b, f) == AFV_OK, "compute");
     }
-    if (h == left) break;
-    left -= h;
-    CHECK(afv_compute(&g, N, ref, &p, &b, f) == AFV_OK, "compute");
   }
   CHECK(afv_sim_step(&s) == AFV_OK, "step refused");
-  CHECK(s.substeps == piece - 1, "%lld extra pieces, by hand %d", s.substeps,
-        piece - 1);
+  CHECK(s.substeps == extra, "%lld extra pieces, by hand %d", s.substeps,
+        extra);
   for (i = 0; i < 2 * N; i++) worst = fmax(worst, fabs(s.r[i] - ref[i]));
-  CHECK(worst < 1e-12, "local and whole-tissue pieces differ by %.3e l",
-        worst);
+  CHECK(worst < 1e-12, "local and whole-tissue pieces differ by %.3e l%s",
+        worst, per_cell ? " (per-cell parameters)" : "");
   afv_geom_free(&g);
   afv_sim_free(&s);
+}
+
+static void test_local_substeps_match_whole_tissue(void)
+{
+  local_vs_whole_tissue(0);
+  local_vs_whole_tissue(1);
 }
 
 /* GROUPS (dynamics.c): fast cells far apart take their pieces apart.  Two
