@@ -56,8 +56,8 @@ const char *afv_strerror(int status);   /* one-line description of a status */
 #define AFV_PARALLEL_REDUCE(size, clauses) \
   AFV_PRAGMA(omp parallel for schedule(static) \
              if ((size) >= AFV_PARALLEL_MIN) clauses)
-/* A loop over independent tasks of unequal cost (the groups of fast cells,
-** dynamics.c): each thread takes the next task when it is free. */
+/* A loop over independent tasks of unequal cost (the small groups of fast
+** cells, dynamics.c): each thread takes the next task when it is free. */
 #define AFV_PARALLEL_TASKS(count) \
   AFV_PRAGMA(omp parallel for schedule(dynamic, 1) if ((count) > 1))
 #else
@@ -327,7 +327,7 @@ typedef struct afv_group_work {
   afv_geom  geom;      /* the region's geometry */
   double   *sub;       /* the region's positions, forces and per-cell
                        ** parameters (8 per cell) */
-  int       cap_sub;   /* cells sub has room for */
+  int       cap_sub;   /* doubles sub has room for */
 } afv_group_work;
 
 /* A running simulation.  Zero-initialise, then afv_sim_init; free with
@@ -358,7 +358,8 @@ typedef struct afv_sim {
   int       *in_region; /* private, sub-steps: marks while listing (n) */
   int       *around;   /* private, sub-steps: cells around a fast one,
                        ** then a group's fast cells (n) */
-  afv_group *groups;   /* private, sub-steps: this step's groups */
+  afv_group *groups;   /* private, sub-steps: the last step's groups
+                       ** (n_groups: 0 if it had no fast cell) */
   int        n_groups, cap_groups;
   int       *group_cells; /* private: their regions and fast cells */
   int        cap_group_cells;
@@ -376,7 +377,9 @@ int  afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
 /* One Euler-Maruyama step: r += dt (mu F + v0 n); th += sqrt(2 Dr dt) xi;
 ** then the forces at the new r.  If the force would move some cell more
 ** than max_move l, the position update is done in pieces (sub-steps).
-** Allocation-free once the geometry buffers have grown.  AFV_EUNSTABLE
+** Allocation-free once its buffers have grown (the geometry's, and those
+** of the sub-steps, which grow with the largest groups and regions met
+** so far).  AFV_EUNSTABLE
 ** (state unchanged) if a force is not finite, if v0 dt alone exceeds
 ** AFV_MAX_STEP_DISP l, or if some cell's whole move in the step does. */
 int  afv_sim_step(afv_sim *s);

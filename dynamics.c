@@ -475,7 +475,7 @@ static void sift_down(int *a, int root, int n)
 }
 
 /* Sorts a[0 .. n-1] increasing, in place: a heapsort, O(n log n) and no
-** allocation (the C library's qsort allocates for 256 ints or more, and a
+** allocation (glibc 2.36's qsort allocates for 256 ints or more, and a
 ** step must not allocate once its buffers have grown). */
 static void sort_cells(int *a, int n)
 {
@@ -539,14 +539,17 @@ static int group_region(afv_sim *s, int first, double R, double moved,
 }
 
 /* Makes room for `need` elements of `size` bytes in *buf (capacity *cap,
-** grown by at least half). */
-static int reserve(void **buf, int *cap, long need, size_t size)
+** grown by at least half, at most to INT_MAX elements). */
+static int reserve(void **buf, int *cap, long long need, size_t size)
 {
   void *p;
-  long c = *cap + *cap / 2;
+  long long c = *cap + (long long)*cap / 2;
   if (need <= *cap) return AFV_OK;
+  if (need > INT_MAX) return AFV_ENOMEM;
   if (c < need) c = need;
-  if (c > INT_MAX || (p = realloc(*buf, (size_t)c * size)) == NULL)
+  if (c > INT_MAX) c = INT_MAX;
+  if ((size_t)c > (size_t)-1 / size
+      || (p = realloc(*buf, (size_t)c * size)) == NULL)
     return AFV_ENOMEM;
   *buf = p;
   *cap = (int)c;
@@ -559,10 +562,10 @@ static int add_group(afv_sim *s, int first, double moved, int *used)
 {
   afv_group *G;
   int ng, nr = group_region(s, first, REGION_RADIUS * s->par.l, moved, &ng);
-  if (reserve((void **)&s->groups, &s->cap_groups, s->n_groups + 1L,
+  if (reserve((void **)&s->groups, &s->cap_groups, s->n_groups + 1LL,
               sizeof *s->groups) != AFV_OK
       || reserve((void **)&s->group_cells, &s->cap_group_cells,
-                 (long)*used + nr + ng, sizeof(int)) != AFV_OK)
+                 (long long)*used + nr + ng, sizeof(int)) != AFV_OK)
     return AFV_ENOMEM;
   G = &s->groups[s->n_groups++];
   G->start = *used;
@@ -606,7 +609,9 @@ static int reserve_work(afv_sim *s)
   return AFV_OK;
 }
 
-/* The calling thread's work space. */
+/* The calling thread's work space: a thread number is below the team
+** size, at most omp_get_max_threads() as reserve_work read it just
+** before. */
 static afv_group_work *own_work(afv_sim *s)
 {
 #ifdef _OPENMP
@@ -627,7 +632,7 @@ static int region_forces(afv_sim *s, const afv_group *G, afv_group_work *W)
   double *sub_r, *sub_f, *col;
   const double *per[4];
   const double **dst[4];
-  if (reserve((void **)&W->sub, &W->cap_sub, 8L * nr, sizeof(double))
+  if (reserve((void **)&W->sub, &W->cap_sub, 8LL * nr, sizeof(double))
       != AFV_OK)
     return AFV_ENOMEM;
   sub_r = W->sub;
@@ -702,18 +707,52 @@ static void fast_pieces(afv_sim *s, afv_group *G, afv_group_work *W,
   }
 }
 
+/* A group whose region has AFV_PARALLEL_MIN cells or more is moved on the
+** calling thread alone, so that its region's force evaluations run their
+** own parallel loops; the smaller groups are shared among the threads.
+** (Inside the task loop, a large region's loops would be nested parallel
+** regions, and libgomp starts a new team of threads for each: thousands of
+** thread creations in 50 steps of a tissue where one group spread over
+** most of it.) */
+static int is_large(const afv_group *G)
+{
+  return G->nr >= AFV_PARALLEL_MIN;
+}
+
+/* The groups that are not large, at once on OpenMP threads (`small` of
+** them); one alone is moved directly, outside any parallel region. */
+static void move_small_groups(afv_sim *s, int small, double split)
+{
+  int g;
+  if (small == 1) {
+    for (g = 0; g < s->n_groups; g++)
+      if (!is_large(&s->groups[g]))
+        fast_pieces(s, &s->groups[g], own_work(s), split);
+    return;
+  }
+  AFV_PARALLEL_TASKS(small)
+  for (g = 0; g < s->n_groups; g++)
+    if (!is_large(&s->groups[g]))
+      fast_pieces(s, &s->groups[g], own_work(s), split);
+}
+
 /* The nf fast cells (s->fast) moved over dt, group by group (GROUPS): the
-** groups at once on OpenMP threads; any error reported is that of the
-** first group (in the order of find_groups) that failed. */
+** large groups one after another, then the others at once on OpenMP
+** threads.  The groups are independent, so the order changes no bit; any
+** error reported is that of the first group (in the order of find_groups)
+** that failed. */
 static int move_fast_cells(afv_sim *s, int nf, double split, double moved)
 {
-  int g, st;
+  int g, st, small = 0;
   if ((st = find_groups(s, nf, moved)) != AFV_OK
       || (st = reserve_work(s)) != AFV_OK)
     return st;
-  AFV_PARALLEL_TASKS(s->n_groups)
   for (g = 0; g < s->n_groups; g++)
-    fast_pieces(s, &s->groups[g], own_work(s), split);
+    if (is_large(&s->groups[g]))
+      fast_pieces(s, &s->groups[g], own_work(s), split);
+    else
+      small++;
+  if (small > 0) move_small_groups(s, small, split);
   for (g = 0; g < s->n_groups; g++) {
     const afv_group *G = &s->groups[g];
     s->substeps += G->pieces;
@@ -732,6 +771,7 @@ static int advance(afv_sim *s, double v0_max)
   double split = s->dyn.max_move * s->par.l, most = euler_all(s, split);
   double limit = AFV_MAX_STEP_DISP * s->par.l;
   int nf = 0, st;
+  s->n_groups = 0;
   if (isnan(most))
     return unstable(s, first_at(s->move_len, s->n, most), most);
   if (split > 0 && most > split * split) nf = list_fast(s, split);

@@ -1150,8 +1150,8 @@ static void test_near_groups_either_order(void)
     closest = fmin(closest, hypot(r[4] - ab.r[2*i], r[5] - ab.r[2*i+1]));
   printf("  A's cells end %.6f l from B's left cell (region radius %g)\n",
          closest, R);
-  CHECK(closest < R, "no moved cell of A in B's region (%.6f l): the test "
-        "would not tell", closest);
+  CHECK(closest < R, "A's cells end %.6f l from B's left cell, not within "
+        "%g l: the test would not tell", closest, R);
   CHECK(memcmp(ab.r, a_alone.r, 4 * sizeof(double)) == 0
         && memcmp(ab.r + 4, b_alone.r, 4 * sizeof(double)) == 0,
         "numbered A then B, a pair moved differently than alone");

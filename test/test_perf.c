@@ -135,40 +135,80 @@ static void test_threads_bit_identical(void)
 
 #ifdef _OPENMP
 /* Steps a copy of the state (n cells at r, theta) with `threads` threads;
-** *most_groups: the most groups of fast cells in one step. */
+** *most_groups: the most groups of fast cells in one step, *largest: the
+** largest region of a group. */
 static int steps_with(int threads, int n, const double *r, const double *th,
                       const afv_params *p, const afv_box *b, const afv_dyn *d,
-                      int steps, afv_sim *s, int *most_groups)
+                      int steps, afv_sim *s, int *most_groups, int *largest)
 {
-  int k, st;
+  int k, g, st;
   omp_set_num_threads(threads);
-  *most_groups = 0;
+  *most_groups = *largest = 0;
   if ((st = afv_sim_init(s, n, r, th, p, b, d)) != AFV_OK) return st;
   for (k = 0; k < steps; k++) {
     if ((st = afv_sim_step(s)) != AFV_OK) return st;
     if (s->n_groups > *most_groups) *most_groups = s->n_groups;
+    for (g = 0; g < s->n_groups; g++)
+      if (s->groups[g].nr > *largest) *largest = s->groups[g].nr;
   }
   return AFV_OK;
 }
+
+/* The trajectory of `steps` steps from (r, th) with 1 thread against 2
+** and 3, bit for bit.  Needs two groups in some step, and, if
+** want_large, a region of at least AFV_PARALLEL_MIN cells (such a group
+** is moved on the calling thread, the others at once on threads). */
+static void compare_thread_counts(const char *what, int n, const double *r,
+                                  const double *th, const afv_params *p,
+                                  const afv_box *b, const afv_dyn *d,
+                                  int steps, int want_large)
+{
+  static const int threads[] = {2, 3};
+  afv_sim s1, s2;
+  int groups, largest, g2, l2, t;
+  memset(&s1, 0, sizeof s1);
+  CHECK(steps_with(1, n, r, th, p, b, d, steps, &s1, &groups, &largest)
+        == AFV_OK, "%s, 1 thread: step refused", what);
+  printf("  %s, 1 thread: %lld extra pieces, up to %d groups in a step, "
+         "regions up to %d cells\n", what, s1.substeps, groups, largest);
+  CHECK(groups >= 2, "%s: never two groups of fast cells in a step (%d): "
+        "the test would not tell", what, groups);
+  CHECK(!want_large || largest >= AFV_PARALLEL_MIN, "%s: no region of %d "
+        "cells or more (%d): the test would not tell", what,
+        AFV_PARALLEL_MIN, largest);
+  for (t = 0; t < 2; t++) {
+    memset(&s2, 0, sizeof s2);
+    CHECK(steps_with(threads[t], n, r, th, p, b, d, steps, &s2, &g2, &l2)
+          == AFV_OK, "%s, %d threads: step refused", what, threads[t]);
+    CHECK(memcmp(s1.r, s2.r, 2 * (size_t)n * sizeof(double)) == 0
+          && memcmp(s1.f, s2.f, 2 * (size_t)n * sizeof(double)) == 0
+          && s1.substeps == s2.substeps,
+          "%s, 1 and %d threads: positions, forces or pieces differ after "
+          "%d steps", what, threads[t], steps);
+    afv_sim_free(&s2);
+  }
+  afv_sim_free(&s1);
+}
 #endif
 
-/* Sub-steps on threads (dynamics.c, GROUPS): the groups of fast cells of a
-** step are moved at once, each thread with its own work space; the
-** trajectory must not depend on the thread count. */
+/* Sub-steps on threads (dynamics.c, GROUPS): the small groups of fast
+** cells of a step are moved at once, each thread with its own work space,
+** and a group with a large region on the calling thread; the trajectory
+** must not depend on the thread count.  Twice: at the default max_move
+** (groups of tens of cells), and at max_move 0.001 l, where tens of groups
+** move in a step and one may spread over most of the tissue. */
 static void test_threads_groups_bit_identical(void)
 {
 #ifdef _OPENMP
-  enum { N = 2000, STEPS = 30 };
-  static const int threads[] = {2, 3};
+  enum { N = 2000 };
   afv_params p;
   afv_box b;
   afv_dyn d;
-  afv_sim relax, s1, s2;
+  afv_sim relax;
   afv_relax_report rep;
   double *r = malloc(2 * N * sizeof(double)), *th = malloc(N * sizeof(double));
-  int saved = omp_get_max_threads(), groups1, groups2, t;
+  int saved = omp_get_max_threads();
   memset(&relax, 0, sizeof relax);
-  memset(&s1, 0, sizeof s1);
   CHECK(r && th, "out of memory");
   if (!r || !th) goto done;
   afv_params_default(&p);
@@ -179,28 +219,12 @@ static void test_threads_groups_bit_identical(void)
   afv_relax(&relax, 1e-3, 200, &rep, NULL, NULL);  /* partly: still many */
   afv_init_angles(N, 5, th);                       /* contacts to break */
   d.v0 = 1;
-  CHECK(steps_with(1, N, relax.r, th, &p, &b, &d, STEPS, &s1, &groups1)
-        == AFV_OK, "1 thread: step refused");
-  printf("  1 thread: %lld extra pieces, up to %d groups in a step\n",
-         s1.substeps, groups1);
-  CHECK(groups1 >= 2, "never two groups of fast cells in a step (%d): the "
-        "test would not tell", groups1);
-  for (t = 0; t < 2; t++) {
-    memset(&s2, 0, sizeof s2);
-    CHECK(steps_with(threads[t], N, relax.r, th, &p, &b, &d, STEPS, &s2,
-                     &groups2) == AFV_OK, "%d threads: step refused",
-          threads[t]);
-    CHECK(memcmp(s1.r, s2.r, 2 * N * sizeof(double)) == 0
-          && memcmp(s1.f, s2.f, 2 * N * sizeof(double)) == 0
-          && s1.substeps == s2.substeps,
-          "1 and %d threads: positions, forces or pieces differ after %d "
-          "steps", threads[t], STEPS);
-    afv_sim_free(&s2);
-  }
+  compare_thread_counts("max_move 0.05", N, relax.r, th, &p, &b, &d, 30, 0);
+  d.max_move = 0.001;
+  compare_thread_counts("max_move 0.001", N, relax.r, th, &p, &b, &d, 10, 1);
 done:
   omp_set_num_threads(saved);
   afv_sim_free(&relax);
-  afv_sim_free(&s1);
   free(r);
   free(th);
 #else
