@@ -310,6 +310,11 @@ typedef struct afv_dyn {
 /* Paper defaults: mu 1, v0 0, Dr 0.1, dt 0.01, seed 1; max_move 0.05. */
 void afv_dyn_default(afv_dyn *d);
 
+/* Private (geom.c; dynamics.c uses it too): makes room for `need`
+** elements of `elem` bytes in *ptr, whose capacity *cap grows by
+** doubling.  AFV_OK or AFV_ENOMEM (then *ptr and *cap are unchanged). */
+int afv_grow(void **ptr, int *cap, int need, size_t elem);
+
 /* Private (dynamics.c, GROUPS): a group of fast cells in a step.  Its
 ** region, the cells within REGION_RADIUS of its fast cells, is
 ** group_cells[start .. start + nr - 1] (increasing); its fast cells are
@@ -327,7 +332,7 @@ typedef struct afv_group_work {
   afv_geom  geom;      /* the region's geometry */
   double   *sub;       /* the region's positions, forces and per-cell
                        ** parameters (8 per cell) */
-  int       cap_sub;   /* doubles sub has room for */
+  int       cap_sub;   /* cells sub has room for */
 } afv_group_work;
 
 /* A running simulation.  Zero-initialise, then afv_sim_init; free with
@@ -379,9 +384,9 @@ int  afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
 ** than max_move l, the position update is done in pieces (sub-steps).
 ** Allocation-free once its buffers have grown (the geometry's, and those
 ** of the sub-steps, which grow with the largest groups and regions met
-** so far).  AFV_EUNSTABLE
-** (state unchanged) if a force is not finite, if v0 dt alone exceeds
-** AFV_MAX_STEP_DISP l, or if some cell's whole move in the step does. */
+** so far).  AFV_EUNSTABLE (state unchanged) if a force is not finite, if
+** v0 dt alone exceeds AFV_MAX_STEP_DISP l, or if some cell's whole move in
+** the step does. */
 int  afv_sim_step(afv_sim *s);
 void afv_sim_free(afv_sim *s);
 /* Largest |F_i| over the cells (0 if n = 0). */

@@ -35,7 +35,6 @@
 */
 #include "afv.h"
 
-#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -538,34 +537,16 @@ static int group_region(afv_sim *s, int first, double R, double moved,
   return nr;
 }
 
-/* Makes room for `need` elements of `size` bytes in *buf (capacity *cap,
-** grown by at least half, at most to INT_MAX elements). */
-static int reserve(void **buf, int *cap, long long need, size_t size)
-{
-  void *p;
-  long long c = *cap + (long long)*cap / 2;
-  if (need <= *cap) return AFV_OK;
-  if (need > INT_MAX) return AFV_ENOMEM;
-  if (c < need) c = need;
-  if (c > INT_MAX) c = INT_MAX;
-  if ((size_t)c > (size_t)-1 / size
-      || (p = realloc(*buf, (size_t)c * size)) == NULL)
-    return AFV_ENOMEM;
-  *buf = p;
-  *cap = (int)c;
-  return AFV_OK;
-}
-
 /* Appends the group of the fast cell `first` (group_region) to s->groups;
 ** `used`: the entries of group_cells taken so far. */
 static int add_group(afv_sim *s, int first, double moved, int *used)
 {
   afv_group *G;
   int ng, nr = group_region(s, first, REGION_RADIUS * s->par.l, moved, &ng);
-  if (reserve((void **)&s->groups, &s->cap_groups, s->n_groups + 1LL,
-              sizeof *s->groups) != AFV_OK
-      || reserve((void **)&s->group_cells, &s->cap_group_cells,
-                 (long long)*used + nr + ng, sizeof(int)) != AFV_OK)
+  if (afv_grow((void **)&s->groups, &s->cap_groups, s->n_groups + 1,
+               sizeof *s->groups) != AFV_OK
+      || afv_grow((void **)&s->group_cells, &s->cap_group_cells,
+                  *used + nr + ng, sizeof(int)) != AFV_OK)
     return AFV_ENOMEM;
   G = &s->groups[s->n_groups++];
   G->start = *used;
@@ -601,7 +582,7 @@ static int reserve_work(afv_sim *s)
 #endif
   if (threads <= s->n_work) return AFV_OK;
   w = s->n_work;
-  if (reserve((void **)&s->work, &w, threads, sizeof *s->work) != AFV_OK)
+  if (afv_grow((void **)&s->work, &w, threads, sizeof *s->work) != AFV_OK)
     return AFV_ENOMEM;
   memset(s->work + s->n_work, 0,
          (size_t)(w - s->n_work) * sizeof *s->work);
@@ -632,7 +613,7 @@ static int region_forces(afv_sim *s, const afv_group *G, afv_group_work *W)
   double *sub_r, *sub_f, *col;
   const double *per[4];
   const double **dst[4];
-  if (reserve((void **)&W->sub, &W->cap_sub, 8LL * nr, sizeof(double))
+  if (afv_grow((void **)&W->sub, &W->cap_sub, nr, 8 * sizeof(double))
       != AFV_OK)
     return AFV_ENOMEM;
   sub_r = W->sub;

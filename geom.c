@@ -60,9 +60,10 @@
 /* OpenMP (make OPENMP=1; the macros are in afv.h): the per-cell loops
 ** marked AFV_PARALLEL_FOR write only their own cell's entries, so any
 ** thread count gives the same bits.  Static schedule: each thread gets
-** one contiguous, spatially coherent block.  AFV_PARALLEL_REDUCE adds reduction clauses, used only for
-** reductions whose result does not depend on the order (max, min, | and
-** sums of integers), so again any thread count gives the same bits.
+** one contiguous, spatially coherent block.  AFV_PARALLEL_REDUCE adds
+** reduction clauses, used only for reductions whose result does not
+** depend on the order (max, min, | and sums of integers), so again any
+** thread count gives the same bits.
 ** `size` is the loop's length in cells (in bins for the bin loop): below
 ** AFV_PARALLEL_MIN (afv.h) the loop runs on the calling thread.  The
 ** sub-steps' regions (dynamics.c) are tens of cells, and each of their
@@ -73,7 +74,7 @@
 ** C99. */
 
 /* ---- buffers ----------------------------------------------------------- */
-static int grow(void **ptr, int *cap, int need, size_t elem)
+int afv_grow(void **ptr, int *cap, int need, size_t elem)
 {
   void *q;
   int newcap;
@@ -93,35 +94,35 @@ static int grow_cells(afv_geom *g, int n)
   int cap = g->cap_cells, c;
   if (n + 1 <= cap) return AFV_OK;
   c = cap;
-  if (grow((void **)&g->area, &c, n + 1, sizeof(double))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->area, &c, n + 1, sizeof(double))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->perim, &c, n + 1, sizeof(double))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->perim, &c, n + 1, sizeof(double))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->arc, &c, n + 1, sizeof(double))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->arc, &c, n + 1, sizeof(double))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->contacts, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->contacts, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->piece_start, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->piece_start, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->n_pieces, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->n_pieces, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->nbr_start, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->nbr_start, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->nbr_end, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->nbr_end, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->bin_cell, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->bin_cell, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->bin_xy, &c, n + 1, 2 * sizeof(double)))
+  if (afv_grow((void **)&g->bin_xy, &c, n + 1, 2 * sizeof(double)))
     return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->cand_r0, &c, n + 1, 2 * sizeof(double)))
+  if (afv_grow((void **)&g->cand_r0, &c, n + 1, 2 * sizeof(double)))
     return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->rw, &c, n + 1, 2 * sizeof(double))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->rw, &c, n + 1, 2 * sizeof(double))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->cand_start, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->cand_start, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->is_mover, &c, n + 1, 1)) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->is_mover, &c, n + 1, 1)) return AFV_ENOMEM;
   g->cap_cells = c;
   return AFV_OK;
 }
@@ -133,15 +134,15 @@ static int grow_nbr(afv_geom *g, int need)
   int cap = g->cap_nbr, c;
   if (need <= cap) return AFV_OK;
   c = cap;
-  if (grow((void **)&g->nbr, &c, need, sizeof(int))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->nbr, &c, need, sizeof(int))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->nbr_rev, &c, need, sizeof(int))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->nbr_rev, &c, need, sizeof(int))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->nbr_d, &c, need, 2 * sizeof(double))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->nbr_d, &c, need, 2 * sizeof(double))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->grad, &c, need, 2 * sizeof(double))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->grad, &c, need, 2 * sizeof(double))) return AFV_ENOMEM;
   c = cap;
-  if (grow((void **)&g->edge, &c, need, 4 * sizeof(double))) return AFV_ENOMEM;
+  if (afv_grow((void **)&g->edge, &c, need, 4 * sizeof(double))) return AFV_ENOMEM;
   g->cap_nbr = c;
   return AFV_OK;
 }
@@ -278,7 +279,7 @@ static int fill_bins(afv_geom *g, const grid *G, int n, const double *r)
 {
   int nb = G->nbx * G->nby, i, b;
   double x, y;
-  if (grow((void **)&g->bin_start, &g->cap_bins, nb + 1, sizeof(int)))
+  if (afv_grow((void **)&g->bin_start, &g->cap_bins, nb + 1, sizeof(int)))
     return AFV_ENOMEM;
   memset(g->bin_start, 0, (size_t)(nb + 1) * sizeof(int));
   for (i = 0; i < n; i++) {
@@ -700,7 +701,7 @@ static int build_candidates(afv_geom *g, int n, const double *r, double l,
   scan_all(g, &G, range, 0);
   if ((st = find_coincident(g, g->cand_start + 1, n)) != AFV_OK) return st;
   for (i = 0; i < n; i++) g->cand_start[i + 1] += g->cand_start[i];
-  if (grow((void **)&g->cand, &g->cap_cand, g->cand_start[n] + 1,
+  if (afv_grow((void **)&g->cand, &g->cap_cand, g->cand_start[n] + 1,
            sizeof(int)))
     return AFV_ENOMEM;
   scan_all(g, &G, range, 1);
@@ -910,7 +911,7 @@ static int reserve_pieces(afv_geom *g, int n)
     g->piece_start[i] = 2 * g->cand_start[i] + i;
   }
   g->piece_start[n] = 2 * g->cand_start[n] + n;
-  return grow((void **)&g->pieces, &g->cap_pieces, g->piece_start[n] + 1,
+  return afv_grow((void **)&g->pieces, &g->cap_pieces, g->piece_start[n] + 1,
               sizeof(afv_piece));
 }
 
@@ -1262,7 +1263,7 @@ static int reserve_work(afv_geom *g, int max_nn)
   threads = omp_get_max_threads();
 #endif
   g->work_stride = (int)(bytes / sizeof(double)) + 1;
-  return grow((void **)&g->work, &g->cap_work, g->work_stride * threads,
+  return afv_grow((void **)&g->work, &g->cap_work, g->work_stride * threads,
               sizeof(double));
 }
 
