@@ -690,7 +690,8 @@ static void fast_pieces(afv_sim *s, afv_group *G, afv_group_work *W,
 
 /* A group whose region has AFV_PARALLEL_MIN cells or more is moved on the
 ** calling thread alone, so that its region's force evaluations run their
-** own parallel loops; the smaller groups are shared among the threads.
+** own parallel loops; the smaller groups are shared among the threads,
+** unless there is only one, which is moved outside any parallel region.
 ** (Inside the task loop, a large region's loops would be nested parallel
 ** regions, and libgomp starts a new team of threads for each: thousands of
 ** thread creations in 50 steps of a tissue where one group spread over
@@ -700,40 +701,27 @@ static int is_large(const afv_group *G)
   return G->nr >= AFV_PARALLEL_MIN;
 }
 
-/* The groups that are not large, at once on OpenMP threads (`small` of
-** them); one alone is moved directly, outside any parallel region. */
-static void move_small_groups(afv_sim *s, int small, double split)
-{
-  int g;
-  if (small == 1) {
-    for (g = 0; g < s->n_groups; g++)
-      if (!is_large(&s->groups[g]))
-        fast_pieces(s, &s->groups[g], own_work(s), split);
-    return;
-  }
-  AFV_PARALLEL_TASKS(small)
-  for (g = 0; g < s->n_groups; g++)
-    if (!is_large(&s->groups[g]))
-      fast_pieces(s, &s->groups[g], own_work(s), split);
-}
-
-/* The nf fast cells (s->fast) moved over dt, group by group (GROUPS): the
-** large groups one after another, then the others at once on OpenMP
-** threads.  The groups are independent, so the order changes no bit; any
-** error reported is that of the first group (in the order of find_groups)
-** that failed. */
+/* The nf fast cells (s->fast) moved over dt, group by group (GROUPS): on
+** the calling thread the large groups (and a single small one), then the
+** small groups at once on OpenMP threads.  The groups are independent, so
+** the order changes no bit; any error reported is that of the first group
+** (in the order of find_groups) that failed. */
 static int move_fast_cells(afv_sim *s, int nf, double split, double moved)
 {
   int g, st, small = 0;
   if ((st = find_groups(s, nf, moved)) != AFV_OK
       || (st = reserve_work(s)) != AFV_OK)
     return st;
+  for (g = 0; g < s->n_groups; g++) small += !is_large(&s->groups[g]);
   for (g = 0; g < s->n_groups; g++)
-    if (is_large(&s->groups[g]))
+    if (is_large(&s->groups[g]) || small == 1)
       fast_pieces(s, &s->groups[g], own_work(s), split);
-    else
-      small++;
-  if (small > 0) move_small_groups(s, small, split);
+  if (small > 1) {
+    AFV_PARALLEL_TASKS(small)
+    for (g = 0; g < s->n_groups; g++)
+      if (!is_large(&s->groups[g]))
+        fast_pieces(s, &s->groups[g], own_work(s), split);
+  }
   for (g = 0; g < s->n_groups; g++) {
     const afv_group *G = &s->groups[g];
     s->substeps += G->pieces;
