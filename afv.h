@@ -57,13 +57,14 @@ const char *afv_strerror(int status);   /* one-line description of a status */
   AFV_PRAGMA(omp parallel for schedule(static) \
              if ((size) >= AFV_PARALLEL_MIN) clauses)
 /* A loop over independent tasks of unequal cost (the small groups of fast
-** cells, dynamics.c): each thread takes the next task when it is free. */
-#define AFV_PARALLEL_TASKS(count) \
-  AFV_PRAGMA(omp parallel for schedule(dynamic, 1) if ((count) > 1))
+** cells, dynamics.c, which uses it only for two tasks or more): each
+** thread takes the next task when it is free. */
+#define AFV_PARALLEL_TASKS \
+  AFV_PRAGMA(omp parallel for schedule(dynamic, 1))
 #else
 #define AFV_PARALLEL_FOR(size)
 #define AFV_PARALLEL_REDUCE(size, clauses)
-#define AFV_PARALLEL_TASKS(count)
+#define AFV_PARALLEL_TASKS
 #endif
 
 /* ---- parameters -------------------------------------------------------- */

@@ -717,7 +717,7 @@ static int move_fast_cells(afv_sim *s, int nf, double split, double moved)
     if (is_large(&s->groups[g]) || small == 1)
       fast_pieces(s, &s->groups[g], own_work(s), split);
   if (small > 1) {
-    AFV_PARALLEL_TASKS(small)
+    AFV_PARALLEL_TASKS
     for (g = 0; g < s->n_groups; g++)
       if (!is_large(&s->groups[g]))
         fast_pieces(s, &s->groups[g], own_work(s), split);
