@@ -4,7 +4,8 @@
 ** Timing targets live in the benchmark (test/bench.c, make bench), never
 ** here.  These tests check the properties the fast code relies on or
 ** promises: the OpenMP build gives the same bits for every thread count,
-** and a repeated evaluation does not allocate.
+** and neither a repeated evaluation nor a step (sub-steps included)
+** allocates once its buffers have grown.
 */
 #include "test.h"
 #include "afv.h"
@@ -133,6 +134,31 @@ static void test_threads_bit_identical(void)
 #endif
 }
 
+/* An active tissue with fast cells to come: n random cells (packing
+** fraction 0.5, P0 4.8) relaxed only partly, so that many contacts are
+** still to break, with random polarities and v0 = 1.  Fills r (2n), th
+** (n), p, b and d; returns afv_sim_init's status. */
+static int active_tissue(int n, double *r, double *th, afv_params *p,
+                         afv_box *b, afv_dyn *d)
+{
+  afv_sim relax;
+  afv_relax_report rep;
+  int st;
+  memset(&relax, 0, sizeof relax);
+  afv_params_default(p);
+  p->P0 = 4.8;
+  afv_dyn_default(d);
+  random_tissue(n, 0.5, r, b);
+  if ((st = afv_sim_init(&relax, n, r, NULL, p, b, d)) == AFV_OK) {
+    afv_relax(&relax, 1e-3, 200, &rep, NULL, NULL);
+    memcpy(r, relax.r, 2 * (size_t)n * sizeof(double));
+  }
+  afv_sim_free(&relax);
+  afv_init_angles(n, 5, th);
+  d->v0 = 1;
+  return st;
+}
+
 #ifdef _OPENMP
 /* Steps a copy of the state (n cells at r, theta) with `threads` threads;
 ** *most_groups: the most groups of fast cells in one step, *largest: the
@@ -204,27 +230,16 @@ static void test_threads_groups_bit_identical(void)
   afv_params p;
   afv_box b;
   afv_dyn d;
-  afv_sim relax;
-  afv_relax_report rep;
   double *r = malloc(2 * N * sizeof(double)), *th = malloc(N * sizeof(double));
   int saved = omp_get_max_threads();
-  memset(&relax, 0, sizeof relax);
   CHECK(r && th, "out of memory");
   if (!r || !th) goto done;
-  afv_params_default(&p);
-  p.P0 = 4.8;
-  afv_dyn_default(&d);
-  random_tissue(N, 0.5, r, &b);
-  CHECK(afv_sim_init(&relax, N, r, NULL, &p, &b, &d) == AFV_OK, "init");
-  afv_relax(&relax, 1e-3, 200, &rep, NULL, NULL);  /* partly: still many */
-  afv_init_angles(N, 5, th);                       /* contacts to break */
-  d.v0 = 1;
-  compare_thread_counts("max_move 0.05", N, relax.r, th, &p, &b, &d, 30, 0);
+  CHECK(active_tissue(N, r, th, &p, &b, &d) == AFV_OK, "init");
+  compare_thread_counts("max_move 0.05", N, r, th, &p, &b, &d, 30, 0);
   d.max_move = 0.001;
-  compare_thread_counts("max_move 0.001", N, relax.r, th, &p, &b, &d, 10, 1);
+  compare_thread_counts("max_move 0.001", N, r, th, &p, &b, &d, 10, 1);
 done:
   omp_set_num_threads(saved);
-  afv_sim_free(&relax);
   free(r);
   free(th);
 #else
@@ -266,6 +281,144 @@ done:
   afv_geom_free(&g);
   free(r);
   free(f);
+}
+
+/* Where a simulation's buffers are and how large: the geometry's, and
+** those of the sub-steps (groups, their cells, each thread's work space
+** and its region's geometry).  Two equal fingerprints mean that no buffer
+** moved or grew in between. */
+enum { MAX_BUFFERS = 1024 };   /* n_work is a capacity: 16 or more */
+typedef struct fingerprint {
+  int n;
+  const void *ptr[MAX_BUFFERS];
+  int cap[MAX_BUFFERS];
+} fingerprint;
+
+static void note_buffer(fingerprint *fp, const void *ptr, int cap)
+{
+  if (fp->n < MAX_BUFFERS) {
+    fp->ptr[fp->n] = ptr;
+    fp->cap[fp->n] = cap;
+  }
+  fp->n++;
+}
+
+static void note_geom(fingerprint *fp, const afv_geom *g)
+{
+  note_buffer(fp, g->area, g->cap_cells);
+  note_buffer(fp, g->nbr, g->cap_nbr);
+  note_buffer(fp, g->edge, g->cap_nbr);
+  note_buffer(fp, g->grad, g->cap_nbr);
+  note_buffer(fp, g->pieces, g->cap_pieces);
+  note_buffer(fp, g->bin_start, g->cap_bins);
+  note_buffer(fp, g->work, g->cap_work);
+  note_buffer(fp, g->cand, g->cap_cand);
+}
+
+static fingerprint fingerprint_of(const afv_sim *s)
+{
+  fingerprint fp;
+  int w;
+  fp.n = 0;
+  note_geom(&fp, &s->geom);
+  note_buffer(&fp, s->groups, s->cap_groups);
+  note_buffer(&fp, s->group_cells, s->cap_group_cells);
+  note_buffer(&fp, s->work, s->n_work);
+  for (w = 0; w < s->n_work; w++) {
+    note_buffer(&fp, s->work[w].sub, s->work[w].cap_sub);
+    note_geom(&fp, &s->work[w].geom);
+  }
+  return fp;
+}
+
+static int same_fingerprint(const fingerprint *a, const fingerprint *b)
+{
+  int k;
+  if (a->n != b->n) return 0;
+  for (k = 0; k < a->n && k < MAX_BUFFERS; k++)
+    if (a->ptr[k] != b->ptr[k] || a->cap[k] != b->cap[k]) return 0;
+  return 1;
+}
+
+/* afv_sim_step allocates nothing once its buffers have grown, sub-steps
+** included.  The same steps are taken twice: the first run grows every
+** buffer to what these steps need; the replay, from the same state (the
+** candidates rebuilt at the start, as afv_sim_init does), must then leave
+** every buffer where it is and as large as it is after every step, and
+** end on the same bits.  The work space of the sub-steps must also still
+** be there (a work space freed after each group would be allocated again
+** at the next).  One thread: with more, which thread's work space serves
+** which group varies from run to run, so a replay could rightly grow
+** another thread's space the first time it meets a larger region. */
+static void test_steps_reuse_their_buffers(void)
+{
+  enum { N = 2000, STEPS = 30 };
+  afv_params p;
+  afv_box b;
+  afv_dyn d;
+  afv_sim s;
+  fingerprint grown, now;
+  double *r = malloc(2 * N * sizeof(double)), *th = malloc(N * sizeof(double));
+  double *f0 = malloc(2 * N * sizeof(double));
+  double *r_end = malloc(2 * N * sizeof(double));
+  int k, groups = 0, kept = 0, regrown = -1, st;
+#ifdef _OPENMP
+  int saved = omp_get_max_threads();
+  omp_set_num_threads(1);
+#endif
+  memset(&s, 0, sizeof s);
+  CHECK(r && th && f0 && r_end, "out of memory");
+  if (!r || !th || !f0 || !r_end) goto done;
+  st = active_tissue(N, r, th, &p, &b, &d);
+  if (st == AFV_OK) st = afv_sim_init(&s, N, r, th, &p, &b, &d);
+  CHECK(st == AFV_OK, "init: %s", afv_strerror(st));
+  if (st != AFV_OK) goto done;
+  memcpy(f0, s.f, 2 * N * sizeof(double));     /* r, th: the start too */
+  for (k = 0; k < STEPS && st == AFV_OK; k++) {
+    st = afv_sim_step(&s);
+    groups += s.n_groups;
+  }
+  CHECK(st == AFV_OK, "first run: %s", afv_strerror(st));
+  printf("  %d groups of fast cells in %d steps, %lld extra pieces\n", groups,
+         STEPS, s.substeps);
+  CHECK(groups >= STEPS, "%d groups of fast cells in %d steps: the "
+        "sub-steps' buffers would hardly be tested", groups, STEPS);
+  if (st != AFV_OK) goto done;
+  grown = fingerprint_of(&s);
+  CHECK(grown.n <= MAX_BUFFERS, "%d buffers, room for %d", grown.n,
+        MAX_BUFFERS);
+  memcpy(r_end, s.r, 2 * N * sizeof(double));
+  /* back to the start */
+  memcpy(s.r, r, 2 * N * sizeof(double));
+  memcpy(s.f, f0, 2 * N * sizeof(double));
+  memcpy(s.theta, th, N * sizeof(double));
+  s.step = 0;
+  s.t = 0;
+  s.substeps = 0;
+  s.geom.cand_n = 0;
+  st = afv_compute(&s.geom, N, s.r, &s.par, &s.box, s.f);
+  CHECK(st == AFV_OK, "replay start: %s", afv_strerror(st));
+  for (k = 0; k < STEPS && st == AFV_OK; k++) {
+    st = afv_sim_step(&s);
+    now = fingerprint_of(&s);
+    if (regrown < 0 && !same_fingerprint(&now, &grown)) regrown = k + 1;
+  }
+  CHECK(st == AFV_OK, "replay: %s", afv_strerror(st));
+  CHECK(regrown < 0, "replay step %d moved or resized a buffer", regrown);
+  for (k = 0; k < s.n_work; k++)
+    kept += s.work[k].cap_sub > 0 && s.work[k].geom.cap_cells > 0;
+  CHECK(kept > 0, "no work space of the sub-steps left after the steps");
+  CHECK(memcmp(s.r, r_end, 2 * N * sizeof(double)) == 0,
+        "the replay ended elsewhere: not the same steps");
+done:
+#ifdef _OPENMP
+  omp_set_num_threads(saved);
+#endif
+  afv_sim_free(&s);
+  free(r);
+  free(th);
+  free(f0);
+  free(r_end);
 }
 
 /* The number of neighbour slots in use (each pair counts twice). */
@@ -672,6 +825,7 @@ void suite_perf(void)
   RUN(test_threads_bit_identical);
   RUN(test_threads_groups_bit_identical);
   RUN(test_no_allocation_when_repeated);
+  RUN(test_steps_reuse_their_buffers);
   RUN(test_candidates_change_nothing);
   RUN(test_candidates_with_movers);
   RUN(test_cells_around);
