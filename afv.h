@@ -354,8 +354,8 @@ typedef struct afv_sim {
                        ** groups of fast cells (= extra force evaluations
                        ** of their regions; dynamics.c, GROUPS) */
   int        bad_cell; /* on AFV_EUNSTABLE: the offending cell, else -1 */
-  double     bad_disp; /* on AFV_EUNSTABLE: its step length / l (NaN if
-                       ** the force was not finite) */
+  double     bad_disp; /* on AFV_EUNSTABLE: its step length / l (NaN or
+                       ** inf if the force was not finite) */
   double    *r_start;  /* private: r at the start of the step (2n) */
   double    *move_len; /* private: per-cell squared move lengths (n) */
   double    *pol;      /* private: v0_i n_i during a step (2n) */

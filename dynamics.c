@@ -642,7 +642,9 @@ static int region_forces(afv_sim *s, const afv_group *G, afv_group_work *W)
   return AFV_OK;
 }
 
-/* The largest force move of the cells fast[0 .. nf-1] over a time h. */
+/* The largest force move of the cells fast[0 .. nf-1] over a time h, or
+** NaN at the first cell whose move is NaN (a comparison with a NaN is
+** false, so a later finite move would have replaced it). */
 static double fastest(const afv_sim *s, const int *fast, int nf, double h,
                       int *cell)
 {
@@ -652,9 +654,10 @@ static double fastest(const afv_sim *s, const int *fast, int nf, double h,
   for (k = 0; k < nf; k++) {
     int i = fast[k];
     double m = h * s->dyn.mu * hypot(s->f[2*i], s->f[2*i+1]);
-    if (!(m <= best)) {
+    if (m > best || isnan(m)) {
       best = m;
       *cell = i;
+      if (isnan(m)) break;
     }
   }
   return best;
@@ -673,7 +676,9 @@ static void fast_pieces(afv_sim *s, afv_group *G, afv_group_work *W,
   W->geom.cand_n = 0;          /* a new region: no Verlet candidates yet */
   for (piece = 1;; piece++) {
     double h = left, len = fastest(s, fast, G->nf, left, &cell);
-    if (isnan(len)) {
+    /* an infinite move too: its piece, left split / len, would be 0 long,
+    ** and the cell would move by 0 inf = NaN */
+    if (!isfinite(len)) {
       G->status = AFV_EUNSTABLE;
       G->bad_cell = cell;
       G->bad_disp = len / s->par.l;

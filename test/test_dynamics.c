@@ -1164,6 +1164,84 @@ static void test_near_groups_either_order(void)
   afv_sim_free(&b_alone);
 }
 
+/* The first neighbour of cell i in g that is neither cell `other` nor a
+** neighbour of it; -1 if none. */
+static int neighbour_not_shared(const afv_geom *g, int i, int other)
+{
+  int s, t;
+  for (s = g->nbr_start[i]; s < g->nbr_end[i]; s++) {
+    int c = g->nbr[s], shared = c == other;
+    for (t = g->nbr_start[other]; t < g->nbr_end[other] && !shared; t++)
+      shared = g->nbr[t] == c;
+    if (!shared) return c;
+  }
+  return -1;
+}
+
+/* A group of fast cells whose forces stop being finite in its sub-steps
+** refuses the step and names its first fast cell with such a force
+** (GROUPS).  Two far detaching clusters (as above), each with two fast
+** cells, its rim cell and the detaching one (the higher index).  After the
+** forces of the step's start, the simulation's own copy of KA is set to
+** 1e308 for a neighbour of each rim cell that does not touch the
+** detaching cell: a valid KA, but 2 KA (A - A0) overflows, and in the
+** first sub-step the rim cell's force becomes infinite while the
+** detaching cell's stays finite.  The step must be refused (AFV_EUNSTABLE,
+** state unchanged), naming the first cluster's rim cell with a move that
+** is not finite: the first failing group in the order of their first
+** fast cells, whatever thread moved which.  (Before, the piece for an
+** infinite force was 0 long, the cell moved by 0 inf = NaN, and the step
+** failed as "position is NaN or infinite"; and a NaN move followed by a
+** finite one in the same group was skipped.) */
+static void test_infinite_force_in_substeps_named(void)
+{
+  enum { N = 80 };
+  afv_box one = {1, 30, 30}, two = {1, 60, 30};
+  afv_params p;
+  afv_dyn d;
+  afv_sim s;
+  double r[2 * N], rr[4 * N], r0[4 * N], ka[2 * N], split;
+  int i, k, st, rim[2] = {-1, -1}, bad[2];
+  memset(&s, 0, sizeof s);
+  detaching_cluster(N, &one, 1e-7, r, &p, &d);
+  memcpy(rr, r, sizeof r);
+  memcpy(rr + 2 * N, r, sizeof r);
+  for (i = 0; i < N; i++) rr[2 * (N + i)] += 30;
+  for (i = 0; i < 2 * N; i++) ka[i] = p.KA;
+  p.KA_i = ka;
+  st = afv_sim_init(&s, 2 * N, rr, NULL, &p, &two, &d);
+  CHECK(st == AFV_OK, "init: %s", afv_strerror(st));
+  if (st != AFV_OK) return;
+  split = d.max_move * p.l;
+  for (i = 0; i < 2 * N; i++)            /* the fast cells, in order */
+    if (d.dt * d.mu * hypot(s.f[2*i], s.f[2*i+1]) > split) {
+      int c = i >= N;
+      CHECK(i == c * N + N - 1 || rim[c] < 0, "cluster %d: a third fast "
+            "cell %d", c, i);
+      if (i != c * N + N - 1) rim[c] = i;
+    }
+  for (k = 0; k < 2; k++) {
+    CHECK(rim[k] >= 0, "cluster %d: no fast rim cell", k);
+    if (rim[k] < 0) goto done;
+    bad[k] = neighbour_not_shared(&s.geom, rim[k], k * N + N - 1);
+    CHECK(bad[k] >= 0, "cluster %d: every neighbour of the rim cell "
+          "touches the detaching cell", k);
+    if (bad[k] < 0) goto done;
+    ((double *)s.par.KA_i)[bad[k]] = 1e308;  /* the simulation's copy */
+  }
+  memcpy(r0, s.r, sizeof r0);
+  st = afv_sim_step(&s);
+  CHECK(st == AFV_EUNSTABLE, "status %s, not %s", afv_strerror(st),
+        afv_strerror(AFV_EUNSTABLE));
+  CHECK(s.bad_cell == rim[0] && !isfinite(s.bad_disp), "named cell %d "
+        "(move %g l), not cell %d with a move that is not finite",
+        s.bad_cell, s.bad_disp, rim[0]);
+  CHECK(memcmp(r0, s.r, sizeof r0) == 0 && s.step == 0 && s.substeps == 0,
+        "the refused step changed the state");
+done:
+  afv_sim_free(&s);
+}
+
 void suite_dynamics(void)
 {
   snprintf(tmpdir, sizeof tmpdir, "/tmp/afv_test_dynamics.%ld",
@@ -1179,6 +1257,7 @@ void suite_dynamics(void)
   RUN(test_local_substeps_match_whole_tissue);
   RUN(test_far_groups_step_alone);
   RUN(test_near_groups_either_order);
+  RUN(test_infinite_force_in_substeps_named);
   RUN(test_free_abp_msd_and_polarity);
   RUN(test_per_cell_v0_and_Dr);
   RUN(test_energy_decrease_first_order);
