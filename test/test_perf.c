@@ -11,6 +11,7 @@
 #include "afv.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #ifdef _OPENMP
@@ -286,18 +287,19 @@ done:
 /* Where a simulation's buffers are and how large: the geometry's, and
 ** those of the sub-steps (groups, their cells, each thread's work space
 ** and its region's geometry).  Two equal fingerprints mean that no buffer
-** moved or grew in between. */
+** moved or grew in between.  (Addresses are kept as integers: a pointer
+** freed by a realloc may not even be compared.) */
 enum { MAX_BUFFERS = 1024 };   /* n_work is a capacity: 16 or more */
 typedef struct fingerprint {
   int n;
-  const void *ptr[MAX_BUFFERS];
+  uintptr_t addr[MAX_BUFFERS];
   int cap[MAX_BUFFERS];
 } fingerprint;
 
 static void note_buffer(fingerprint *fp, const void *ptr, int cap)
 {
   if (fp->n < MAX_BUFFERS) {
-    fp->ptr[fp->n] = ptr;
+    fp->addr[fp->n] = (uintptr_t)ptr;
     fp->cap[fp->n] = cap;
   }
   fp->n++;
@@ -336,7 +338,7 @@ static int same_fingerprint(const fingerprint *a, const fingerprint *b)
   int k;
   if (a->n != b->n) return 0;
   for (k = 0; k < a->n && k < MAX_BUFFERS; k++)
-    if (a->ptr[k] != b->ptr[k] || a->cap[k] != b->cap[k]) return 0;
+    if (a->addr[k] != b->addr[k] || a->cap[k] != b->cap[k]) return 0;
   return 1;
 }
 
