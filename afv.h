@@ -323,8 +323,8 @@ int afv_grow(void **ptr, int *cap, int need, size_t elem);
 typedef struct afv_group {
   int       start, nr, nf;
   int       status;    /* how its pieces ended: AFV_OK or an error */
-  int       bad_cell;  /* on AFV_EUNSTABLE, as afv_sim.bad_cell */
-  double    bad_disp;
+  int       bad_cell;  /* on AFV_EUNSTABLE: the cell, and its move */
+  double    bad_len;   /*   length (for unstable() in dynamics.c) */
   long long pieces;    /* the extra pieces it took */
 } afv_group;
 

@@ -654,10 +654,13 @@ static double fastest(const afv_sim *s, const int *fast, int nf, double h,
   for (k = 0; k < nf; k++) {
     int i = fast[k];
     double m = h * s->dyn.mu * hypot(s->f[2*i], s->f[2*i+1]);
-    if (m > best || isnan(m)) {
+    if (isnan(m)) {
+      *cell = i;
+      return m;
+    }
+    if (m > best) {
       best = m;
       *cell = i;
-      if (isnan(m)) break;
     }
   }
   return best;
@@ -681,7 +684,7 @@ static void fast_pieces(afv_sim *s, afv_group *G, afv_group_work *W,
     if (!isfinite(len)) {
       G->status = AFV_EUNSTABLE;
       G->bad_cell = cell;
-      G->bad_disp = len / s->par.l;
+      G->bad_len = len;
       return;
     }
     if (len > split && piece < AFV_MAX_SUBSTEPS) h = left * (split / len);
@@ -730,10 +733,8 @@ static int move_fast_cells(afv_sim *s, int nf, double split, double moved)
   for (g = 0; g < s->n_groups; g++) {
     const afv_group *G = &s->groups[g];
     s->substeps += G->pieces;
-    if (G->status == AFV_EUNSTABLE) {
-      s->bad_cell = G->bad_cell;
-      s->bad_disp = G->bad_disp;
-    }
+    if (G->status == AFV_EUNSTABLE)
+      return unstable(s, G->bad_cell, G->bad_len);
     if (G->status != AFV_OK) return G->status;
   }
   return AFV_OK;
