@@ -47,11 +47,17 @@ FORCE:
 libafv.a: $(LIB_OBJ)
 	$(AR) rcs $@ $(LIB_OBJ)
 
-afv: main.o libafv.a .build-flags
-	$(CC) $(CFLAGS) -o $@ main.o libafv.a $(LDLIBS)
+# The program: main.c dispatches to the commands (cli.h lists their files).
+CLI_SRC  = main.c cli.c inspect.c run.c report.c
+CLI_OBJ  = $(CLI_SRC:.c=.o)
+
+afv: $(CLI_OBJ) libafv.a .build-flags
+	$(CC) $(CFLAGS) -o $@ $(CLI_OBJ) libafv.a $(LDLIBS)
 
 %.o: %.c afv.h .build-flags
 	$(CC) $(CFLAGS) -c -o $@ $<
+
+$(CLI_OBJ): cli.h
 
 test/run_tests: $(TEST_SRC) test/test.h libafv.a afv.h .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ $(TEST_SRC) libafv.a $(LDLIBS)

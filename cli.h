@@ -1,0 +1,63 @@
+/*
+** cli.h -- what the commands of the afv program share (not part of the
+** library: libafv.a and afv.h know nothing of it).
+**
+**   main.c     the dispatcher: afv COMMAND ... -> cmd_COMMAND
+**   cli.c      option parsing and messages shared by the commands
+**   inspect.c  eval, check, draw, meanfield: one configuration
+**   run.c      run: the simulation job (run directory, outputs, resume)
+**   report.c   analyze: a run's order parameters and plots
+**
+** Exit status of every command: 0 success, 1 a check failed, 2 bad input
+** or options, 3 a run stopped on an unstable step.  Only these files decide
+** to exit; the library returns status codes.
+*/
+#ifndef AFV_CLI_H
+#define AFV_CLI_H
+
+#include "afv.h"
+
+#define EXIT_CHECK_FAILED 1
+#define EXIT_BAD_INPUT    2
+#define EXIT_UNSTABLE     3
+
+/* Longest run directory or file path the commands accept. */
+#define RUN_PATH_MAX 1024
+
+/* ---- the commands (argv[0] is the command's name) ----------------------- */
+int cmd_eval(int argc, char **argv);
+int cmd_check(int argc, char **argv);
+int cmd_run(int argc, char **argv);
+int cmd_draw(int argc, char **argv);
+int cmd_analyze(int argc, char **argv);
+int cmd_meanfield(int argc, char **argv);
+
+/* ---- cli.c -------------------------------------------------------------- */
+/* Prints "afv: MSG" on stderr and returns EXIT_BAD_INPUT. */
+int bad_input(const char *msg);
+/* Parses a whole string as a finite double; message names the option. */
+int parse_double(const char *opt, const char *text, double *out);
+/* --help text of the model options shared by eval, check and draw. */
+extern const char *model_help;
+/* If argv[*k] is a model option, consumes it (and its value) and returns 1;
+** returns 0 if it is not one, -1 on a bad value (message printed). */
+int model_option(int argc, char **argv, int *k, afv_params *p, afv_box *b);
+/* Range checks of the model options, with messages naming the option. */
+int model_valid(const afv_params *p, const afv_box *b);
+/* Loads POINTS and wraps them into a periodic box. */
+int load_points(const char *path, const afv_box *b, int *n, double **r);
+/* Prints the library's error st (naming cells where it can); EXIT_BAD_INPUT. */
+int library_error(int st, const afv_geom *g);
+/* Prints text in lines of at most 72 characters, each indented by 6. */
+void print_wrapped(const char *text);
+/* Option NAME with a finite double value; returns 1 if consumed. */
+int double_option(int argc, char **argv, int *k, const char *name,
+                  double *out, int *bad);
+
+/* ---- run.c: tolerant readers of a run directory ------------------------- */
+/* params.txt of a run: picks l, v0 and Dr.  0 if unreadable. */
+int read_run_params(const char *path, double *l, double *v0, double *Dr);
+/* l of the run whose trajectory is at path, from params.txt beside it. */
+void run_l_beside(const char *path, double *l);
+
+#endif

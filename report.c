@@ -1,0 +1,139 @@
+/*
+** report.c -- afv analyze: a run's order parameters and plots, written to files
+*/
+#define _POSIX_C_SOURCE 200809L  /* mkdir, truncate, isatty, clock_gettime */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <time.h>
+#include <unistd.h>
+
+
+/* Fewer time origins than this behind the lag of D_s earn a warning: the
+** average of a handful of displacements is not a diffusivity. */
+#define MIN_LAG_ORIGINS 10
+
+static const char *analyze_usage =
+  "usage: afv analyze DIR [--lag L] [--steady-from T] [--l L] [--v0 V]"
+  " [--Dr D]\n\n"
+  "Reads DIR/trajectory.dat (and l, v0, Dr from DIR/params.txt; options\n"
+  "override) and writes DIR/analysis/:\n"
+  "  summary.txt  KEY VALUE: steady means and standard deviations of\n"
+  "               N_GC/N, number of clusters and Omega; final T1; D_s,\n"
+  "               D_eff = D_s / D_0 (D_0 = v0^2 / (2 Dr)); tau_NGC\n"
+  "  series.csv   time, ngc_frac, n_clusters, omega, t1 per frame\n"
+  "  msd.csv      lag, msd, msd_rel (relative to contacting neighbours)\n"
+  "  csd.csv      n, p(n): cluster size distribution over steady frames\n"
+  "  msd.svg, series.svg, csd.svg   plots\n\n"
+  "  --lag L          lag for D_s = MSD_rel / (4 L), in time units; the\n"
+  "                   computed lag nearest to L is used (default 5000)\n"
+  "  --steady-from T  steady part: frames with time >= T (default 0)\n"
+  "  --l L            maximal cell radius (default: params.txt, else 1)\n"
+  "  --v0 V           self-propulsion speed for D_0 (default: params.txt,\n"
+  "                   else 0.5)\n"
+  "  --Dr D           rotational diffusion for D_0 (default: params.txt,\n"
+  "                   else 0.1)\n";
+
+
+/* D_s is only as good as the lag it is measured at: say so when the lag
+** asked for is beyond the run, or has few time origins behind it. */
+static void warn_if_lag_unsupported(const afv_analysis *a, double lag)
+{
+  const afv_msd *m = &a->msd;
+  int k;
+  for (k = 0; k < m->nlags && m->dt[k] != a->ds_lag; k++) {}
+  if (k == m->nlags) return;
+  if (lag > 1.5 * a->ds_lag)
+    fprintf(stderr, "afv analyze: warning: --lag %g is beyond the run; D_s "
+            "is measured at lag %g instead\n", lag, a->ds_lag);
+  if (a->n > 0 && m->samples[k] / a->n < MIN_LAG_ORIGINS)
+    fprintf(stderr, "afv analyze: warning: D_s at lag %g rests on %ld "
+            "time origin(s) only (fewer than %d)\n", a->ds_lag,
+            m->samples[k] / a->n, MIN_LAG_ORIGINS);
+}
+
+static int analyze_write(const char *dir, const afv_analysis *a)
+{
+  char out[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
+  snprintf(out, sizeof out, "%s/analysis", dir);
+  if (mkdir(out, 0777) != 0 && errno != EEXIST) {
+    fprintf(stderr, "afv analyze: cannot create %s: %s\n", out,
+            strerror(errno));
+    return EXIT_BAD_INPUT;
+  }
+  if (afv_analysis_write(a, out, err, sizeof err) != AFV_OK)
+    return bad_input(err);
+  printf("frames %d (steady from %d)\nngc_frac_mean %.6g\nn_clusters_mean "
+         "%.6g\nomega_mean %.6g\nt1_final %g\nD_s %.6g\nD_eff %.6g\n"
+         "tau_NGC %.6g\nwritten: %s/\n", a->nframes, a->first, a->mean[0],
+         a->mean[1], a->mean[2], a->t1_final, a->ds, a->deff, a->tau_ngc,
+         out);
+  return 0;
+}
+
+int cmd_analyze(int argc, char **argv)
+{
+  const char *dir = NULL;
+  char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
+  double lag = 5000, from = 0, l = 1, v0 = 0.5, Dr = 0.1;
+  double l_o = NAN, v0_o = NAN, Dr_o = NAN;   /* NAN: option not given */
+  afv_traj tr;
+  afv_analysis a;
+  int k, st, bad = 0;
+  for (k = 1; k < argc && !bad; k++) {
+    if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
+      fputs(analyze_usage, stdout);
+      return 0;
+    }
+    if (double_option(argc, argv, &k, "--lag", &lag, &bad)
+        || double_option(argc, argv, &k, "--steady-from", &from, &bad)
+        || double_option(argc, argv, &k, "--l", &l_o, &bad)
+        || double_option(argc, argv, &k, "--v0", &v0_o, &bad)
+        || double_option(argc, argv, &k, "--Dr", &Dr_o, &bad))
+      continue;
+    if (argv[k][0] == '-' && argv[k][1]) {
+      fprintf(stderr, "afv analyze: unknown option '%s' (see afv analyze "
+              "--help)\n", argv[k]);
+      return EXIT_BAD_INPUT;
+    }
+    if (dir) return bad_input("analyze: more than one DIR given");
+    dir = argv[k];
+  }
+  if (bad) return EXIT_BAD_INPUT;
+  if (!dir) return bad_input("analyze: missing DIR (see afv analyze --help)");
+  if (strlen(dir) > RUN_PATH_MAX - 64) return bad_input("analyze: DIR too long");
+  if (lag <= 0) return bad_input("--lag: must be > 0");
+  snprintf(path, sizeof path, "%s/params.txt", dir);
+  if (!read_run_params(path, &l, &v0, &Dr))
+    fprintf(stderr, "afv analyze: %s not found: using l = 1, v0 = 0.5, "
+            "Dr = 0.1 unless given\n", path);
+  if (!isnan(l_o)) l = l_o;
+  if (!isnan(v0_o)) v0 = v0_o;
+  if (!isnan(Dr_o)) Dr = Dr_o;
+  if (!(l > 0)) return bad_input("analyze: l must be > 0");
+  snprintf(path, sizeof path, "%s/trajectory.dat", dir);
+  if (afv_traj_read(path, &tr, err, sizeof err) != AFV_OK)
+    return bad_input(err);
+  /* afv run writes unwrapped centres (io.c, TRAJECTORY format): no
+  ** unwrapping here, which would fold moves of more than half a box
+  ** between two frames back into the box */
+  st = afv_analyze(&a, &tr, l, v0, Dr, from, lag);
+  afv_traj_free(&tr);
+  if (st == AFV_OK) warn_if_lag_unsupported(&a, lag);
+  if (st != AFV_OK) {
+    fprintf(stderr, "afv analyze: %s: %s\n", path,
+            st == AFV_EINVAL ? "no complete frame" : afv_strerror(st));
+    return EXIT_BAD_INPUT;
+  }
+  st = analyze_write(dir, &a);
+  afv_analysis_free(&a);
+  return st;
+}
