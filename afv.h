@@ -607,11 +607,20 @@ typedef struct afv_analysis {
 ** D_s at the computed lag nearest to `lag`. */
 int  afv_analyze(afv_analysis *a, const afv_traj *tr, double l, double v0,
                  double Dr, double steady_from, double lag);
-/* Writes msd.csv, csd.csv, series.csv, summary.txt and the SVG plots into
-** the existing directory dir, each atomically. */
+/* Writes summary.txt, msd.csv, csd.csv, csd_binned.csv and series.csv into
+** the existing directory dir, each atomically.  Numbers only: the plots of
+** an analysis are drawn by afv_svg_msd, afv_svg_series and afv_svg_csd. */
 int  afv_analysis_write(const afv_analysis *a, const char *dir, char *err,
                         size_t errlen);
 void afv_analysis_free(afv_analysis *a);
+
+/* Log-binned cluster-size distribution: bin k holds the sizes 2^k ..
+** 2^(k+1) - 1 (the last bin ends at n); lo[k], hi[k] its first and last
+** size, p[k] the sum of csd[s] over them (so the p[k] sum to the sum of
+** csd[1..n]).  csd as afv_analysis.csd (index s = 1..n).  Returns the
+** number of bins, floor(log2 n) + 1 <= AFV_CSD_MAX_BINS. */
+#define AFV_CSD_MAX_BINS 32
+int  afv_csd_log_bins(const double *csd, int n, int *lo, int *hi, double *p);
 
 /* ---- drawing (svg.c) ---------------------------------------------------- */
 /* Draws the configuration r (geometry g computed for it) like the paper's
@@ -621,6 +630,28 @@ void afv_analysis_free(afv_analysis *a);
 ** "junction", "polarity". */
 int afv_svg_write(FILE *out, const afv_geom *g, int n, const double *r,
                   const double *theta, const afv_params *p, const afv_box *b);
+
+/* What afv_svg_draw may change (zero-initialise, then set what you need;
+** afv_svg_write draws with all of them zero). */
+typedef struct afv_draw_opts {
+  double width;          /* picture width in pixels; 0: the longer side of
+                         ** the picture is 800 pixels */
+  int    crop;           /* 1: draw only [x0, x1] x [y0, y1], model units;
+                         ** in a periodic box within one box side of it */
+  double x0, y0, x1, y1;
+  int    color_by_cluster; /* 1: fill the cells by cluster, largest first */
+  const double *value;   /* else, if not NULL: fill cell i by value[i] (a
+                         ** colour per value when there are at most 7
+                         ** values, a mixture of cell types; else a ramp) */
+  const char *value_name;  /* name of the value, for the legend */
+} afv_draw_opts;
+/* afv_svg_write with options: size, crop and filled cells with a legend
+** (class="legend") right of the tissue; cells are class="cell".  Marks
+** and lines are their size in l but at least a pixel or two, so they stay
+** visible on a zoomed-out picture.  AFV_EINVAL on unusable options. */
+int afv_svg_draw(FILE *out, const afv_geom *g, int n, const double *r,
+                 const double *theta, const afv_params *p, const afv_box *b,
+                 const afv_draw_opts *o);
 
 /* A small line-plot helper for analysis figures. */
 typedef struct afv_plot {
@@ -635,7 +666,16 @@ typedef struct afv_plot_series {
   const char   *color;  /* SVG colour, e.g. "#1f77b4" */
   int           points; /* 1: a marker per point and no line (scatter) */
 } afv_plot_series;
+/* The legend (class="legend") is right of the plot area, never on it. */
 int afv_svg_plot(FILE *out, const afv_plot *pl, const afv_plot_series *s,
                  int ns);
+
+/* The plots of an analysis, as afv analyze writes them: msd.svg (plain and
+** relative MSD against lag, log-log), series.svg (N_GC/N and Omega against
+** time), csd.svg (the cluster-size distribution, each size and its log
+** bins, afv_csd_log_bins). */
+int afv_svg_msd(FILE *out, const afv_analysis *a);
+int afv_svg_series(FILE *out, const afv_analysis *a);
+int afv_svg_csd(FILE *out, const afv_analysis *a);
 
 #endif /* AFV_H */

@@ -749,6 +749,23 @@ int afv_analyze(afv_analysis *a, const afv_traj *tr, double l, double v0,
   return AFV_OK;
 }
 
+/* Bin k holds the sizes 2^k .. 2^(k+1) - 1 (the last bin ends at n): equal
+** widths on a log axis, and integer ends, so every size is in exactly one
+** bin and the bins' p sum to the distribution's. */
+int afv_csd_log_bins(const double *csd, int n, int *lo, int *hi, double *p)
+{
+  int m = 0, s;
+  for (s = 1; s <= n; s++) {
+    if ((s & (s - 1)) == 0) {       /* a power of two opens a bin */
+      lo[m] = s;
+      p[m++] = 0;
+    }
+    hi[m - 1] = s;
+    p[m - 1] += csd[s];
+  }
+  return m;
+}
+
 /* ---- writing the results ------------------------------------------------ */
 typedef void (*writer_fn)(FILE *fp, const afv_analysis *a);
 
@@ -807,57 +824,17 @@ static void write_series(FILE *fp, const afv_analysis *a)
             a->n_clusters[f], a->omega[f], a->t1[f]);
 }
 
-static void plot_msd(FILE *fp, const afv_analysis *a)
+/* The log bins of csd.csv (afv_csd_log_bins): n_lo, n_hi, the probability
+** of the bin and that probability per size in it (what csd.svg plots). */
+static void write_csd_binned(FILE *fp, const afv_analysis *a)
 {
-  afv_plot pl = {"Mean-squared displacement", "lag (time)", "MSD (l^2)", 1,
-                 1, 0, 0};
-  afv_plot_series s[2];
-  s[0].x = s[1].x = a->msd.dt;
-  s[0].n = s[1].n = a->msd.nlags;
-  s[0].y = a->msd.msd_rel;
-  s[0].label = "relative MSD";
-  s[0].color = "#d62728";
-  s[1].y = a->msd.msd;
-  s[1].label = "MSD";
-  s[1].color = "#1f77b4";
-  s[0].points = s[1].points = 0;
-  afv_svg_plot(fp, &pl, s, 2);
-}
-
-static void plot_series(FILE *fp, const afv_analysis *a)
-{
-  afv_plot pl = {"Giant cluster and confluency", "time", "N_GC/N, Omega", 0,
-                 0, 0, 1.2};
-  afv_plot_series s[2];
-  s[0].x = s[1].x = a->t;
-  s[0].n = s[1].n = a->nframes;
-  s[0].y = a->ngc_frac;
-  s[0].label = "N_GC/N";
-  s[0].color = "#1f77b4";
-  s[1].y = a->omega;
-  s[1].label = "Omega";
-  s[1].color = "#9467bd";
-  s[0].points = s[1].points = 0;
-  afv_svg_plot(fp, &pl, s, 2);
-}
-
-static void plot_csd(FILE *fp, const afv_analysis *a)
-{
-  afv_plot pl = {"Cluster size distribution", "n (cells)", "p(n)", 1, 1, 0,
-                 0};
-  afv_plot_series s;
-  double *x = malloc((size_t)(a->n + 1) * sizeof(double));
-  int k;
-  if (!x) return;   /* the commit sees the empty file: fine, just no plot */
-  for (k = 0; k <= a->n; k++) x[k] = k;
-  s.x = x + 1;
-  s.y = a->csd + 1;
-  s.n = a->n;
-  s.label = "p(n)";
-  s.color = "#2ca02c";
-  s.points = 1;            /* a distribution: one marker per size */
-  afv_svg_plot(fp, &pl, &s, 1);
-  free(x);
+  int lo[AFV_CSD_MAX_BINS], hi[AFV_CSD_MAX_BINS], k;
+  double p[AFV_CSD_MAX_BINS];
+  int m = afv_csd_log_bins(a->csd, a->n, lo, hi, p);
+  fprintf(fp, "n_lo,n_hi,p_bin,p_per_n\n");
+  for (k = 0; k < m; k++)
+    fprintf(fp, "%d,%d,%.10g,%.10g\n", lo[k], hi[k], p[k],
+            p[k] / (hi[k] - lo[k] + 1));
 }
 
 static int write_one(const char *dir, const char *name, writer_fn fn,
@@ -886,14 +863,12 @@ int afv_analysis_write(const afv_analysis *a, const char *dir, char *err,
                        size_t errlen)
 {
   static const char *names[] = {"summary.txt", "msd.csv", "csd.csv",
-                                "series.csv", "msd.svg", "series.svg",
-                                "csd.svg"};
-  writer_fn fns[7];
+                                "csd_binned.csv", "series.csv"};
+  writer_fn fns[5];
   int k, st;
   fns[0] = write_summary; fns[1] = write_msd; fns[2] = write_csd;
-  fns[3] = write_series; fns[4] = plot_msd; fns[5] = plot_series;
-  fns[6] = plot_csd;
-  for (k = 0; k < 7; k++)
+  fns[3] = write_csd_binned; fns[4] = write_series;
+  for (k = 0; k < 5; k++)
     if ((st = write_one(dir, names[k], fns[k], a, err, errlen)) != AFV_OK)
       return st;
   return AFV_OK;

@@ -32,6 +32,8 @@ static const char *analyze_usage =
   "  series.csv   time, ngc_frac, n_clusters, omega, t1 per frame\n"
   "  msd.csv      lag, msd, msd_rel (relative to contacting neighbours)\n"
   "  csd.csv      n, p(n): cluster size distribution over steady frames\n"
+  "  csd_binned.csv  n_lo, n_hi, p_bin, p_per_n: csd.csv in log bins\n"
+  "               (sizes 2^k .. 2^(k+1) - 1)\n"
   "  msd.svg, series.svg, csd.svg   plots\n\n"
   "  --lag L          lag for D_s = MSD_rel / (4 L), in time units; the\n"
   "                   computed lag nearest to L is used (default 5000)\n"
@@ -60,6 +62,39 @@ static void warn_if_lag_unsupported(const afv_analysis *a, double lag)
             m->samples[k] / a->n, MIN_LAG_ORIGINS);
 }
 
+/* The pictures of an analysis, each written atomically into out: the
+** numbers come from analysis.c, the drawing from svg.c. */
+static int analyze_plots(const char *out, const afv_analysis *a)
+{
+  static const char *names[3] = {"msd.svg", "series.svg", "csd.svg"};
+  int (*const draw[3])(FILE *, const afv_analysis *) = {
+    afv_svg_msd, afv_svg_series, afv_svg_csd
+  };
+  char path[RUN_PATH_MAX + 64], tmp[RUN_PATH_MAX + 96];
+  int k;
+  for (k = 0; k < 3; k++) {
+    FILE *fp;
+    int st;
+    snprintf(path, sizeof path, "%s/%s", out, names[k]);
+    if (!(fp = afv_atomic_open(path, tmp, sizeof tmp))) {
+      fprintf(stderr, "afv analyze: %s: cannot create: %s\n", path,
+              strerror(errno));
+      return EXIT_BAD_INPUT;
+    }
+    if ((st = draw[k](fp, a)) != AFV_OK) {   /* the old file stays */
+      fclose(fp);
+      remove(tmp);
+    } else {
+      st = afv_atomic_commit(fp, tmp, path);
+    }
+    if (st != AFV_OK) {
+      fprintf(stderr, "afv analyze: %s: %s\n", path, afv_strerror(st));
+      return EXIT_BAD_INPUT;
+    }
+  }
+  return 0;
+}
+
 static int analyze_write(const char *dir, const afv_analysis *a)
 {
   char out[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
@@ -71,6 +106,7 @@ static int analyze_write(const char *dir, const afv_analysis *a)
   }
   if (afv_analysis_write(a, out, err, sizeof err) != AFV_OK)
     return bad_input(err);
+  if (analyze_plots(out, a) != 0) return EXIT_BAD_INPUT;
   printf("frames %d (steady from %d)\nngc_frac_mean %.6g\nn_clusters_mean "
          "%.6g\nomega_mean %.6g\nt1_final %g\nD_s %.6g\nD_eff %.6g\n"
          "tau_NGC %.6g\nwritten: %s/\n", a->nframes, a->first, a->mean[0],
