@@ -154,103 +154,375 @@ static int is_trajectory(const char *path)
   return strncmp(line, "# afv trajectory", 16) == 0;
 }
 
-/* Frame `frame` (-1: last) of a trajectory: positions, angles and box. */
-static int load_frame(const char *path, long frame, afv_box *b, int *n,
-                      double **r, double **theta)
+/* ---- afv draw ----------------------------------------------------------- */
+static const char *draw_usage =
+  "usage: afv draw FILE [options] > picture.svg\n"
+  "       afv draw TRAJECTORY --frames DIR [options]\n\n"
+  "Draws one configuration as SVG, like the paper's Fig. 1: red\n"
+  "centres, blue contact edges, pink arcs, hollow purple triple\n"
+  "junctions, cyan polarity arrows, the periodic box in black.\n"
+  "FILE is a POINTS file or a trajectory ('# afv trajectory'\n"
+  "header: the box and the angles come from it, and l from\n"
+  "params.txt beside it, unless --l is given).  Lines and marks are\n"
+  "their size in l, but at least a pixel or two wide.\n\n"
+  "  --frame K        trajectory frame K, 0-based (default: last)\n"
+  "  --frames DIR     every frame of the trajectory, as DIR/frame_00000.svg,\n"
+  "                   frame_00001.svg, ... (DIR is created; nothing is\n"
+  "                   written unless every frame is drawn)\n"
+  "  --width PX       picture width in pixels, 16 to 100000 (default: the\n"
+  "                   longer side is 800)\n"
+  "  --crop X0,Y0,X1,Y1  draw only this rectangle (model units; in a\n"
+  "                   periodic box within one box side of the box)\n"
+  "  --color-by WHAT  fill the cells by cluster (the largest clusters a\n"
+  "                   colour each) or by a per-cell parameter: v0, P0, KA,\n"
+  "                   KP, A0 or Dr (a colour per value up to 7 values,\n"
+  "                   e.g. a mixture of cell types, else a colour ramp),\n"
+  "                   with a legend right of the tissue\n"
+  "  --cells FILE     per-cell values for --color-by (CELLS format; for a\n"
+  "                   trajectory the default is the run's cells.txt beside\n"
+  "                   it, and a value it lacks comes from params.txt)\n\n";
+
+typedef struct draw_job {
+  const char *path, *frames_dir, *cells_path, *color_by;
+  long frame;              /* -1: last */
+  int l_given;
+  afv_params p;
+  afv_box b;
+  afv_draw_opts o;
+} draw_job;
+
+/* dir of path (a file in it) + "/" + name into buf; 0 if too long. */
+static int beside(const char *path, const char *name, char *buf, size_t len)
 {
-  char err[512];
-  afv_traj tr;
-  size_t m;
-  if (afv_traj_read(path, &tr, err, sizeof err) != AFV_OK)
-    return !bad_input(err);
-  if (tr.nframes == 0 || frame >= tr.nframes) {
-    fprintf(stderr, "afv draw: %s: --frame %ld: the file has %d frame(s)\n",
-            path, frame, tr.nframes);
-    afv_traj_free(&tr);
+  const char *slash = strrchr(path, '/');
+  int dl = slash ? (int)(slash - path) : 0;
+  int m = slash ? snprintf(buf, len, "%.*s/%s", dl, path, name)
+                : snprintf(buf, len, "%s", name);
+  return m > 0 && (size_t)m < len;
+}
+
+/* Value of key in the params.txt beside path; 1 if found. */
+static int param_beside(const char *path, const char *key, double *v)
+{
+  char file[RUN_PATH_MAX + 32], line[1024], k[64];
+  double x;
+  int found = 0;
+  FILE *fp;
+  if (!beside(path, "params.txt", file, sizeof file)
+      || !(fp = fopen(file, "r")))
+    return 0;
+  while (fgets(line, sizeof line, fp))
+    if (line[0] != '#' && sscanf(line, "%63s %lf", k, &x) == 2
+        && strcmp(k, key) == 0 && isfinite(x)) {
+      *v = x;
+      found = 1;
+    }
+  fclose(fp);
+  return found;
+}
+
+/* "X0,Y0,X1,Y1": four finite numbers, X0 < X1 and Y0 < Y1. */
+static int parse_crop(const char *text, afv_draw_opts *o)
+{
+  double v[4];
+  const char *s = text;
+  char *end;
+  int k;
+  for (k = 0; k < 4; k++) {
+    errno = 0;
+    v[k] = strtod(s, &end);
+    if (end == s || errno == ERANGE || !isfinite(v[k])
+        || *end != (k < 3 ? ',' : '\0'))
+      break;
+    s = end + 1;
+  }
+  if (k < 4 || !(v[0] < v[2]) || !(v[1] < v[3])) {
+    fprintf(stderr, "afv: --crop: '%s' is not X0,Y0,X1,Y1 with X0 < X1 and "
+            "Y0 < Y1\n", text);
     return 0;
   }
-  if (frame < 0) frame = tr.nframes - 1;
-  *n = tr.n;
-  *b = tr.box;
-  m = (size_t)tr.n;
-  *r = malloc((2 * m + 1) * sizeof(double));
-  *theta = malloc((m + 1) * sizeof(double));
-  if (*r && *theta) {
-    memcpy(*r, tr.r + (size_t)frame * 2 * m, 2 * m * sizeof(double));
-    memcpy(*theta, tr.theta + (size_t)frame * m, m * sizeof(double));
-  }
-  afv_traj_free(&tr);
-  if (!*r || !*theta) return !bad_input("out of memory");
+  o->crop = 1;
+  o->x0 = v[0]; o->y0 = v[1]; o->x1 = v[2]; o->y1 = v[3];
   return 1;
 }
 
+static const char *const color_names[] = {"cluster", "v0", "P0", "KA", "KP",
+                                          "A0", "Dr"};
+#define N_COLOR_BY 7
 
-int cmd_draw(int argc, char **argv)
+/* Prints "afv: MSG" and returns -1 (a bad option value). */
+static int bad_value(const char *msg)
 {
-  afv_params p;
-  afv_box b = {0, 0, 0};
-  afv_geom g;
-  const char *path = NULL;
-  double *r = NULL, *theta = NULL;
-  long frame = -1;
-  int n = 0, k, st, ok, l_given = 0;
-  afv_params_default(&p);
-  memset(&g, 0, sizeof g);
+  bad_input(msg);
+  return -1;
+}
+
+/* One draw option at argv[*k] (consumed with its value): 1, 0 if not a
+** draw option, -1 on a bad value (message printed). */
+static int draw_option(int argc, char **argv, int *k, draw_job *J)
+{
+  const char *opt = argv[*k], *val;
+  char *end;
+  int m;
+  if (strcmp(opt, "--frame") && strcmp(opt, "--frames")
+      && strcmp(opt, "--width") && strcmp(opt, "--crop")
+      && strcmp(opt, "--color-by") && strcmp(opt, "--cells"))
+    return 0;
+  if (*k + 1 >= argc) {
+    fprintf(stderr, "afv: %s needs a value\n", opt);
+    return -1;
+  }
+  val = argv[++*k];
+  if (strcmp(opt, "--frame") == 0) {
+    errno = 0;
+    J->frame = strtol(val, &end, 10);
+    if (end == val || *end || errno || J->frame < 0)
+      return bad_value("--frame: must be an integer >= 0");
+  } else if (strcmp(opt, "--frames") == 0) {
+    if (!*val || strlen(val) > RUN_PATH_MAX - 64)
+      return bad_value("--frames: DIR is empty or too long");
+    J->frames_dir = val;
+  } else if (strcmp(opt, "--width") == 0) {
+    if (!parse_double(opt, val, &J->o.width)) return -1;
+    if (!(J->o.width >= 16 && J->o.width <= 100000))
+      return bad_value("--width: must be 16 to 100000 pixels");
+  } else if (strcmp(opt, "--crop") == 0) {
+    if (!parse_crop(val, &J->o)) return -1;
+  } else if (strcmp(opt, "--color-by") == 0) {
+    for (m = 0; m < N_COLOR_BY && strcmp(val, color_names[m]); m++) {}
+    if (m == N_COLOR_BY) {
+      fprintf(stderr, "afv: --color-by: '%s' is not one of cluster, v0, "
+              "P0, KA, KP, A0, Dr\n", val);
+      return -1;
+    }
+    J->color_by = color_names[m];
+  } else {
+    J->cells_path = val;
+  }
+  return 1;
+}
+
+static int draw_parse(int argc, char **argv, draw_job *J)
+{
+  int k, m;
   for (k = 1; k < argc; k++) {
-    int m;
-    if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
-      printf("usage: afv draw FILE [options] > picture.svg\n\n"
-             "Draws one configuration as SVG, like the paper's Fig. 1: red\n"
-             "centres, blue contact edges, pink arcs, hollow purple triple\n"
-             "junctions, cyan polarity arrows, the periodic box in black.\n"
-             "FILE is a POINTS file or a trajectory ('# afv trajectory'\n"
-             "header: the box and the angles come from it, and l from\n"
-             "params.txt beside it, unless --l is given).  Only --l and\n"
-             "--box (POINTS files) change the picture.\n\n"
-             "  --frame K        trajectory frame K, 0-based (default: last)\n"
-             "\n%s", model_help);
-      return 0;
-    }
-    if (strcmp(argv[k], "--l") == 0) l_given = 1;
-    if ((m = model_option(argc, argv, &k, &p, &b)) < 0) return EXIT_BAD_INPUT;
+    if (strcmp(argv[k], "--l") == 0) J->l_given = 1;
+    if ((m = model_option(argc, argv, &k, &J->p, &J->b)) < 0) return 0;
     if (m) continue;
-    if (strcmp(argv[k], "--frame") == 0) {
-      char *end;
-      if (k + 1 >= argc) return bad_input("--frame needs a value");
-      errno = 0;
-      frame = strtol(argv[++k], &end, 10);
-      if (end == argv[k] || *end || errno || frame < 0)
-        return bad_input("--frame: must be an integer >= 0");
-      continue;
-    }
+    if ((m = draw_option(argc, argv, &k, J)) < 0) return 0;
+    if (m) continue;
     if (argv[k][0] == '-' && argv[k][1]) {
       fprintf(stderr, "afv draw: unknown option '%s' (see afv draw --help)\n",
               argv[k]);
-      return EXIT_BAD_INPUT;
+      return 0;
     }
-    if (path) return bad_input("draw: more than one FILE given");
-    path = argv[k];
+    if (J->path) return !bad_input("draw: more than one FILE given");
+    J->path = argv[k];
   }
-  if (!path) return bad_input("draw: missing FILE (see afv draw --help)");
-  if (is_trajectory(path) && !l_given) run_l_beside(path, &p.l);
-  if (is_trajectory(path)) ok = load_frame(path, frame, &b, &n, &r, &theta);
-  else if (frame >= 0) ok = !bad_input("draw: --frame needs a trajectory");
-  else ok = model_valid(&p, &b) && load_points(path, &b, &n, &r);
-  if (ok && !model_valid(&p, &b)) ok = 0;
-  if (!ok) {
-    free(r);
-    free(theta);
+  if (!J->path) return !bad_input("draw: missing FILE (see afv draw --help)");
+  if (J->frames_dir && J->frame >= 0)
+    return !bad_input("draw: --frame and --frames exclude each other");
+  return 1;
+}
+
+/* The options that depend on the configuration: the crop within one box
+** side of a periodic box. */
+static int draw_check_box(const draw_job *J)
+{
+  const afv_draw_opts *o = &J->o;
+  if (o->crop && J->b.periodic
+      && (o->x0 < -J->b.Lx || o->x1 > 2 * J->b.Lx || o->y0 < -J->b.Ly
+          || o->y1 > 2 * J->b.Ly)) {
+    fprintf(stderr, "afv draw: --crop: %g,%g,%g,%g reaches more than one box "
+            "side beyond the periodic box %g x %g\n", o->x0, o->y0, o->x1,
+            o->y1, J->b.Lx, J->b.Ly);
+    return 0;
+  }
+  return 1;
+}
+
+/* Per-cell values of the parameter J->color_by for n cells, into *out
+** (malloc'd): the CELLS column if there is one, else the run's value
+** (params.txt beside a trajectory; the model options for POINTS). */
+static int color_values(const draw_job *J, int traj, int n, double **out)
+{
+  static const int col[] = {AFV_COL_V0, AFV_COL_P0, AFV_COL_KA, AFV_COL_KP,
+                            AFV_COL_A0, AFV_COL_DR};
+  char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
+  const char *cells = J->cells_path;
+  double scalar[6];
+  afv_cells cl;
+  int w, i, have;
+  for (w = 0; strcmp(color_names[w + 1], J->color_by); w++) {}
+  memset(&cl, 0, sizeof cl);
+  if (!cells && traj && beside(J->path, "cells.txt", path, sizeof path)
+      && access(path, F_OK) == 0)
+    cells = path;
+  if (cells && afv_read_cells(cells, &cl, err, sizeof err) != AFV_OK)
+    return !bad_input(err);
+  if (cells && cl.n != n) {
+    fprintf(stderr, "afv draw: %s: %d cells, the picture has %d\n", cells,
+            cl.n, n);
+    afv_cells_free(&cl);
+    return 0;
+  }
+  scalar[1] = J->p.P0; scalar[2] = J->p.KA; scalar[3] = J->p.KP;
+  scalar[4] = J->p.A0;
+  have = w >= 1 && w <= 4;           /* POINTS: the model options */
+  if (traj) have = param_beside(J->path, J->color_by, &scalar[w]);
+  if (!cl.has[col[w]] && !have) {
+    fprintf(stderr, "afv draw: --color-by %s: no %s in %s%s%s; give --cells "
+            "FILE with a %s column\n", J->color_by, J->color_by,
+            cells ? cells : "", cells ? " or " : "", traj ? "params.txt "
+            "beside the trajectory" : "a POINTS file", J->color_by);
+    afv_cells_free(&cl);
+    return 0;
+  }
+  if ((*out = malloc((size_t)n * sizeof(double) + 1)) != NULL)
+    for (i = 0; i < n; i++)
+      (*out)[i] = cl.has[col[w]] ? cl.col[col[w]][i] : scalar[w];
+  afv_cells_free(&cl);
+  return *out ? 1 : !bad_input("out of memory");
+}
+
+/* Draws configuration r (angles theta, may be NULL) to out. */
+static int draw_one(FILE *out, const draw_job *J, afv_geom *g, int n,
+                    const double *r, const double *theta)
+{
+  int st = afv_geometry(g, n, r, &J->p, &J->b);
+  if (st != AFV_OK) return library_error(st, g);
+  st = afv_svg_draw(out, g, n, r, theta, &J->p, &J->b, &J->o);
+  if (st != AFV_OK) return library_error(st, g);
+  return 0;
+}
+
+/* Removes the first m frame files of dir, then dir. */
+static void remove_frames(const char *dir, long m)
+{
+  char name[RUN_PATH_MAX + 96];
+  long f;
+  for (f = 0; f < m; f++) {
+    snprintf(name, sizeof name, "%s/frame_%05ld.svg", dir, f);
+    remove(name);
+  }
+  rmdir(dir);
+}
+
+/* Every frame into a fresh directory beside DIR, then moved into DIR:
+** DIR gets all the frames or, on any failure, nothing. */
+static int draw_frames(const draw_job *J, const afv_traj *tr, afv_geom *g)
+{
+  char tmp[RUN_PATH_MAX + 32], from[RUN_PATH_MAX + 96], to[RUN_PATH_MAX + 96];
+  const char *dir = J->frames_dir;
+  struct stat sb;
+  size_t m = (size_t)tr->n;
+  long f;
+  int st = 0, fresh = stat(dir, &sb) != 0;
+  if (!fresh && !S_ISDIR(sb.st_mode)) {
+    fprintf(stderr, "afv draw: --frames: %s exists and is not a directory\n",
+            dir);
     return EXIT_BAD_INPUT;
   }
-  st = afv_geometry(&g, n, r, &p, &b);
-  if (st != AFV_OK) st = library_error(st, &g);
-  else if (afv_svg_write(stdout, &g, n, r, theta, &p, &b) != AFV_OK
-           || fflush(stdout) != 0)
-    st = bad_input("draw: cannot write the SVG");
-  afv_geom_free(&g);
-  free(r);
-  free(theta);
+  snprintf(tmp, sizeof tmp, "%s.tmpXXXXXX", dir);
+  if (!mkdtemp(tmp)) {
+    fprintf(stderr, "afv draw: --frames: cannot create %s: %s\n", tmp,
+            strerror(errno));
+    return EXIT_BAD_INPUT;
+  }
+  for (f = 0; f < tr->nframes && st == 0; f++) {
+    FILE *fp;
+    snprintf(from, sizeof from, "%s/frame_%05ld.svg", tmp, f);
+    if (!(fp = fopen(from, "w"))) {
+      fprintf(stderr, "afv draw: cannot create %s: %s\n", from,
+              strerror(errno));
+      st = EXIT_BAD_INPUT;
+      break;
+    }
+    st = draw_one(fp, J, g, tr->n, tr->r + (size_t)f * 2 * m,
+                  tr->theta + (size_t)f * m);
+    if (fclose(fp) != 0 && st == 0)
+      st = bad_input("draw: --frames: a frame could not be written");
+    if (st) fprintf(stderr, "afv draw: frame %ld of %s not drawn\n", f,
+                    J->path);
+  }
+  if (st == 0 && fresh && rename(tmp, dir) != 0)
+    st = bad_input("draw: --frames: cannot rename the frames' directory");
+  for (f = 0; st == 0 && !fresh && f < tr->nframes; f++) {
+    snprintf(from, sizeof from, "%s/frame_%05ld.svg", tmp, f);
+    snprintf(to, sizeof to, "%s/frame_%05ld.svg", dir, f);
+    if (rename(from, to) != 0)
+      st = bad_input("draw: --frames: cannot move a frame into DIR");
+  }
+  if (st != 0 || !fresh) remove_frames(tmp, tr->nframes);
+  if (st == 0)
+    fprintf(stderr, "afv draw: %d frames written to %s/\n", tr->nframes, dir);
   return st;
+}
+
+/* Draws the configuration (and, for --frames, every frame) of J. */
+static int draw_run(draw_job *J)
+{
+  afv_traj tr;
+  afv_geom g;
+  double *r = NULL, *theta = NULL, *value = NULL;
+  char err[RUN_PATH_MAX + 128];
+  int traj = is_trajectory(J->path), n = 0, st = EXIT_BAD_INPUT;
+  memset(&tr, 0, sizeof tr);
+  memset(&g, 0, sizeof g);
+  if (traj && !J->l_given) run_l_beside(J->path, &J->p.l);
+  if (!traj && (J->frame >= 0 || J->frames_dir))
+    return bad_input(J->frame >= 0 ? "draw: --frame needs a trajectory"
+                     : "draw: --frames needs a trajectory");
+  if (traj) {
+    if (afv_traj_read(J->path, &tr, err, sizeof err) != AFV_OK)
+      return bad_input(err);
+    if (tr.nframes == 0 || J->frame >= tr.nframes) {
+      fprintf(stderr, "afv draw: %s: --frame %ld: the file has %d frame(s)\n",
+              J->path, J->frame, tr.nframes);
+      afv_traj_free(&tr);
+      return EXIT_BAD_INPUT;
+    }
+    n = tr.n;
+    J->b = tr.box;
+    if (J->frame < 0) J->frame = tr.nframes - 1;
+    r = tr.r + (size_t)J->frame * 2 * n;
+    theta = tr.theta + (size_t)J->frame * n;
+  } else if (!model_valid(&J->p, &J->b) || !load_points(J->path, &J->b, &n,
+                                                         &r)) {
+    return EXIT_BAD_INPUT;
+  }
+  if (model_valid(&J->p, &J->b) && draw_check_box(J)
+      && (!J->color_by || strcmp(J->color_by, "cluster") == 0
+          || color_values(J, traj, n, &value))) {
+    J->o.color_by_cluster = J->color_by && !strcmp(J->color_by, "cluster");
+    J->o.value = value;
+    J->o.value_name = J->color_by;
+    if (J->frames_dir) st = draw_frames(J, &tr, &g);
+    else if ((st = draw_one(stdout, J, &g, n, r, theta)) == 0
+             && fflush(stdout) != 0)
+      st = bad_input("draw: cannot write the SVG");
+  }
+  afv_geom_free(&g);
+  if (traj) afv_traj_free(&tr);
+  else free(r);
+  free(value);
+  return st;
+}
+
+int cmd_draw(int argc, char **argv)
+{
+  draw_job J;
+  int k;
+  memset(&J, 0, sizeof J);
+  J.frame = -1;
+  afv_params_default(&J.p);
+  for (k = 1; k < argc; k++)
+    if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
+      printf("%s%s", draw_usage, model_help);
+      return 0;
+    }
+  if (!draw_parse(argc, argv, &J)) return EXIT_BAD_INPUT;
+  return draw_run(&J);
 }
 
 
