@@ -425,8 +425,8 @@ static int draw_frames(const draw_job *J, const afv_traj *tr, afv_geom *g)
   }
   snprintf(tmp, sizeof tmp, "%s.tmpXXXXXX", dir);
   if (!mkdtemp(tmp)) {
-    fprintf(stderr, "afv draw: --frames: cannot create %s: %s\n", tmp,
-            strerror(errno));
+    fprintf(stderr, "afv draw: --frames %s: cannot create a directory there: "
+            "%s\n", dir, strerror(errno));
     return EXIT_BAD_INPUT;
   }
   for (f = 0; f < tr->nframes && st == 0; f++) {

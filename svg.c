@@ -1,12 +1,18 @@
 /*
-** svg.c -- pictures: a tissue drawn like the paper's Fig. 1, and a small
-** self-contained line-plot helper for the analysis figures.
+** svg.c -- pictures: a tissue drawn like the paper's Fig. 1, a small
+** self-contained line-plot helper, and the plots of an analysis.  Nothing
+** here computes an order parameter: analysis.c gives the numbers, the
+** commands (report.c) write the files.
 **
-** Tissue.  Coordinates are the model's (unit l), y up: the drawing sits in
-** a group with transform matrix(1 0 0 -1 0 ymin+ymax), so every element is
+** Tissue.  The picture is a canvas in pixels holding the tissue's own
+** viewport in model coordinates (unit l), y up: the drawing sits in a
+** group with transform matrix(1 0 0 -1 0 ymin+ymax), so every element is
 ** written in model coordinates and an arc running counter-clockwise in the
 ** model is an SVG arc with sweep-flag 1 (flags are read in the user space
-** of the path, before the flip).  Every piece comes from afv_geom:
+** of the path, before the flip).  A legend, when cells are coloured, sits
+** right of the viewport, outside it.  Every piece comes from afv_geom:
+**   cell         filled path (only when coloured: afv_draw_opts), its
+**                edges as lines and its arcs as arcs, under the outlines;
 **   arc          pink path "M start A l l 0 large 1 end", one per arc piece
 **                longer than AFV_CONTACT_TOL l (a shorter one is invisible);
 **                a full circle (isolated cell) is one path of two half arcs;
@@ -18,12 +24,15 @@
 **   junction     hollow purple dot, one per triple junction as counted by
 **                afv_clusters (a near-degenerate 4-fold vertex is one dot);
 **   centre       red dot;  polarity  cyan arrow of length 0.6 l.
-** Periodic box: each cell is drawn at its wrapped position and at every
-** periodic image whose disk of radius l meets the box, and the whole
-** drawing is clipped to the box (clipPath).  So a cell crossing the box
-** edge appears in pieces on both sides, as in the paper.  A cell that does
-** not reach the edge is drawn exactly once, so for such configurations the
-** element counts equal the geometry's counts (tested).
+** Lines and dots are their size in l but at least a pixel or two (see the
+** sizes below), and coordinates are printed to 1e-4 l wherever the cells
+** are.  Periodic box: each cell is drawn at its wrapped position and at
+** every periodic image whose disk of radius l meets the view (the box, or
+** the crop), and the whole drawing is clipped to the view (clipPath).  So
+** a cell crossing the box edge appears in pieces on both sides, as in the
+** paper.  A cell that does not reach the edge is drawn exactly once, so
+** for such configurations the element counts equal the geometry's counts
+** (tested).
 */
 #include "afv.h"
 

@@ -56,6 +56,7 @@ int main(void)
   suite_dynamics();
   suite_analysis();
   suite_perf();
+  suite_pictures();
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;
 }

@@ -62,5 +62,6 @@ void suite_cli(void);
 void suite_dynamics(void);
 void suite_analysis(void);
 void suite_perf(void);
+void suite_pictures(void);
 
 #endif

@@ -1,0 +1,505 @@
+/*
+** test_pictures.c -- pictures: afv draw's options (size, crop, colours,
+** frames), the digits of a drawn coordinate, the plots' legends, the
+** log-binned cluster-size distribution, and analysis.c computing without
+** drawing.  The program is run as a user runs it (./afv from the
+** repository root, where `make test` starts the runner), its files in a
+** temporary directory removed at the end of the suite.
+*/
+#define _POSIX_C_SOURCE 200809L
+#include "afv.h"
+#include "test.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static char tmpdir[64];             /* the suite's directory */
+
+/* Runs a shell command built from fmt ("%s" arguments as given), from the
+** repository root; its exit status, -1 if it did not exit normally. */
+static int shell(const char *fmt, ...)
+{
+  char cmd[2048];
+  va_list ap;
+  int st;
+  va_start(ap, fmt);
+  vsnprintf(cmd, sizeof cmd, fmt, ap);
+  va_end(ap);
+  st = system(cmd);
+  return st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* tmpdir/name. */
+static const char *in_tmp(char *buf, size_t len, const char *name)
+{
+  snprintf(buf, len, "%s/%s", tmpdir, name);
+  return buf;
+}
+
+/* A whole file as a malloc'd string ("" if missing: caller frees). */
+static char *read_all(const char *path)
+{
+  FILE *fp = fopen(path, "rb");
+  char *buf;
+  long size = 0;
+  if (fp && fseek(fp, 0, SEEK_END) == 0) size = ftell(fp);
+  if (size < 0) size = 0;
+  buf = malloc((size_t)size + 1);
+  if (!buf) {
+    if (fp) fclose(fp);
+    return NULL;
+  }
+  if (fp) rewind(fp);
+  buf[fp ? fread(buf, 1, (size_t)size, fp) : 0] = 0;
+  if (fp) fclose(fp);
+  return buf;
+}
+
+static void write_text(const char *name, const char *text)
+{
+  char p[128];
+  FILE *fp = fopen(in_tmp(p, sizeof p, name), "w");
+  CHECK(fp != NULL, "cannot create %s", p);
+  if (!fp) return;
+  fputs(text, fp);
+  fclose(fp);
+}
+
+static int count_of(const char *s, const char *what)
+{
+  int m = 0;
+  while ((s = strstr(s, what)) != NULL) {
+    m++;
+    s++;
+  }
+  return m;
+}
+
+/* Number in attribute name="..." of the tag that starts at or before at
+** (searched up to the tag's end); NAN if absent. */
+static double attr(const char *at, const char *name)
+{
+  char key[32];
+  const char *end = strchr(at, '>'), *v;
+  snprintf(key, sizeof key, " %s=\"", name);
+  v = strstr(at, key);
+  if (!v || (end && v > end)) return NAN;
+  return strtod(v + strlen(key), NULL);
+}
+
+static int have_afv(void)
+{
+  if (access("./afv", X_OK) == 0) return 1;
+  SKIP("./afv not built");
+  return 0;
+}
+
+/* nx x ny cells of a square lattice, spacing 1.5, first at (x0, y0): a
+** POINTS file. */
+static void write_lattice(const char *name, int nx, int ny, double x0,
+                          double y0)
+{
+  char p[128];
+  FILE *fp = fopen(in_tmp(p, sizeof p, name), "w");
+  int i, j;
+  CHECK(fp != NULL, "cannot create %s", p);
+  if (!fp) return;
+  for (j = 0; j < ny; j++)
+    for (i = 0; i < nx; i++)
+      fprintf(fp, "%.17g %.17g\n", x0 + 1.5 * i, y0 + 1.5 * j);
+  fclose(fp);
+}
+
+/* ---- afv draw's options ------------------------------------------------- */
+/* Every option accepted with a good value; each bad value refused with one
+** line naming the option, exit status 2, and nothing written. */
+static void draw_options_validated(void)
+{
+  static const char *bad[][2] = {
+    {"--width 5", "--width"}, {"--width 2e5", "--width"},
+    {"--width abc", "--width"}, {"--crop 1,2,3", "--crop"},
+    {"--crop 3,0,1,5", "--crop"}, {"--crop 0,0,1,nan", "--crop"},
+    {"--crop 0,0,1,1,", "--crop"}, {"--color-by speed", "--color-by"},
+    {"--color-by", "--color-by"}, {"--color-by v0", "v0"},
+    {"--frames", "--frames"}, {"--frames %s/never", "--frames"},
+    {"--color-by P0 --cells %s/short.cells", "cells"}
+  };
+  char pts[128], so[128], se[128], never[128], opt[256], *o, *e;
+  int k;
+  if (!have_afv()) return;
+  write_lattice("lat.xy", 4, 3, 0, 0);
+  write_text("short.cells", "# P0\n4\n5\n");
+  in_tmp(pts, sizeof pts, "lat.xy");
+  in_tmp(so, sizeof so, "out.svg");
+  in_tmp(se, sizeof se, "err.txt");
+  CHECK(shell("./afv draw %s --width 300 --crop 0,0,3,3 --color-by cluster "
+              ">%s 2>%s", pts, so, se) == 0, "good options refused");
+  o = read_all(so);
+  CHECK(o && strstr(o, "</svg>"), "good options: no picture");
+  free(o);
+  for (k = 0; k < (int)(sizeof bad / sizeof bad[0]); k++) {
+    snprintf(opt, sizeof opt, bad[k][0], tmpdir);
+    remove(so);
+    CHECK(shell("./afv draw %s %s >%s 2>%s", pts, opt, so, se) == 2,
+          "draw %s: exit status not 2", opt);
+    o = read_all(so);
+    e = read_all(se);
+    CHECK(o && !o[0], "draw %s: wrote %s", opt, o);
+    CHECK(e && count_of(e, "\n") == 1 && strstr(e, bad[k][1]),
+          "draw %s: stderr not one line naming %s: %s", opt, bad[k][1], e);
+    free(o);
+    free(e);
+  }
+  CHECK(access(in_tmp(never, sizeof never, "never"), F_OK) != 0,
+        "--frames on a POINTS file created the directory");
+}
+
+/* --width sets the picture's width in pixels and keeps its aspect; --crop
+** shows exactly the region asked for, and only the cells in it. */
+static void draw_width_and_crop(void)
+{
+  char pts[128], so[128], *s, *tissue, *top;
+  int inside = 0, i, j;
+  if (!have_afv()) return;
+  write_lattice("wc.xy", 10, 6, 0, 0);     /* x 0..13.5, y 0..7.5 */
+  in_tmp(pts, sizeof pts, "wc.xy");
+  in_tmp(so, sizeof so, "wc.svg");
+  CHECK(shell("./afv draw %s --width 420 >%s 2>/dev/null", pts, so) == 0,
+        "--width");
+  s = read_all(so);
+  top = s ? strstr(s, "<svg ") : NULL;
+  CHECK(top != NULL, "no picture");
+  if (top) {
+    /* the open view is the cells' extent plus 1.5 l each side */
+    CHECK_CLOSE(attr(top, "width"), 420, 0, 0, "width in pixels");
+    CHECK_CLOSE(attr(top, "height"), 420 * 10.5 / 16.5, 1e-5, 0,
+                "height keeps the aspect");
+  }
+  free(s);
+  /* crop x 2.2..8.2, y 0.7..3.7: lattice lines at 1.5 i are >= 0.05 away
+  ** from its sides, farther than a centre dot's radius is large */
+  CHECK(shell("./afv draw %s --crop 2.2,0.7,8.2,3.7 --width 600 >%s "
+              "2>/dev/null", pts,
+              so) == 0, "--crop");
+  s = read_all(so);
+  tissue = s ? strstr(s, "class=\"tissue\"") : NULL;
+  top = s ? strstr(s, "<svg ") : NULL;
+  CHECK(tissue != NULL && top != NULL, "no tissue viewport");
+  if (tissue && top) {
+    CHECK(strstr(tissue, "viewBox=\"2.2 0.7 6 3\""), "viewBox is not the "
+          "crop: %.80s", tissue);
+    CHECK_CLOSE(attr(top, "height"), 300, 1e-9, 0, "crop's aspect");
+  }
+  for (j = 0; j < 6; j++)
+    for (i = 0; i < 10; i++)
+      inside += 1.5 * i > 2.2 && 1.5 * i < 8.2 && 1.5 * j > 0.7
+                && 1.5 * j < 3.7;
+  CHECK(s && count_of(s, "class=\"centre\"") == inside, "crop draws %d "
+        "centres, %d cells are in it", s ? count_of(s, "class=\"centre\"")
+        : -1, inside);
+  free(s);
+}
+
+/* A mixture of two cell types (P0 from a CELLS file): two colours, one per
+** type, every cell filled with its type's colour, and a legend of two. */
+static void draw_color_by_two_types(void)
+{
+  char pts[128], cells[128], so[128], text[4096], col[2][8] = {"", ""};
+  char *s, *at;
+  int i, n = 12, bad = 0;
+  if (!have_afv()) return;
+  write_lattice("two.xy", 4, 3, 0, 0);
+  strcpy(text, "# P0\n");
+  for (i = 0; i < n; i++)
+    strcat(text, (i * 7) % 3 ? "4.5\n" : "7.25\n");
+  write_text("two.cells", text);
+  in_tmp(pts, sizeof pts, "two.xy");
+  in_tmp(cells, sizeof cells, "two.cells");
+  in_tmp(so, sizeof so, "two.svg");
+  CHECK(shell("./afv draw %s --color-by P0 --cells %s >%s 2>/dev/null", pts,
+              cells, so)
+        == 0, "--color-by P0 refused");
+  s = read_all(so);
+  if (!s) return;
+  at = s;
+  for (i = 0; i < n && (at = strstr(at, "class=\"cell\" fill=\"")); i++) {
+    char *c = col[(i * 7) % 3 ? 0 : 1];
+    at += strlen("class=\"cell\" fill=\"");
+    if (!c[0]) snprintf(c, 8, "%.7s", at);
+    bad += strncmp(c, at, 7) != 0;
+  }
+  CHECK(i == n, "%d cells filled, want %d", i, n);
+  CHECK(bad == 0 && col[0][0] && strcmp(col[0], col[1]) != 0,
+        "types not told apart: %d cells off their type's colour, colours "
+        "%s and %s", bad, col[0], col[1]);
+  at = strstr(s, "class=\"legend\"");
+  CHECK(at && count_of(at, "class=\"swatch\"") == 2
+        && strstr(at, "P0 = 4.5: 8 cells") && strstr(at, "P0 = 7.25: 4 cells"),
+        "legend does not list the two types");
+  CHECK(at && strstr(at, col[0]) && strstr(at, col[1]),
+        "legend colours are not the cells' colours");
+  free(s);
+}
+
+/* Cells far from the origin are drawn where they are: every printed
+** coordinate within 1e-4 l (with %.6g, 100000.75 was printed 100001). */
+static void draw_coordinates_at_1e5(void)
+{
+  char pts[128], so[128], *s, *at;
+  int i = 0, worst = -1;
+  double err = 0;
+  if (!have_afv()) return;
+  write_lattice("far.xy", 3, 3, 100000.125, -99999.875);
+  in_tmp(pts, sizeof pts, "far.xy");
+  in_tmp(so, sizeof so, "far.svg");
+  CHECK(shell("./afv draw %s >%s", pts, so) == 0, "draw far cells");
+  s = read_all(so);
+  for (at = s; at && (at = strstr(at, "class=\"centre\"")); at++, i++) {
+    double x = 100000.125 + 1.5 * (i % 3), y = -99999.875 + 1.5 * (i / 3);
+    double e = fabs(attr(at, "cx") - x) + fabs(attr(at, "cy") - y);
+    if (!(e <= err)) {
+      err = e;
+      worst = i;
+    }
+  }
+  CHECK(i == 9, "%d centres drawn, want 9", i);
+  CHECK(err <= 1e-4, "centre %d drawn %g l from its place", worst, err);
+  free(s);
+}
+
+/* At the default size a 400-cell box (800 pixels for 32 l) shows its
+** junctions and edges: a junction at least 2.5 pixels in radius, lines at
+** least a pixel wide (they were 1.75 and 0.875 pixels). */
+static void draw_marks_visible_at_default_size(void)
+{
+  double r[2 * 400];
+  char pts[128], so[128], box[64], *s, *at;
+  afv_box b;
+  int i;
+  FILE *fp;
+  double px, jr, lw;
+  if (!have_afv()) return;
+  b = test_tri_lattice(20, 20, 1.6, 0.3, 0.2, r);
+  fp = fopen(in_tmp(pts, sizeof pts, "box.xy"), "w");
+  if (!fp) return;
+  for (i = 0; i < 400; i++) fprintf(fp, "%.17g %.17g\n", r[2*i], r[2*i+1]);
+  fclose(fp);
+  snprintf(box, sizeof box, "%.17g,%.17g", b.Lx, b.Ly);
+  in_tmp(so, sizeof so, "box.svg");
+  CHECK(shell("./afv draw %s --box %s >%s", pts, box, so) == 0, "draw box");
+  s = read_all(so);
+  at = s ? strstr(s, "class=\"junction\"") : NULL;
+  CHECK(at != NULL, "no junction drawn");
+  if (!at) {
+    free(s);
+    return;
+  }
+  px = 800 / (b.Lx > b.Ly ? b.Lx : b.Ly);
+  jr = attr(at, "r") * px;
+  at = strstr(s, "<g fill=\"none\"");
+  lw = at ? attr(at, "stroke-width") * px : 0;
+  CHECK(jr >= 2.5, "junction radius %.3g pixels", jr);
+  CHECK(lw >= 1, "edge width %.3g pixels", lw);
+  free(s);
+}
+
+/* --frames writes every frame of a trajectory, named frame_NNNNN.svg. */
+static void draw_frames_of_a_trajectory(void)
+{
+  char run[128], frames[128], name[192], *log;
+  afv_traj tr;
+  char err[256];
+  int f, have = 0;
+  if (!have_afv()) return;
+  in_tmp(run, sizeof run, "run");
+  in_tmp(frames, sizeof frames, "frames");
+  CHECK(shell("./afv run --out %s --N 30 --steps 300 --frame_every 50 "
+              "--svg_every 0 --quiet >/dev/null 2>&1", run) == 0, "afv run");
+  snprintf(name, sizeof name, "%s/trajectory.dat", run);
+  if (afv_traj_read(name, &tr, err, sizeof err) != AFV_OK) {
+    CHECK(0, "%s", err);
+    return;
+  }
+  CHECK(shell("./afv draw %s --frames %s --color-by v0 2>%s/frames.log",
+              name, frames, tmpdir) == 0, "--frames refused");
+  for (f = 0; f < tr.nframes + 1; f++) {
+    snprintf(name, sizeof name, "%s/frame_%05d.svg", frames, f);
+    have += access(name, R_OK) == 0;
+  }
+  CHECK(tr.nframes == 7 && have == tr.nframes, "%d of %d frames written",
+        have, tr.nframes);
+  snprintf(name, sizeof name, "%s/frames.log", tmpdir);
+  log = read_all(name);
+  CHECK(log && strstr(log, "7 frames written"), "no report: %s", log);
+  free(log);
+  afv_traj_free(&tr);
+}
+
+/* ---- plots ------------------------------------------------------------- */
+/* The legend lies right of every data point (it covered msd.svg's
+** curves: the old legend sat inside the plot area's top right corner). */
+static void plot_legend_beside_data(void)
+{
+  double x[50], y[50], most = 0, v;
+  afv_plot pl = {"t", "x", "y", 1, 1, 0, 0};
+  afv_plot_series s[2];
+  FILE *fp = tmpfile();
+  char *svg, *at;
+  long size;
+  int k;
+  if (!fp) return;
+  for (k = 0; k < 50; k++) {
+    x[k] = pow(10, k / 10.0);
+    y[k] = x[k] * x[k];
+  }
+  s[0].x = s[1].x = x;
+  s[0].y = s[1].y = y;
+  s[0].n = s[1].n = 50;
+  s[0].label = "first label";
+  s[1].label = "second";
+  s[0].color = "#ff0000";
+  s[1].color = "#0000ff";
+  s[0].points = 0;
+  s[1].points = 1;
+  CHECK(afv_svg_plot(fp, &pl, s, 2) == AFV_OK, "plot");
+  size = ftell(fp);
+  rewind(fp);
+  svg = size > 0 ? malloc((size_t)size + 1) : NULL;
+  if (svg) svg[fread(svg, 1, (size_t)size, fp)] = 0;
+  fclose(fp);
+  if (!svg) return;
+  for (at = svg; (at = strstr(at, "<circle")) != NULL; at++)
+    if ((v = attr(at, "cx")) > most) most = v;
+  at = strstr(svg, ">first label<");
+  while (at && at > svg && strncmp(at, "<text", 5)) at--;
+  CHECK(at && attr(at, "x") > most + 5, "legend text at x %g, data up to %g",
+        at ? attr(at, "x") : NAN, most);
+  at = strstr(svg, ">second<");
+  while (at && at > svg && strncmp(at, "<text", 5)) at--;
+  CHECK(at && attr(at, "x") > most + 5, "second legend entry over the data");
+  free(svg);
+}
+
+/* Log bins: sizes 2^k .. 2^(k+1) - 1, each size in exactly one bin, and
+** the bins' p sum to the distribution's. */
+static void csd_log_bins_sum(void)
+{
+  enum { N = 300 };
+  double csd[N + 1], p[AFV_CSD_MAX_BINS], total = 0, binned = 0;
+  int lo[AFV_CSD_MAX_BINS], hi[AFV_CSD_MAX_BINS], m, k, s;
+  test_rng_seed(23);
+  csd[0] = 0;
+  for (s = 1; s <= N; s++) total += csd[s] = test_rng_uniform() / s;
+  m = afv_csd_log_bins(csd, N, lo, hi, p);
+  CHECK(m == 9, "%d bins for n <= 300, want 9 (1, 2, 4, .., 256)", m);
+  for (k = 0; k < m; k++) {
+    double want = 0;
+    CHECK(lo[k] == 1 << k && hi[k] == (k == m - 1 ? N : 2 * lo[k] - 1),
+          "bin %d is %d..%d", k, lo[k], hi[k]);
+    for (s = lo[k]; s <= hi[k]; s++) want += csd[s];
+    CHECK_CLOSE(p[k], want, 1e-15, 0, "p of a bin");
+    binned += p[k];
+  }
+  CHECK_CLOSE(binned, total, 1e-14, 0, "bins sum to the distribution");
+  CHECK(afv_csd_log_bins(csd, 1, lo, hi, p) == 1 && lo[0] == 1 && hi[0] == 1,
+        "one cell: one bin");
+}
+
+/* afv analyze writes the plots (drawn by report.c, svg.c) and the log bins
+** (csd_binned.csv, summing to csd.csv). */
+static void analyze_writes_binned_csd_and_plots(void)
+{
+  static const char *plots[] = {"msd.svg", "series.svg", "csd.svg"};
+  char run[128], path[192], *csv, *line;
+  double sum_csd = 0, sum_bins = 0;
+  int k;
+  if (!have_afv()) return;
+  in_tmp(run, sizeof run, "run");
+  if (access(run, F_OK) != 0)
+    CHECK(shell("./afv run --out %s --N 30 --steps 300 --frame_every 50 "
+                "--svg_every 0 --quiet >/dev/null 2>&1", run) == 0, "run");
+  CHECK(shell("./afv analyze %s --lag 1 >/dev/null 2>&1", run) == 0,
+        "afv analyze");
+  for (k = 0; k < 3; k++) {
+    char *svg;
+    snprintf(path, sizeof path, "%s/analysis/%s", run, plots[k]);
+    svg = read_all(path);
+    CHECK(svg && strstr(svg, "</svg>") && strstr(svg, "class=\"legend\""),
+          "%s missing or without its legend", plots[k]);
+    free(svg);
+  }
+  snprintf(path, sizeof path, "%s/analysis/csd.csv", run);
+  csv = read_all(path);
+  for (line = csv ? strchr(csv, '\n') : NULL; line && line[1];
+       line = strchr(line + 1, '\n'))
+    sum_csd += strtod(strchr(line, ',') + 1, NULL);
+  free(csv);
+  snprintf(path, sizeof path, "%s/analysis/csd_binned.csv", run);
+  csv = read_all(path);
+  CHECK(csv && !strncmp(csv, "n_lo,n_hi,p_bin,p_per_n\n", 24),
+        "csd_binned.csv missing or without its header");
+  for (line = csv ? strchr(csv, '\n') : NULL; line && line[1];
+       line = strchr(line + 1, '\n')) {
+    char *c = strchr(strchr(line + 1, ',') + 1, ',');
+    sum_bins += strtod(c + 1, NULL);
+  }
+  free(csv);
+  CHECK(sum_csd > 0.999, "csd.csv sums to %g", sum_csd);
+  CHECK_CLOSE(sum_bins, sum_csd, 1e-8, 0, "csd_binned.csv sums to csd.csv");
+}
+
+/* Computing an order parameter never draws: analysis.o uses no afv_svg_
+** function (nm), and analysis.c names none. */
+static void analysis_does_not_draw(void)
+{
+  char line[512];
+  char *src = read_all("analysis.c");
+  FILE *nm;
+  int uses = 0, lines = 0;
+  CHECK(src && src[0], "analysis.c not found (run from the repository root)");
+  CHECK(src && !strstr(src, "afv_svg_"), "analysis.c names afv_svg_*");
+  free(src);
+  if (access("analysis.o", R_OK) != 0) {
+    SKIP("analysis.o not built");
+    return;
+  }
+  nm = popen("nm analysis.o 2>/dev/null", "r");
+  if (!nm) return;
+  while (fgets(line, sizeof line, nm)) {
+    lines++;
+    uses += strstr(line, "afv_svg_") != NULL;
+  }
+  pclose(nm);
+  if (lines == 0) {
+    SKIP("nm printed nothing");
+    return;
+  }
+  CHECK(uses == 0, "analysis.o refers to %d afv_svg_ symbol(s)", uses);
+}
+
+void suite_pictures(void)
+{
+  char cmd[128];
+  snprintf(tmpdir, sizeof tmpdir, "/tmp/afv_pictures_XXXXXX");
+  if (!mkdtemp(tmpdir)) {
+    printf("FAIL suite_pictures: cannot create a temporary directory\n");
+    return;
+  }
+  RUN(draw_options_validated);
+  RUN(draw_width_and_crop);
+  RUN(draw_color_by_two_types);
+  RUN(draw_coordinates_at_1e5);
+  RUN(draw_marks_visible_at_default_size);
+  RUN(draw_frames_of_a_trajectory);
+  RUN(plot_legend_beside_data);
+  RUN(csd_log_bins_sum);
+  RUN(analyze_writes_binned_csd_and_plots);
+  RUN(analysis_does_not_draw);
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
+  if (system(cmd) != 0) printf("  (could not remove %s)\n", tmpdir);
+}
