@@ -196,6 +196,8 @@ typedef struct legend {
   char color[LEGEND_ROWS][8];
   int  ramp;                       /* 1: a colour bar from lo to hi */
   double lo, hi;
+  int  min_chars, min_rows;        /* room kept whatever the entries: the
+                                   ** frames of a movie keep one size */
 } legend;
 
 /* Colour at u in [0, 1] of a blue-green-yellow ramp (viridis' ends). */
@@ -312,6 +314,11 @@ static int color_by_cluster(char (*fill)[8], legend *lg, int n,
     lg->rows++;
   }
   lg->ramp = 0;
+  /* the longest entry any frame of n cells can have, every row */
+  snprintf(lg->text[LEGEND_ROWS - 1], sizeof lg->text[0], "%d more (%d cells "
+           "or fewer)", n, n);
+  lg->min_chars = (int)strlen(lg->text[LEGEND_ROWS - 1]);
+  lg->min_rows = LEGEND_ROWS;
   free(order);
   free(rank);
   return AFV_OK;
@@ -330,8 +337,10 @@ static void legend_size(const legend *lg, int on, double *w, double *h)
   for (k = 0; k < lg->rows; k++)
     if (strlen(lg->text[k]) > most) most = strlen(lg->text[k]);
   if (lg->ramp && most < 16) most = 16;
+  if ((int)most < lg->min_chars) most = (size_t)lg->min_chars;
   *w = 24 + 28 + most * LEGEND_CHAR + 12;
-  *h = 16 + LEGEND_ROW * (1 + (lg->ramp ? 6 : lg->rows)) + 12;
+  *h = 16 + LEGEND_ROW * (1 + (lg->ramp ? 6 : lg->rows > lg->min_rows
+                                ? lg->rows : lg->min_rows)) + 12;
 }
 
 /* The legend, in pixels, its top-left corner at (x, y). */
