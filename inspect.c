@@ -180,7 +180,8 @@ static const char *draw_usage =
   "                   with a legend right of the tissue\n"
   "  --cells FILE     per-cell values for --color-by (CELLS format; for a\n"
   "                   trajectory the default is the run's cells.txt beside\n"
-  "                   it, and a value it lacks comes from params.txt)\n\n";
+  "                   it, and a value it lacks comes from params.txt; for\n"
+  "                   a POINTS file from --P0, --KA, --KP, --A0 below)\n\n";
 
 typedef struct draw_job {
   const char *path, *frames_dir, *cells_path, *color_by;
