@@ -243,6 +243,36 @@ int afv_force_check(int n, const double *r, const afv_params *p,
                     afv_check_report *rep);
 
 /* ---- files (io.c) ----------------------------------------------------- */
+/* Reading text files.  Every reader of afv reads through afv_lines: the
+** path must name a regular file (a directory, pipe or device is refused),
+** each line is handed out whole (a line longer than AFV_LINE_MAX bytes is
+** refused, never split), and a NUL byte is refused where it is; every
+** message starts "FILE:LINE: ".  Usage:
+**   if (afv_lines_open(&L, path, err, errlen) != AFV_OK) return ...;
+**   while ((got = afv_lines_next(&L, err, errlen)) > 0) use L.line;
+**   if (got < 0) the status is L.status;  afv_lines_close(&L); */
+#define AFV_LINE_MAX (1 << 20)
+/* Most cells (rows) a reader accepts: 2n + 1 still fits an int. */
+#define AFV_CELLS_MAX 1073741823
+typedef struct afv_lines {
+  const char *path;    /* as given (not copied), for messages */
+  FILE       *fp;
+  long long   size;    /* the file's size in bytes, when opened */
+  char       *line;    /* the current line, without its '\n' (NUL-ended) */
+  size_t      len;     /* its length in bytes */
+  long long   lineno;  /* its number, from 1 */
+  int         newline; /* 1 if it ended with '\n' (0: the last line of a
+                       ** file that does not end with one) */
+  int         status;  /* after afv_lines_next returned -1: the error */
+  size_t      cap, pos, fill;  /* line capacity; unread part of buf */
+  char        buf[8192];
+} afv_lines;
+int  afv_lines_open(afv_lines *L, const char *path, char *err, size_t errlen);
+/* 1: the next line is in L->line; 0: end of file; -1: an error (message in
+** err, status in L->status). */
+int  afv_lines_next(afv_lines *L, char *err, size_t errlen);
+void afv_lines_close(afv_lines *L);
+
 /* Reads a POINTS file: one cell "x y" per line, separated by spaces, tabs
 ** or commas, '#' lines and blank lines ignored.  On success *r is a malloc'd
 ** array of 2 *n coordinates (caller frees).  On failure, err holds a
@@ -500,6 +530,13 @@ typedef struct afv_checkpoint {
 int  afv_checkpoint_write(const char *path, const afv_checkpoint *c);
 int  afv_checkpoint_read(const char *path, afv_checkpoint *c, char *err,
                          size_t errlen);
+/* Line of "bytes afv_checkpoint_files[k] SIZE" in a checkpoint: this + k. */
+#define AFV_CKPT_BYTES_LINE 6
+/* Checks each recorded size (bytes > 0) against its file beside the
+** checkpoint at path: the file must exist and hold at least that many
+** bytes.  AFV_OK, or AFV_EFORMAT with "path:LINE: bytes FILE: ..." in err. */
+int  afv_checkpoint_check_files(const char *path, const afv_checkpoint *c,
+                                char *err, size_t errlen);
 void afv_checkpoint_free(afv_checkpoint *c);
 
 /* ---- analysis (analysis.c) --------------------------------------------- */
@@ -547,6 +584,11 @@ typedef struct afv_t1 {
 int    afv_t1_start(afv_t1 *t, const afv_clusters *c);  /* C(0) := c's C */
 double afv_t1_count(const afv_t1 *t, const afv_clusters *c);
 void   afv_t1_free(afv_t1 *t);
+/* C(0) in a file (T1 REFERENCE format, io.c): written atomically by afv run,
+** read back on --resume; n is the number of cells (pairs i < j < n). */
+int    afv_t1_reference_write(const char *path, const afv_t1 *t);
+int    afv_t1_reference_read(const char *path, int n, afv_t1 *t, char *err,
+                             size_t errlen);
 
 /* Mean-squared displacement on log-spaced lags, plain and relative to the
 ** contacting neighbours at the time origin (a cell with none: plain). */

@@ -6,15 +6,23 @@
 ** POINTS format: one cell per line, columns "x y" separated by spaces, tabs
 ** or commas; blank lines and lines starting with '#' are ignored.  Errors
 ** name the file and line.
+**
+** Every reader reads through afv_lines (READING LINES below): a regular
+** file only, each line whole, no NUL byte; every field is parsed whole and
+** range-checked, and a count is checked against what the file can hold
+** before anything is allocated for it.  Messages: "FILE:LINE: field: what".
 */
+#define _POSIX_C_SOURCE 200809L  /* stat: readers refuse directories, devices */
 #include "afv.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* Initial capacity of the points array; small so that growth is exercised
 ** by every test that reads more than a handful of cells. */
@@ -29,15 +37,172 @@ void afv_errorf(char *err, size_t errlen, const char *fmt, ...)
   va_end(ap);
 }
 
+/* ---- reading lines ----------------------------------------------------- */
+/* afv_lines reads a file in blocks and hands out one whole line at a time
+** (any length up to AFV_LINE_MAX bytes), so no line is ever split; a NUL
+** byte, which no text afv reads may hold, is refused where it is. */
+static const char *file_kind(mode_t m)
+{
+  if (S_ISDIR(m)) return "a directory";
+  if (S_ISFIFO(m)) return "a pipe";
+  if (S_ISCHR(m)) return "a character device";
+  if (S_ISBLK(m)) return "a block device";
+  return "a special file";
+}
+
+int afv_lines_open(afv_lines *L, const char *path, char *err, size_t errlen)
+{
+  struct stat sb;
+  memset(L, 0, sizeof *L);
+  L->path = path;
+  if (stat(path, &sb) != 0) {
+    afv_errorf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+    return AFV_EIO;
+  }
+  /* checked before fopen: opening a pipe would wait for a writer */
+  if (!S_ISREG(sb.st_mode)) {
+    afv_errorf(err, errlen, "%s: is %s, not a regular file", path,
+               file_kind(sb.st_mode));
+    return AFV_EIO;
+  }
+  if (!(L->fp = fopen(path, "rb"))) {
+    afv_errorf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+    return AFV_EIO;
+  }
+  L->size = (long long)sb.st_size;
+  return AFV_OK;
+}
+
+void afv_lines_close(afv_lines *L)
+{
+  if (L->fp) fclose(L->fp);
+  free(L->line);
+  L->fp = NULL;
+  L->line = NULL;
+}
+
+static int lines_fail(afv_lines *L, int status)
+{
+  L->status = status;
+  return -1;
+}
+
+/* Appends k bytes of the block to the line (k <= AFV_LINE_MAX - len). */
+static int lines_append(afv_lines *L, const char *s, size_t k)
+{
+  if (L->len + k + 1 > L->cap) {
+    size_t nc = L->cap ? L->cap : 256;
+    char *q;
+    while (nc < L->len + k + 1) nc *= 2;
+    if (!(q = realloc(L->line, nc))) return AFV_ENOMEM;
+    L->line = q;
+    L->cap = nc;
+  }
+  memcpy(L->line + L->len, s, k);
+  L->len += k;
+  L->line[L->len] = 0;
+  return AFV_OK;
+}
+
+int afv_lines_next(afv_lines *L, char *err, size_t errlen)
+{
+  L->len = 0;
+  L->newline = 0;
+  if (lines_append(L, "", 0) != AFV_OK) return lines_fail(L, AFV_ENOMEM);
+  L->lineno++;
+  for (;;) {
+    const char *at = L->buf + L->pos, *nl, *nul;
+    size_t k;
+    if (L->pos == L->fill) {
+      L->pos = 0;
+      L->fill = fread(L->buf, 1, sizeof L->buf, L->fp);
+      if (L->fill == 0 && ferror(L->fp)) {
+        afv_errorf(err, errlen, "%s:%lld: read error: %s", L->path,
+                   L->lineno, strerror(errno));
+        return lines_fail(L, AFV_EIO);
+      }
+      if (L->fill == 0) break;                    /* end of the file */
+      continue;
+    }
+    nl = memchr(at, '\n', L->fill - L->pos);
+    k = nl ? (size_t)(nl - at) : L->fill - L->pos;
+    if ((nul = memchr(at, 0, k)) != NULL) {
+      afv_errorf(err, errlen, "%s:%lld: NUL byte at column %lu (not a text "
+                 "file, or a damaged one)", L->path, L->lineno,
+                 (unsigned long)(L->len + (size_t)(nul - at) + 1));
+      return lines_fail(L, AFV_EFORMAT);
+    }
+    if (k > AFV_LINE_MAX - L->len) {
+      afv_errorf(err, errlen, "%s:%lld: line longer than %d bytes", L->path,
+                 L->lineno, AFV_LINE_MAX);
+      return lines_fail(L, AFV_EFORMAT);
+    }
+    if (lines_append(L, at, k) != AFV_OK) {
+      afv_errorf(err, errlen, "%s:%lld: out of memory", L->path, L->lineno);
+      return lines_fail(L, AFV_ENOMEM);
+    }
+    L->pos += k + (nl != NULL);
+    if (nl) {
+      L->newline = 1;
+      break;
+    }
+  }
+  if (L->len == 0 && !L->newline) {           /* nothing after the last \n */
+    L->lineno--;
+    return 0;
+  }
+  return 1;
+}
+
+/* ---- fields ------------------------------------------------------------- */
 static int is_sep(int c)
 {
   return c == ' ' || c == '\t' || c == ',' || c == '\r' || c == '\n';
 }
 
+/* 1 if line holds nothing but separators. */
+static int is_blank(const char *line)
+{
+  while (*line && is_sep((unsigned char)*line)) line++;
+  return *line == 0;
+}
+
+/* 1 if the first non-blank character of line is '#'. */
+static int is_comment(const char *line)
+{
+  return line[strspn(line, " \t\r")] == '#';
+}
+
+/* The field at p (up to the next separator) for a message, at most 32
+** bytes, control bytes shown as '?', "..." if cut; out holds 40 bytes. */
+static const char *shown(const char *p, char *out)
+{
+  size_t k = 0;
+  for (; p[k] && !is_sep((unsigned char)p[k]) && k < 32; k++)
+    out[k] = (unsigned char)p[k] < 32 || p[k] == 127 ? '?' : p[k];
+  strcpy(out + k, p[k] && !is_sep((unsigned char)p[k]) ? "..." : "");
+  return out;
+}
+
+/* Splits s in place at spaces and tabs; the first max words go to w.
+** Returns the number of words (counting past max). */
+static int split_words(char *s, char **w, int max)
+{
+  int n = 0;
+  for (;;) {
+    s += strspn(s, " \t");
+    if (!*s) return n;
+    if (n < max) w[n] = s;
+    n++;
+    s += strcspn(s, " \t");
+    if (*s) *s++ = 0;
+  }
+}
+
 /* Parses up to `want` numbers from a line into v; returns how many fields
 ** the line has (counting past `want`), or -1 with *bad set to the first
-** field that is not a number. */
-static int parse_fields(char *line, double *v, int want, char **bad)
+** field that is not a number and *at to its index. */
+static int parse_fields(char *line, double *v, int want, char **bad, int *at)
 {
   int count = 0;
   char *p = line;
@@ -46,10 +211,10 @@ static int parse_fields(char *line, double *v, int want, char **bad)
     double x;
     while (*p && is_sep((unsigned char)*p)) p++;
     if (!*p) return count;
-    errno = 0;
     x = strtod(p, &end);
     if (end == p || (*end && !is_sep((unsigned char)*end))) {
       *bad = p;
+      *at = count;
       return -1;
     }
     if (count < want) v[count] = x;
@@ -58,6 +223,100 @@ static int parse_fields(char *line, double *v, int want, char **bad)
   }
 }
 
+/* The numbers of one data line: exactly `want` finite ones, names[k] the
+** name of field k.  Returns want, 0 for a blank line, or -1 with
+** "FILE:LINE: ..." in err. */
+static int number_row(const afv_lines *L, double *v, int want,
+                      const char *const *names, char *err, size_t errlen)
+{
+  char *bad = NULL, q[40];
+  int at = 0, f = parse_fields(L->line, v, want, &bad, &at), k;
+  if (f == 0) return 0;
+  if (f < 0) {
+    afv_errorf(err, errlen, "%s:%lld: %s: '%s' is not a number", L->path,
+               L->lineno, at < want ? names[at] : "extra column",
+               shown(bad, q));
+    return -1;
+  }
+  if (f != want) {
+    afv_errorf(err, errlen, "%s:%lld: expected %d columns (%s%s%s%s), found "
+               "%d", L->path, L->lineno, want, names[0],
+               want > 1 ? " " : "", want > 1 ? names[1] : "",
+               want > 2 ? " ..." : "", f);
+    return -1;
+  }
+  for (k = 0; k < want; k++)
+    if (!isfinite(v[k])) {
+      afv_errorf(err, errlen, "%s:%lld: %s is not finite", L->path,
+                 L->lineno, names[k]);
+      return -1;
+    }
+  return f;
+}
+
+/* s as a whole decimal integer: 1 (in *v), 0 if it is not one, 2 if it is
+** one but does not fit a long long. */
+static int whole_ll(const char *s, long long *v)
+{
+  char *end;
+  const char *d = s + (s[0] == '-');
+  if (*d < '0' || *d > '9') return 0;
+  errno = 0;
+  *v = strtoll(s, &end, 10);
+  if (*end) return 0;
+  return errno == ERANGE ? 2 : 1;
+}
+
+/* The integer field `name` of line L in [lo, hi]; `why` says what bounds it
+** from above.  1, or 0 with "FILE:LINE: name: ..." in err. */
+static int int_field(const afv_lines *L, const char *name, const char *s,
+                     long long lo, long long hi, const char *why,
+                     long long *v, char *err, size_t errlen)
+{
+  char q[40];
+  int k = whole_ll(s, v);
+  if (k == 0)
+    afv_errorf(err, errlen, "%s:%lld: %s: '%s' is not an integer", L->path,
+               L->lineno, name, shown(s, q));
+  else if ((k == 2 && s[0] == '-') || (k == 1 && *v < lo))
+    afv_errorf(err, errlen, "%s:%lld: %s: %s is less than %lld", L->path,
+               L->lineno, name, shown(s, q), lo);
+  else if (k == 2 || *v > hi)
+    afv_errorf(err, errlen, "%s:%lld: %s: %s is more than %lld (%s)",
+               L->path, L->lineno, name, shown(s, q), hi, why);
+  else
+    return 1;
+  return 0;
+}
+
+/* The real field `name` of line L: a whole finite number (hex floats
+** included, as %a writes them).  1, or 0 with the message in err. */
+static int real_field(const afv_lines *L, const char *name, const char *s,
+                      double *v, char *err, size_t errlen)
+{
+  char *end, q[40];
+  *v = strtod(s, &end);
+  if (end != s && *end == 0 && isfinite(*v)) return 1;
+  afv_errorf(err, errlen, "%s:%lld: %s: '%s' is not a finite number",
+             L->path, L->lineno, name, shown(s, q));
+  return 0;
+}
+
+/* "FILE:LINE: " and the message in err; returns status. */
+static int line_fail(const afv_lines *L, int status, char *err, size_t errlen,
+                     const char *fmt, ...)
+{
+  va_list ap;
+  size_t m;
+  afv_errorf(err, errlen, "%s:%lld: ", L->path, L->lineno);
+  if (!err || (m = strlen(err)) + 1 >= errlen) return status;
+  va_start(ap, fmt);
+  vsnprintf(err + m, errlen - m, fmt, ap);
+  va_end(ap);
+  return status;
+}
+
+/* ---- POINTS ------------------------------------------------------------- */
 static int push_point(double **r, int *n, int *cap, double x, double y)
 {
   if (*n >= *cap) {
@@ -73,73 +332,28 @@ static int push_point(double **r, int *n, int *cap, double x, double y)
   return AFV_OK;
 }
 
-/* Reads the field that strtod stopped at, for the message: up to the next
-** separator, at most 32 characters. */
-static void field_text(const char *p, char *out, size_t len)
-{
-  size_t k = 0;
-  while (p[k] && !is_sep((unsigned char)p[k]) && k + 1 < len && k < 32) {
-    out[k] = p[k];
-    k++;
-  }
-  out[k] = 0;
-}
-
 int afv_read_points(const char *path, int *n_out, double **r_out, char *err,
                     size_t errlen)
 {
-  FILE *fp = fopen(path, "r");
-  char line[4096], text[40];
+  static const char *const names[2] = {"x", "y"};
+  afv_lines L;
   double *r = NULL, v[2];
-  int n = 0, cap = 0, lineno = 0, st = AFV_OK;
+  int n = 0, cap = 0, st, got = 0;
   *n_out = 0;
   *r_out = NULL;
-  if (!fp) {
-    afv_errorf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-    return AFV_EIO;
+  if ((st = afv_lines_open(&L, path, err, errlen)) != AFV_OK) return st;
+  while (st == AFV_OK && (got = afv_lines_next(&L, err, errlen)) > 0) {
+    if (is_comment(L.line)) continue;
+    int fields = number_row(&L, v, 2, names, err, errlen);
+    if (fields < 0) st = AFV_EFORMAT;
+    else if (fields > 0 && n >= AFV_CELLS_MAX)
+      st = line_fail(&L, AFV_EFORMAT, err, errlen, "more than %d cells",
+                     AFV_CELLS_MAX);
+    else if (fields > 0 && push_point(&r, &n, &cap, v[0], v[1]) != AFV_OK)
+      st = line_fail(&L, AFV_ENOMEM, err, errlen, "out of memory");
   }
-  while (fgets(line, sizeof line, fp)) {
-    char *bad = NULL;
-    int fields;
-    lineno++;
-    if (!strchr(line, '\n') && !feof(fp)) {
-      afv_errorf(err, errlen, "%s:%d: line longer than %d characters", path,
-                 lineno, (int)sizeof line - 2);
-      st = AFV_EFORMAT;
-      break;
-    }
-    if (line[strspn(line, " \t\r\n")] == '#') continue;
-    fields = parse_fields(line, v, 2, &bad);
-    if (fields == 0) continue;
-    if (fields < 0) {
-      field_text(bad, text, sizeof text);
-      afv_errorf(err, errlen, "%s:%d: '%s' is not a number", path, lineno,
-                 text);
-      st = AFV_EFORMAT;
-      break;
-    }
-    if (fields != 2) {
-      afv_errorf(err, errlen, "%s:%d: expected 2 columns (x y), found %d",
-                 path, lineno, fields);
-      st = AFV_EFORMAT;
-      break;
-    }
-    if (!isfinite(v[0]) || !isfinite(v[1])) {
-      afv_errorf(err, errlen, "%s:%d: coordinate is not finite", path,
-                 lineno);
-      st = AFV_EFORMAT;
-      break;
-    }
-    if ((st = push_point(&r, &n, &cap, v[0], v[1])) != AFV_OK) {
-      afv_errorf(err, errlen, "%s: out of memory", path);
-      break;
-    }
-  }
-  if (st == AFV_OK && ferror(fp)) {
-    afv_errorf(err, errlen, "%s: read error", path);
-    st = AFV_EIO;
-  }
-  fclose(fp);
+  if (st == AFV_OK && got < 0) st = L.status;
+  afv_lines_close(&L);
   if (st != AFV_OK) {
     free(r);
     return st;
@@ -209,101 +423,156 @@ void afv_traj_free(afv_traj *tr)
   memset(tr, 0, sizeof *tr);
 }
 
-static int parse_traj_header(const char *line, afv_traj *tr)
+/* Line 1: "# afv trajectory cells N box open" or "... box periodic LX LY". */
+static int parse_traj_header(afv_lines *L, afv_traj *tr, char *err,
+                             size_t errlen)
 {
-  char kind[16];
-  double lx, ly;
-  if (sscanf(line, "# afv trajectory cells %d box %15s %lf %lf", &tr->n, kind,
-             &lx, &ly) == 4 && strcmp(kind, "periodic") == 0) {
-    tr->box.periodic = 1;
-    tr->box.Lx = lx;
-    tr->box.Ly = ly;
-    return tr->n >= 0;
-  }
-  tr->box.periodic = 0;
-  return sscanf(line, "# afv trajectory cells %d box %15s", &tr->n, kind) == 2
-         && strcmp(kind, "open") == 0 && tr->n >= 0;
+  char *w[10];
+  int nw = split_words(L->line, w, 10);
+  long long n;
+  if (!(nw == 7 || nw == 9) || strcmp(w[0], "#") || strcmp(w[1], "afv")
+      || strcmp(w[2], "trajectory") || strcmp(w[3], "cells")
+      || strcmp(w[5], "box")
+      || strcmp(w[6], nw == 7 ? "open" : "periodic"))
+    return line_fail(L, AFV_EFORMAT, err, errlen, "not an afv trajectory "
+                     "header ('# afv trajectory cells N box open' or '... "
+                     "box periodic LX LY')");
+  if (!int_field(L, "cells", w[4], 1, AFV_CELLS_MAX, "the most afv reads",
+                 &n, err, errlen))
+    return AFV_EFORMAT;
+  tr->n = (int)n;
+  tr->box.periodic = nw == 9;
+  if (nw == 9 && (!real_field(L, "box LX", w[7], &tr->box.Lx, err, errlen)
+                  || !real_field(L, "box LY", w[8], &tr->box.Ly, err,
+                                 errlen)))
+    return AFV_EFORMAT;
+  if (nw == 9 && !(tr->box.Lx > 0 && tr->box.Ly > 0))
+    return line_fail(L, AFV_EFORMAT, err, errlen, "box: sides %g x %g, "
+                     "must be > 0", tr->box.Lx, tr->box.Ly);
+  return AFV_OK;
 }
 
-/* Makes room for one more frame (capacity doubles). */
-static int traj_grow(afv_traj *tr, int *cap)
+/* A "# step S time T" line (1 if w, nw are one); 0 if it is another
+** comment; -1 with the message in err if it starts "# step" but is not a
+** whole one. */
+static int parse_frame_header(const afv_lines *L, char **w, int nw,
+                              long long *step, double *t, char *err,
+                              size_t errlen)
+{
+  if (nw < 2 || strcmp(w[0], "#") || strcmp(w[1], "step")) return 0;
+  if (nw != 5 || strcmp(w[3], "time")) {
+    line_fail(L, AFV_EFORMAT, err, errlen, "expected a frame header '# step "
+              "S time T'");
+    return -1;
+  }
+  if (!int_field(L, "step", w[2], 0, LLONG_MAX, "a long long", step, err,
+                 errlen)
+      || !real_field(L, "time", w[4], t, err, errlen))
+    return -1;
+  return 1;
+}
+
+/* Room for one more frame's step and time (capacity doubles). */
+static int traj_grow_frames(afv_traj *tr, int *cap)
 {
   int nc;
-  void *a, *b, *c, *d;
+  long long *s;
+  double *t;
   if (tr->nframes < *cap) return AFV_OK;
+  if (*cap > INT_MAX / 2) return AFV_ENOMEM;
   nc = *cap ? 2 * *cap : 4;
-  a = realloc(tr->step, (size_t)nc * sizeof *tr->step);
-  if (a) tr->step = a;
-  b = realloc(tr->t, (size_t)nc * sizeof *tr->t);
-  if (b) tr->t = b;
-  c = realloc(tr->r, (size_t)nc * (size_t)(2 * tr->n + 1) * sizeof(double));
-  if (c) tr->r = c;
-  d = realloc(tr->theta, (size_t)nc * (size_t)(tr->n + 1) * sizeof(double));
-  if (d) tr->theta = d;
-  if (!a || !b || !c || !d) return AFV_ENOMEM;
+  if ((s = realloc(tr->step, (size_t)nc * sizeof *s)) != NULL) tr->step = s;
+  if ((t = realloc(tr->t, (size_t)nc * sizeof *t)) != NULL) tr->t = t;
+  if (!s || !t) return AFV_ENOMEM;
   *cap = nc;
+  return AFV_OK;
+}
+
+/* Room for one more cell line (rows counts them over all frames): the
+** arrays grow with what the file holds, never with what its header says. */
+static int traj_grow_rows(afv_traj *tr, size_t rows, size_t *cap)
+{
+  size_t nc;
+  double *r, *th;
+  if (rows < *cap) return AFV_OK;
+  if (*cap > ((size_t)-1) / 32) return AFV_ENOMEM;
+  nc = *cap ? 2 * *cap : 64;
+  if ((r = realloc(tr->r, nc * 2 * sizeof(double))) != NULL) tr->r = r;
+  if ((th = realloc(tr->theta, nc * sizeof(double))) != NULL) tr->theta = th;
+  if (!r || !th) return AFV_ENOMEM;
+  *cap = nc;
+  return AFV_OK;
+}
+
+/* One line of the body: a frame header, a comment, a blank line or a cell
+** line "x y theta" of the current frame (row of it). */
+static int traj_line(afv_lines *L, afv_traj *tr, int *row, int *cap_frames,
+                     size_t *cap_rows, char *err, size_t errlen)
+{
+  static const char *const names[3] = {"x", "y", "theta"};
+  char *w[6];
+  double v[3], t;
+  long long step;
+  size_t rows;
+  int h, f;
+  if (is_comment(L->line)) {
+    /* a frame header, or another comment (ignored) */
+    h = parse_frame_header(L, w, split_words(L->line, w, 6), &step, &t, err,
+                           errlen);
+    if (h <= 0) return h < 0 ? AFV_EFORMAT : AFV_OK;
+    if (tr->nframes > 0 && *row != tr->n)
+      return line_fail(L, AFV_EFORMAT, err, errlen, "the frame before this "
+                       "line has %d of %d cells", *row, tr->n);
+    if (tr->nframes == INT_MAX || traj_grow_frames(tr, cap_frames) != AFV_OK)
+      return line_fail(L, AFV_ENOMEM, err, errlen, "out of memory (frame "
+                       "%d)", tr->nframes);
+    tr->step[tr->nframes] = step;
+    tr->t[tr->nframes] = t;
+    tr->nframes++;
+    *row = 0;
+    return AFV_OK;
+  }
+  f = number_row(L, v, 3, names, err, errlen);
+  if (f <= 0) return f < 0 ? AFV_EFORMAT : AFV_OK;
+  if (tr->nframes == 0)
+    return line_fail(L, AFV_EFORMAT, err, errlen, "a cell line before the "
+                     "first '# step S time T' line");
+  if (*row >= tr->n)
+    return line_fail(L, AFV_EFORMAT, err, errlen, "more than the header's %d "
+                     "cells in this frame", tr->n);
+  rows = (size_t)(tr->nframes - 1) * (size_t)tr->n + (size_t)*row;
+  if (traj_grow_rows(tr, rows, cap_rows) != AFV_OK)
+    return line_fail(L, AFV_ENOMEM, err, errlen, "out of memory");
+  tr->r[2 * rows] = v[0];
+  tr->r[2 * rows + 1] = v[1];
+  tr->theta[rows] = v[2];
+  (*row)++;
   return AFV_OK;
 }
 
 int afv_traj_read(const char *path, afv_traj *tr, char *err, size_t errlen)
 {
-  FILE *fp = fopen(path, "r");
-  char line[1024];
-  int lineno = 0, cap = 0, row = 0, st = AFV_OK;
+  afv_lines L;
+  size_t cap_rows = 0;
+  int cap_frames = 0, row = 0, st, got;
   memset(tr, 0, sizeof *tr);
-  if (!fp) {
-    afv_errorf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-    return AFV_EIO;
+  if ((st = afv_lines_open(&L, path, err, errlen)) != AFV_OK) return st;
+  got = afv_lines_next(&L, err, errlen);
+  if (got == 0)
+    st = line_fail(&L, AFV_EFORMAT, err, errlen, "empty file, not an afv "
+                   "trajectory");
+  else if (got < 0)
+    st = L.status;
+  else
+    st = parse_traj_header(&L, tr, err, errlen);
+  while (st == AFV_OK && (got = afv_lines_next(&L, err, errlen)) > 0) {
+    /* the last line has no newline: an interrupted writer; its frame is
+    ** incomplete and is dropped below */
+    if (!L.newline) break;
+    st = traj_line(&L, tr, &row, &cap_frames, &cap_rows, err, errlen);
   }
-  while (st == AFV_OK && fgets(line, sizeof line, fp)) {
-    double v[3];
-    char *bad;
-    long long step;
-    double t;
-    int f;
-    lineno++;
-    if (!strchr(line, '\n') && feof(fp)) {
-      /* the last line has no newline: an interrupted writer; its frame is
-      ** incomplete and is dropped below */
-      row = -1;
-      break;
-    }
-    if (lineno == 1) {
-      if (!parse_traj_header(line, tr)) {
-        afv_errorf(err, errlen, "%s:1: not an afv trajectory header", path);
-        st = AFV_EFORMAT;
-      }
-      continue;
-    }
-    if (sscanf(line, "# step %lld time %lf", &step, &t) == 2) {
-      if (tr->nframes > 0 && row != tr->n) {
-        afv_errorf(err, errlen, "%s:%d: the frame before this line has %d "
-                   "of %d cells", path, lineno, row, tr->n);
-        st = AFV_EFORMAT;
-        break;
-      }
-      if ((st = traj_grow(tr, &cap)) != AFV_OK) break;
-      tr->step[tr->nframes] = step;
-      tr->t[tr->nframes] = t;
-      tr->nframes++;
-      row = 0;
-      continue;
-    }
-    f = parse_fields(line, v, 3, &bad);
-    if (f == 0 || line[strspn(line, " \t\r\n")] == '#') continue;
-    if (f != 3 || tr->nframes == 0 || row >= tr->n) {
-      afv_errorf(err, errlen, "%s:%d: expected a frame line 'x y theta'",
-                 path, lineno);
-      st = AFV_EFORMAT;
-      break;
-    }
-    f = tr->nframes - 1;
-    tr->r[(size_t)f * 2 * tr->n + 2 * row] = v[0];
-    tr->r[(size_t)f * 2 * tr->n + 2 * row + 1] = v[1];
-    tr->theta[(size_t)f * tr->n + row] = v[2];
-    row++;
-  }
-  fclose(fp);
+  if (st == AFV_OK && got < 0) st = L.status;
+  afv_lines_close(&L);
   /* a last frame cut short (an interrupted writer) is dropped; a short
   ** frame anywhere else is an error (above) */
   if (st == AFV_OK && tr->nframes > 0 && row != tr->n) tr->nframes--;
@@ -327,18 +596,20 @@ void afv_cells_free(afv_cells *c)
   memset(c, 0, sizeof *c);
 }
 
-/* Parses the header's names into order[] (column index of each field). */
+/* Parses the header's names into order[] (column index of each field).
+** 1, or 0 with the offending name (if any) in name. */
 static int parse_cells_header(char *line, afv_cells *c, int *order,
-                              int *nf, char *name, size_t namelen)
+                              int *nf, char *name)
 {
-  char *tok = strtok(line + strspn(line, " \t#"), " \t,\r\n");
+  char *tok = strtok(line + strspn(line, " \t#"), " \t,\r");
   *nf = 0;
-  for (; tok; tok = strtok(NULL, " \t,\r\n")) {
+  name[0] = 0;
+  for (; tok; tok = strtok(NULL, " \t,\r")) {
     int k;
     for (k = 0; k < AFV_NCOLS; k++)
       if (strcmp(tok, afv_cell_columns[k]) == 0) break;
-    snprintf(name, namelen, "%s", tok);
-    if (k == AFV_NCOLS || c->has[k] || *nf >= AFV_NCOLS) return 0;
+    shown(tok, name);
+    if (k == AFV_NCOLS || c->has[k]) return 0;
     c->has[k] = 1;
     order[(*nf)++] = k;
   }
@@ -364,57 +635,47 @@ static int cells_push(afv_cells *c, const int *order, int nf,
   return AFV_OK;
 }
 
+/* One line after the header: a cell (pushed), a comment or a blank. */
+static int cells_line(const afv_lines *L, afv_cells *c, const int *order,
+                      int nf, int *cap, char *err, size_t errlen)
+{
+  const char *names[AFV_NCOLS];
+  double v[AFV_NCOLS];
+  int k, f;
+  if (is_comment(L->line)) return AFV_OK;
+  for (k = 0; k < nf; k++) names[k] = afv_cell_columns[order[k]];
+  f = number_row(L, v, nf, names, err, errlen);
+  if (f <= 0) return f < 0 ? AFV_EFORMAT : AFV_OK;
+  if (c->n >= AFV_CELLS_MAX)
+    return line_fail(L, AFV_EFORMAT, err, errlen, "more than %d cells",
+                     AFV_CELLS_MAX);
+  if (cells_push(c, order, nf, v, cap) != AFV_OK)
+    return line_fail(L, AFV_ENOMEM, err, errlen, "out of memory");
+  return AFV_OK;
+}
+
 int afv_read_cells(const char *path, afv_cells *c, char *err, size_t errlen)
 {
-  FILE *fp = fopen(path, "r");
-  char line[4096], text[40];
-  double v[AFV_NCOLS];
-  int order[AFV_NCOLS], nf = -1, lineno = 0, cap = 0, st = AFV_OK, k;
+  afv_lines L;
+  char name[40] = "";
+  int order[AFV_NCOLS], nf = -1, cap = 0, st, got = 0;
   memset(c, 0, sizeof *c);
-  if (!fp) {
-    afv_errorf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-    return AFV_EIO;
-  }
-  while (st == AFV_OK && fgets(line, sizeof line, fp)) {
-    char *bad = NULL;
-    int fields;
-    lineno++;
-    if (line[strspn(line, " \t\r\n")] == 0) continue;
-    if (nf < 0) {                             /* the header */
-      if (line[strspn(line, " \t")] != '#'
-          || !parse_cells_header(line, c, order, &nf, text, sizeof text)) {
-        afv_errorf(err, errlen, "%s:%d: expected a header '# x y [theta] "
-                   "[v0] [Dr] [KA] [KP] [A0] [P0]' (columns in any order, "
-                   "x and y together)%s%s", path, lineno,
-                   text[0] && nf >= 0 ? "; bad column " : "", text);
-        st = AFV_EFORMAT;
-      }
-      continue;
-    }
-    if (line[strspn(line, " \t")] == '#') continue;
-    fields = parse_fields(line, v, nf, &bad);
-    if (fields < 0) {
-      field_text(bad, text, sizeof text);
-      afv_errorf(err, errlen, "%s:%d: '%s' is not a number", path, lineno,
-                 text);
-      st = AFV_EFORMAT;
-    } else if (fields != nf) {
-      afv_errorf(err, errlen, "%s:%d: expected %d columns, found %d", path,
-                 lineno, nf, fields);
-      st = AFV_EFORMAT;
-    } else {
-      for (k = 0; k < nf; k++)
-        if (!isfinite(v[k])) break;
-      if (k < nf) {
-        afv_errorf(err, errlen, "%s:%d: %s is not finite", path, lineno,
-                   afv_cell_columns[order[k]]);
-        st = AFV_EFORMAT;
-      } else if ((st = cells_push(c, order, nf, v, &cap)) != AFV_OK) {
-        afv_errorf(err, errlen, "%s: out of memory", path);
-      }
+  if ((st = afv_lines_open(&L, path, err, errlen)) != AFV_OK) return st;
+  while (st == AFV_OK && (got = afv_lines_next(&L, err, errlen)) > 0) {
+    if (is_blank(L.line)) continue;
+    if (nf >= 0) {
+      st = cells_line(&L, c, order, nf, &cap, err, errlen);
+    } else if (!is_comment(L.line)
+               || !parse_cells_header(L.line, c, order, &nf, name)) {
+      st = line_fail(&L, AFV_EFORMAT, err, errlen, "expected a header '# x "
+                     "y [theta] [v0] [Dr] [KA] [KP] [A0] [P0]' (columns in "
+                     "any order, each once, x and y together)%s%s",
+                     name[0] ? "; bad column " : "", name);
+      nf = 0;
     }
   }
-  fclose(fp);
+  if (st == AFV_OK && got < 0) st = L.status;
+  afv_lines_close(&L);
   if (st == AFV_OK && c->n == 0) {
     afv_errorf(err, errlen, "%s: no cells (a header line and at least one "
                "cell line are needed)", path);
@@ -479,60 +740,272 @@ const char *const afv_checkpoint_files[AFV_CKPT_FILES] = {
   "trajectory.dat", "observables.csv", "trajectory.xyz"
 };
 
-static int ckpt_fail(const char *path, int lineno, const char *what,
-                     char *err, size_t errlen)
+/* The next line, which the format requires (what: what it should hold).
+** AFV_OK, or a status with the message in err. */
+static int ckpt_next(afv_lines *L, const char *what, char *err,
+                     size_t errlen)
 {
-  afv_errorf(err, errlen, "%s:%d: %s", path, lineno, what);
-  return AFV_EFORMAT;
+  int got = afv_lines_next(L, err, errlen);
+  if (got > 0) return AFV_OK;
+  if (got < 0) return L->status;
+  L->lineno++;
+  return line_fail(L, AFV_EFORMAT, err, errlen, "the file ends before %s "
+                   "(incomplete file)", what);
+}
+
+/* The next line as exactly "NAME VALUE"; *value points into the line. */
+static int ckpt_keyed(afv_lines *L, const char *name, char **value,
+                      char *err, size_t errlen)
+{
+  char *w[3];
+  int st = ckpt_next(L, name, err, errlen);
+  if (st != AFV_OK) return st;
+  if (split_words(L->line, w, 3) != 2 || strcmp(w[0], name) != 0)
+    return line_fail(L, AFV_EFORMAT, err, errlen, "expected '%s VALUE'",
+                     name);
+  *value = w[1];
+  return AFV_OK;
+}
+
+/* The seed: a whole decimal number in 0 .. 2^64-1. */
+static int ckpt_seed(const afv_lines *L, const char *s,
+                     unsigned long long *seed, char *err, size_t errlen)
+{
+  char *end, q[40];
+  errno = 0;
+  if (*s >= '0' && *s <= '9') *seed = strtoull(s, &end, 10);
+  if (*s >= '0' && *s <= '9' && *end == 0 && errno != ERANGE) return AFV_OK;
+  return line_fail(L, AFV_EFORMAT, err, errlen, "seed: '%s' is not an "
+                   "integer in 0 .. 2^64-1", shown(s, q));
+}
+
+/* Lines 1 to 5: header, cells, step, time, seed. */
+static int ckpt_head(afv_lines *L, afv_checkpoint *c, char *err,
+                     size_t errlen)
+{
+  /* a cell line holds at least "0 0 0\n": 6 bytes */
+  long long room = L->size / 6, n;
+  char *v, why[64];
+  int st = ckpt_next(L, "the header", err, errlen);
+  if (st == AFV_OK && strcmp(L->line, "# afv checkpoint 1") != 0)
+    st = line_fail(L, AFV_EFORMAT, err, errlen, "not an afv checkpoint "
+                   "(expected '# afv checkpoint 1')");
+  snprintf(why, sizeof why, "a file of %lld bytes holds no more cells",
+           L->size);
+  if (st == AFV_OK && (st = ckpt_keyed(L, "cells", &v, err, errlen)) == AFV_OK
+      && !int_field(L, "cells", v, 1, room < AFV_CELLS_MAX ? room
+                    : AFV_CELLS_MAX, why, &n, err, errlen))
+    st = AFV_EFORMAT;
+  if (st == AFV_OK) c->n = (int)n;
+  if (st == AFV_OK && (st = ckpt_keyed(L, "step", &v, err, errlen)) == AFV_OK
+      && !int_field(L, "step", v, 0, LLONG_MAX, "a long long", &c->step, err,
+                    errlen))
+    st = AFV_EFORMAT;
+  if (st == AFV_OK && (st = ckpt_keyed(L, "time", &v, err, errlen)) == AFV_OK
+      && !real_field(L, "time", v, &c->t, err, errlen))
+    st = AFV_EFORMAT;
+  if (st == AFV_OK && (st = ckpt_keyed(L, "seed", &v, err, errlen)) == AFV_OK)
+    st = ckpt_seed(L, v, &c->seed, err, errlen);
+  return st;
+}
+
+/* Lines 6 to 8: "bytes FILE SIZE", the files in afv_checkpoint_files order. */
+static int ckpt_sizes(afv_lines *L, afv_checkpoint *c, char *err,
+                      size_t errlen)
+{
+  char *w[4];
+  int k, st = AFV_OK;
+  for (k = 0; st == AFV_OK && k < AFV_CKPT_FILES; k++) {
+    if ((st = ckpt_next(L, "'bytes FILE SIZE'", err, errlen)) != AFV_OK)
+      break;
+    if (split_words(L->line, w, 4) != 3 || strcmp(w[0], "bytes") != 0
+        || strcmp(w[1], afv_checkpoint_files[k]) != 0)
+      st = line_fail(L, AFV_EFORMAT, err, errlen, "expected 'bytes %s SIZE'",
+                     afv_checkpoint_files[k]);
+    else if (!int_field(L, afv_checkpoint_files[k], w[2], 0, LLONG_MAX,
+                        "a long long", &c->bytes[k], err, errlen))
+      st = AFV_EFORMAT;
+  }
+  return st;
+}
+
+/* The n cell lines "x y theta", then "end" and nothing after it. */
+static int ckpt_state(afv_lines *L, afv_checkpoint *c, char *err,
+                      size_t errlen)
+{
+  static const char *const names[3] = {"x", "y", "theta"};
+  double v[3];
+  int i, st = AFV_OK;
+  c->r = malloc((size_t)c->n * 2 * sizeof(double));
+  c->theta = malloc((size_t)c->n * sizeof(double));
+  if (!c->r || !c->theta)
+    return line_fail(L, AFV_ENOMEM, err, errlen, "out of memory for %d "
+                     "cells", c->n);
+  for (i = 0; st == AFV_OK && i < c->n; i++) {
+    if ((st = ckpt_next(L, "the cell lines end", err, errlen)) != AFV_OK)
+      break;
+    if (number_row(L, v, 3, names, err, errlen) == 3) {
+      c->r[2*i] = v[0];
+      c->r[2*i+1] = v[1];
+      c->theta[i] = v[2];
+    } else if (is_blank(L->line)) {
+      st = line_fail(L, AFV_EFORMAT, err, errlen, "expected 'x y theta' of "
+                     "cell %d", i);
+    } else {
+      st = AFV_EFORMAT;
+    }
+  }
+  if (st == AFV_OK && (st = ckpt_next(L, "'end'", err, errlen)) == AFV_OK
+      && strcmp(L->line, "end") != 0)
+    st = line_fail(L, AFV_EFORMAT, err, errlen, "expected 'end' after %d "
+                   "cells", c->n);
+  if (st == AFV_OK && afv_lines_next(L, err, errlen) != 0)
+    st = L->status ? L->status
+         : line_fail(L, AFV_EFORMAT, err, errlen, "text after 'end'");
+  return st;
 }
 
 int afv_checkpoint_read(const char *path, afv_checkpoint *c, char *err,
                         size_t errlen)
 {
-  FILE *fp = fopen(path, "r");
-  char line[512], name[64], *bad;
-  double v[3];
-  int lineno = 0, i, st = AFV_OK, k;
+  afv_lines L;
+  int st;
   memset(c, 0, sizeof *c);
-  if (!fp) {
-    afv_errorf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-    return AFV_EIO;
-  }
-#define NEXT_LINE() (lineno++, fgets(line, sizeof line, fp) != NULL)
-  if (!NEXT_LINE() || strcmp(line, "# afv checkpoint 1\n") != 0)
-    st = ckpt_fail(path, lineno, "not an afv checkpoint", err, errlen);
-  if (st == AFV_OK && !(NEXT_LINE() && sscanf(line, "cells %d", &c->n) == 1
-                        && c->n >= 0))
-    st = ckpt_fail(path, lineno, "expected 'cells N'", err, errlen);
-  if (st == AFV_OK && !(NEXT_LINE() && sscanf(line, "step %lld", &c->step) == 1))
-    st = ckpt_fail(path, lineno, "expected 'step S'", err, errlen);
-  if (st == AFV_OK && !(NEXT_LINE() && strncmp(line, "time ", 5) == 0
-                        && parse_fields(line + 5, &c->t, 1, &bad) == 1))
-    st = ckpt_fail(path, lineno, "expected 'time T'", err, errlen);
-  if (st == AFV_OK && !(NEXT_LINE() && sscanf(line, "seed %llu", &c->seed) == 1))
-    st = ckpt_fail(path, lineno, "expected 'seed SEED'", err, errlen);
-  for (k = 0; st == AFV_OK && k < AFV_CKPT_FILES; k++)
-    if (!(NEXT_LINE() && sscanf(line, "bytes %63s %lld", name, &c->bytes[k]) == 2
-          && strcmp(name, afv_checkpoint_files[k]) == 0 && c->bytes[k] >= 0))
-      st = ckpt_fail(path, lineno, "expected 'bytes FILE SIZE'", err, errlen);
-  if (st == AFV_OK) {
-    c->r = malloc((size_t)(2 * c->n + 1) * sizeof(double));
-    c->theta = malloc((size_t)(c->n + 1) * sizeof(double));
-    if (!c->r || !c->theta) st = AFV_ENOMEM;
-  }
-  for (i = 0; st == AFV_OK && i < c->n; i++)
-    if (NEXT_LINE() && parse_fields(line, v, 3, &bad) == 3) {
-      c->r[2*i] = v[0];
-      c->r[2*i+1] = v[1];
-      c->theta[i] = v[2];
-    } else {
-      st = ckpt_fail(path, lineno, "expected 'x y theta'", err, errlen);
-    }
-  if (st == AFV_OK && !(NEXT_LINE() && strcmp(line, "end\n") == 0))
-    st = ckpt_fail(path, lineno, "missing 'end' (incomplete file)", err,
-                   errlen);
-#undef NEXT_LINE
-  fclose(fp);
+  if ((st = afv_lines_open(&L, path, err, errlen)) != AFV_OK) return st;
+  if ((st = ckpt_head(&L, c, err, errlen)) == AFV_OK
+      && (st = ckpt_sizes(&L, c, err, errlen)) == AFV_OK)
+    st = ckpt_state(&L, c, err, errlen);
+  afv_lines_close(&L);
   if (st != AFV_OK) afv_checkpoint_free(c);
   return st;
+}
+
+int afv_checkpoint_check_files(const char *path, const afv_checkpoint *c,
+                               char *err, size_t errlen)
+{
+  const char *slash = strrchr(path, '/');
+  int dirlen = slash ? (int)(slash - path) + 1 : 0, k;
+  for (k = 0; k < AFV_CKPT_FILES; k++) {
+    char file[4096];
+    struct stat sb;
+    int missing;
+    if (c->bytes[k] == 0) continue;        /* not written (xyz off) */
+    if (snprintf(file, sizeof file, "%.*s%s", dirlen, path,
+                 afv_checkpoint_files[k]) >= (int)sizeof file) {
+      afv_errorf(err, errlen, "%s: path too long", path);
+      return AFV_EIO;
+    }
+    if ((missing = stat(file, &sb) != 0) || !S_ISREG(sb.st_mode)) {
+      afv_errorf(err, errlen, "%s:%d: bytes %s: %lld, but %s: %s", path,
+                 AFV_CKPT_BYTES_LINE + k, afv_checkpoint_files[k],
+                 c->bytes[k], file, missing ? strerror(errno)
+                 : "not a regular file");
+      return AFV_EFORMAT;
+    }
+    if ((long long)sb.st_size < c->bytes[k]) {
+      afv_errorf(err, errlen, "%s:%d: bytes %s: %lld, larger than the file "
+                 "(%lld bytes): not the file this checkpoint was written "
+                 "with", path, AFV_CKPT_BYTES_LINE + k,
+                 afv_checkpoint_files[k], c->bytes[k],
+                 (long long)sb.st_size);
+      return AFV_EFORMAT;
+    }
+  }
+  return AFV_OK;
+}
+
+/* ---- T1 reference --------------------------------------------------------- */
+/* T1 REFERENCE format (text): C(0), the contacting pairs at step 0 of a run
+** (analysis.c, afv_t1):
+**   # afv t1 reference: contacting pairs at step 0
+**   M                 the number of pairs
+**   i j               M lines, 0 <= i < j < N, in increasing order of (i, j)
+** The order is the one afv_t1_count merges in, so the reader checks it. */
+static const char t1_header[] = "# afv t1 reference: contacting pairs at "
+                                "step 0";
+
+int afv_t1_reference_write(const char *path, const afv_t1 *t)
+{
+  char tmp[4096];
+  FILE *fp = afv_atomic_open(path, tmp, sizeof tmp);
+  int k;
+  if (!fp) return AFV_EIO;
+  fprintf(fp, "%s\n%d\n", t1_header, t->n_pairs0);
+  for (k = 0; k < t->n_pairs0; k++)
+    fprintf(fp, "%d %d\n", t->pairs0[2*k], t->pairs0[2*k+1]);
+  return afv_atomic_commit(fp, tmp, path);
+}
+
+/* Pair line k: "i j" with 0 <= i < j < n, after the pair prev (NULL for
+** the first). */
+static int t1_pair(afv_lines *L, int n, const int *prev, int *q, char *err,
+                   size_t errlen)
+{
+  char *w[3];
+  long long i, j;
+  if (split_words(L->line, w, 3) != 2)
+    return line_fail(L, AFV_EFORMAT, err, errlen, "expected a pair 'i j'");
+  if (!int_field(L, "i", w[0], 0, n - 1, "the cells of the run", &i, err,
+                 errlen)
+      || !int_field(L, "j", w[1], i + 1, n - 1, "the cells of the run", &j,
+                    err, errlen))
+    return AFV_EFORMAT;
+  q[0] = (int)i;
+  q[1] = (int)j;
+  if (prev && (q[0] < prev[0] || (q[0] == prev[0] && q[1] <= prev[1])))
+    return line_fail(L, AFV_EFORMAT, err, errlen, "pair %d %d is not after "
+                     "the pair %d %d (pairs are in increasing order, each "
+                     "once)", q[0], q[1], prev[0], prev[1]);
+  return AFV_OK;
+}
+
+/* Lines 1 and 2: the header and the count M (at most what the file can
+** hold: a pair line has at least 4 bytes). */
+static int t1_head(afv_lines *L, long long *m, char *err, size_t errlen)
+{
+  long long room = L->size / 4;
+  char *w[2], why[64];
+  int st = ckpt_next(L, "the header", err, errlen);
+  if (st == AFV_OK && strcmp(L->line, t1_header) != 0)
+    st = line_fail(L, AFV_EFORMAT, err, errlen, "not an afv t1 reference "
+                   "(expected '%s')", t1_header);
+  if (st == AFV_OK) st = ckpt_next(L, "the number of pairs", err, errlen);
+  if (st == AFV_OK && split_words(L->line, w, 2) != 1)
+    st = line_fail(L, AFV_EFORMAT, err, errlen, "expected the number of "
+                   "pairs");
+  snprintf(why, sizeof why, "a file of %lld bytes holds no more pairs",
+           L->size);
+  if (st == AFV_OK && !int_field(L, "pairs", w[0], 0, room < INT_MAX / 2
+                                 ? room : INT_MAX / 2, why, m, err, errlen))
+    st = AFV_EFORMAT;
+  return st;
+}
+
+int afv_t1_reference_read(const char *path, int n, afv_t1 *t, char *err,
+                          size_t errlen)
+{
+  afv_lines L;
+  long long m = 0, k;
+  int *pairs = NULL, st;
+  if ((st = afv_lines_open(&L, path, err, errlen)) != AFV_OK) return st;
+  if ((st = t1_head(&L, &m, err, errlen)) == AFV_OK
+      && !(pairs = malloc((size_t)(m > 0 ? m : 1) * 2 * sizeof(int))))
+    st = line_fail(&L, AFV_ENOMEM, err, errlen, "out of memory");
+  for (k = 0; st == AFV_OK && k < m; k++)
+    if ((st = ckpt_next(&L, "the last pair", err, errlen)) == AFV_OK)
+      st = t1_pair(&L, n, k > 0 ? pairs + 2 * (k - 1) : NULL, pairs + 2 * k,
+                   err, errlen);
+  if (st == AFV_OK && afv_lines_next(&L, err, errlen) != 0)
+    st = L.status ? L.status
+         : line_fail(&L, AFV_EFORMAT, err, errlen, "more pairs than the "
+                     "count on line 2 (%lld)", m);
+  afv_lines_close(&L);
+  if (st != AFV_OK) {
+    free(pairs);
+    return st;
+  }
+  free(t->pairs0);
+  t->pairs0 = pairs;
+  t->n_pairs0 = (int)m;
+  return AFV_OK;
 }

@@ -5,6 +5,7 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -120,14 +121,21 @@ static const run_key *find_key(const char *name)
   return NULL;
 }
 
-/* Joins a relative path to the directory of the file that named it. */
-static void resolve_path(const char *value, const char *base, char *out)
+/* Joins a relative path to the directory of the file that named it; 0 if
+** the result would not fit RUN_PATH_MAX (out is then unchanged). */
+static int resolve_path(const char *value, const char *base, char *out)
 {
   const char *slash = base ? strrchr(base, '/') : NULL;
+  char joined[RUN_PATH_MAX];
+  int m;
   if (value[0] == '/' || !slash || strcmp(value, "none") == 0)
-    snprintf(out, RUN_PATH_MAX, "%s", value);
+    m = snprintf(joined, sizeof joined, "%s", value);
   else
-    snprintf(out, RUN_PATH_MAX, "%.*s/%s", (int)(slash - base), base, value);
+    m = snprintf(joined, sizeof joined, "%.*s/%s", (int)(slash - base), base,
+                 value);
+  if (m < 0 || m >= RUN_PATH_MAX) return 0;
+  memcpy(out, joined, (size_t)m + 1);
+  return 1;
 }
 
 /* 1 if text is one of the '|'-separated words of choices. */
@@ -173,8 +181,10 @@ static int set_key(run_cfg *cfg, const run_key *K, const char *text,
     snprintf(p, 16, "%s", text);
     return 1;
   case K_PATH:
-    resolve_path(text, base, p);
-    return 1;
+    if (resolve_path(text, base, p)) return 1;
+    afv_errorf(err, errlen, "%s: path longer than %d bytes", K->name,
+               RUN_PATH_MAX - 1);
+    return 0;
   }
   afv_errorf(err, errlen, "%s: '%s' is not %s", K->name, text,
              K->kind == K_REAL ? "a finite number"
@@ -201,40 +211,36 @@ static void cfg_defaults(run_cfg *cfg)
 static int read_config(const char *path, run_cfg *cfg, int *set, char *err,
                        size_t errlen)
 {
-  FILE *fp = fopen(path, "r");
-  char line[2 * RUN_PATH_MAX], msg[RUN_PATH_MAX];
-  int lineno = 0, ok = 1;
-  if (!fp) {
-    afv_errorf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-    return 0;
-  }
-  while (ok && fgets(line, sizeof line, fp)) {
-    char *key, *val, *extra, *hash = strchr(line, '#');
+  afv_lines L;
+  char msg[RUN_PATH_MAX];
+  int ok = 1, got = 0;
+  if (afv_lines_open(&L, path, err, errlen) != AFV_OK) return 0;
+  while (ok && (got = afv_lines_next(&L, err, errlen)) > 0) {
+    char *key, *val, *extra, *hash = strchr(L.line, '#');
     const run_key *K;
-    lineno++;
     if (hash) *hash = 0;
-    key = strtok(line, " \t\r\n");
+    key = strtok(L.line, " \t\r");
     if (!key) continue;
-    val = strtok(NULL, " \t\r\n");
-    extra = val ? strtok(NULL, " \t\r\n") : NULL;
+    val = strtok(NULL, " \t\r");
+    extra = val ? strtok(NULL, " \t\r") : NULL;
     K = find_key(key);
     if (!K) {
-      afv_errorf(err, errlen, "%s:%d: unknown key '%s' (see afv run --help)",
-                 path, lineno, key);
+      afv_errorf(err, errlen, "%s:%lld: unknown key '%.32s' (see afv run "
+                 "--help)", path, L.lineno, key);
       ok = 0;
     } else if (!val || extra) {
-      afv_errorf(err, errlen, "%s:%d: %s: expected one value ('KEY VALUE')",
-                 path, lineno, key);
+      afv_errorf(err, errlen, "%s:%lld: %s: expected one value ('KEY "
+                 "VALUE')", path, L.lineno, key);
       ok = 0;
     } else if (!set_key(cfg, K, val, path, msg, sizeof msg)) {
-      afv_errorf(err, errlen, "%s:%d: %s", path, lineno, msg);
+      afv_errorf(err, errlen, "%s:%lld: %s", path, L.lineno, msg);
       ok = 0;
     } else {
-      set[K - run_keys] = lineno;
+      set[K - run_keys] = L.lineno < INT_MAX ? (int)L.lineno : INT_MAX;
     }
   }
-  fclose(fp);
-  return ok;
+  afv_lines_close(&L);
+  return ok && got == 0;
 }
 
 /* The box side of N cells at packing fraction phi: N pi l^2 = phi L^2. */
@@ -375,56 +381,24 @@ typedef struct obs_analysis {
   afv_t1 t1;        /* C(0) */
 } obs_analysis;
 
-static int t1_reference_write(const obs_analysis *an, const char *path)
-{
-  char tmp[RUN_PATH_MAX + 96];
-  FILE *fp = afv_atomic_open(path, tmp, sizeof tmp);
-  int k;
-  if (!fp) return AFV_EIO;
-  fprintf(fp, "# afv t1 reference: contacting pairs at step 0\n%d\n",
-          an->t1.n_pairs0);
-  for (k = 0; k < an->t1.n_pairs0; k++)
-    fprintf(fp, "%d %d\n", an->t1.pairs0[2*k], an->t1.pairs0[2*k+1]);
-  return afv_atomic_commit(fp, tmp, path);
-}
-
-static int t1_reference_read(obs_analysis *an, const char *path, int n)
-{
-  FILE *fp = fopen(path, "r");
-  int m = -1, k, ok;
-  char line[128];
-  if (!fp) return AFV_EIO;
-  ok = fgets(line, sizeof line, fp) && fscanf(fp, "%d", &m) == 1 && m >= 0;
-  free(an->t1.pairs0);
-  an->t1.pairs0 = ok ? malloc((size_t)(2 * m + 1) * sizeof(int)) : NULL;
-  an->t1.n_pairs0 = 0;
-  for (k = 0; ok && an->t1.pairs0 && k < m; k++) {
-    int *q = an->t1.pairs0 + 2 * k;
-    ok = fscanf(fp, "%d %d", &q[0], &q[1]) == 2 && q[0] >= 0 && q[0] < q[1]
-         && q[1] < n;
-  }
-  fclose(fp);
-  if (!ok || !an->t1.pairs0) return AFV_EFORMAT;
-  an->t1.n_pairs0 = m;
-  return AFV_OK;
-}
-
 /* Fresh run (resume = 0): C(0) from the current state, written to the
 ** file; resume = 1: read back.  Prints a message and returns 0 on failure. */
 static int obs_t1_reference(obs_analysis *an, const afv_sim *s,
                             const char *dir, int resume)
 {
-  char path[RUN_PATH_MAX + 32];
+  char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 256];
   int st;
   snprintf(path, sizeof path, "%s/t1_reference.txt", dir);
-  if (resume) st = t1_reference_read(an, path, s->n);
-  else if ((st = afv_clusters_compute(&an->c, &s->geom, s->r, s->par.l,
-                                      &s->box)) == AFV_OK
-           && (st = afv_t1_start(&an->t1, &an->c)) == AFV_OK)
-    st = t1_reference_write(an, path);
+  if (resume && afv_t1_reference_read(path, s->n, &an->t1, err, sizeof err)
+      != AFV_OK)
+    return !bad_input(err);
+  if (resume) return 1;
+  if ((st = afv_clusters_compute(&an->c, &s->geom, s->r, s->par.l, &s->box))
+      == AFV_OK && (st = afv_t1_start(&an->t1, &an->c)) == AFV_OK)
+    st = afv_t1_reference_write(path, &an->t1);
   if (st != AFV_OK)
-    fprintf(stderr, "afv run: %s: cannot %s (C(0) of the t1 column): %s\n",
-            path, resume ? "read" : "write", afv_strerror(st));
+    fprintf(stderr, "afv run: %s: cannot write (C(0) of the t1 column): "
+            "%s\n", path, afv_strerror(st));
   return st == AFV_OK;
 }
 
@@ -1026,6 +1000,15 @@ static int run_resume(run_state *R, const run_args *a)
   }
   if (afv_checkpoint_read(path, &ck, err, sizeof err) != AFV_OK)
     return bad_input(err);
+  /* (the reader makes ck.step >= 0, so LLONG_MAX - ck.step is exact) */
+  if (more > LLONG_MAX - ck.step)
+    afv_errorf(err, sizeof err, "steps: %lld more steps after the "
+               "checkpoint's step %lld pass %lld", more, ck.step, LLONG_MAX);
+  if (more > LLONG_MAX - ck.step
+      || afv_checkpoint_check_files(path, &ck, err, sizeof err) != AFV_OK) {
+    afv_checkpoint_free(&ck);
+    return bad_input(err);
+  }
   if (ck.n != R->cfg.N || ck.seed != R->cfg.seed) {
     afv_checkpoint_free(&ck);
     return bad_input("resume: checkpoint.txt does not match params.txt "

@@ -63,5 +63,6 @@ void suite_dynamics(void);
 void suite_analysis(void);
 void suite_perf(void);
 void suite_pictures(void);
+void suite_readers(void);
 
 #endif

@@ -688,7 +688,7 @@ static void test_run_bad_input(void)
     {"--config @/cfg3", "cfg3:2: steps: expected one value"},
     {"--cells @/cells1", "cells1:1: expected a header"},
     {"--cells @/cells2", "cells2:3: expected 3 columns"},
-    {"--cells @/cells3", "cells3:2: 'abc' is not a number"},
+    {"--cells @/cells3", "cells3:2: x: 'abc' is not a number"},
     {"--cells @/cells4 --N 5", "N: 5"},
     {"--cells @/cells5 --box open", "same centre"}};
   static const char *const files[][2] = {
