@@ -5,6 +5,8 @@
 #   make run        build, then run a short default simulation
 #   make bench      build and run the benchmark
 #   make bench-compare  per-cell cost against N = 400 (and threads, OPENMP=1)
+#   make fuzz       every libFuzzer harness fuzz/fuzz_*.c for FUZZ_SECONDS s
+#                   (default 60; clang; make -j2 fuzz runs two at a time)
 #   make clean
 #
 # CC and CFLAGS may be overridden (make CC=clang, make CC=tcc).
@@ -26,7 +28,7 @@ LIB_SRC  = geom.c afv.c dynamics.c analysis.c svg.c io.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
-.PHONY: all test run bench bench-quick bench-compare clean FORCE
+.PHONY: all test run bench bench-quick bench-compare fuzz clean FORCE
 
 all: afv libafv.a
 
@@ -99,5 +101,37 @@ bench-compare: test/bench
 	if [ "$(OPENMP)" = 1 ]; then for s in $(BENCH_STATES); do \
 	  ./test/bench --threads $$s 40000 || st=1; done; fi; exit $$st
 
+# ---- fuzzing: clang's libFuzzer -------------------------------------------
+# Every fuzz/fuzz_NAME.c is a harness (LLVMFuzzerTestOneInput), linked with
+# the library and cli.c built apart in fuzz/build/ with AddressSanitizer and
+# UndefinedBehaviorSanitizer (any report is a crash).  make fuzz runs each
+# for FUZZ_SECONDS s from its committed seed corpus fuzz/corpus/NAME/ (see
+# fuzz/run.sh) and fails on any crash, which it leaves in fuzz/build/.
+FUZZ_CC      = clang
+FUZZ_SECONDS = 60
+FUZZ_CFLAGS  = -O1 -g -std=c99 -fno-omit-frame-pointer \
+               -fsanitize=address,undefined -fno-sanitize-recover=all
+FUZZ_NAMES   = $(patsubst fuzz/fuzz_%.c,%,$(wildcard fuzz/fuzz_*.c))
+FUZZ_OBJ     = $(patsubst %.c,fuzz/build/%.o,$(LIB_SRC) cli.c)
+
+fuzz/build/%.o: %.c afv.h cli.h
+	@mkdir -p fuzz/build
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -c -o $@ $<
+
+fuzz/build/libafv_fuzz.a: $(FUZZ_OBJ)
+	$(AR) rcs $@ $(FUZZ_OBJ)
+
+# (run.c: the config harness includes it)
+fuzz/build/fuzz_%: fuzz/fuzz_%.c fuzz/build/libafv_fuzz.a $(wildcard fuzz/*.h) \
+                   run.c cli.h afv.h
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -I. -o $@ $< \
+	  fuzz/build/libafv_fuzz.a -lm
+
+fuzz-%: fuzz/build/fuzz_%
+	@bash fuzz/run.sh $* $(FUZZ_SECONDS)
+
+fuzz: $(addprefix fuzz-,$(FUZZ_NAMES))
+
 clean:
 	rm -f *.o libafv.a afv test/run_tests test/bench .build-flags
+	rm -rf fuzz/build
