@@ -108,8 +108,11 @@ int afv_lines_next(afv_lines *L, char *err, size_t errlen)
 {
   L->len = 0;
   L->newline = 0;
-  if (lines_append(L, "", 0) != AFV_OK) return lines_fail(L, AFV_ENOMEM);
   L->lineno++;
+  if (lines_append(L, "", 0) != AFV_OK) {
+    afv_errorf(err, errlen, "%s:%lld: out of memory", L->path, L->lineno);
+    return lines_fail(L, AFV_ENOMEM);
+  }
   for (;;) {
     const char *at = L->buf + L->pos, *nl, *nul;
     size_t k;
@@ -184,17 +187,17 @@ static const char *shown(const char *p, char *out)
   return out;
 }
 
-/* Splits s in place at spaces and tabs; the first max words go to w.
-** Returns the number of words (counting past max). */
+/* Splits s in place at spaces, tabs and carriage returns; the first max
+** words go to w.  Returns the number of words (counting past max). */
 static int split_words(char *s, char **w, int max)
 {
   int n = 0;
   for (;;) {
-    s += strspn(s, " \t");
+    s += strspn(s, " \t\r");
     if (!*s) return n;
     if (n < max) w[n] = s;
     n++;
-    s += strcspn(s, " \t");
+    s += strcspn(s, " \t\r");
     if (*s) *s++ = 0;
   }
 }
@@ -558,7 +561,7 @@ int afv_traj_read(const char *path, afv_traj *tr, char *err, size_t errlen)
   memset(tr, 0, sizeof *tr);
   if ((st = afv_lines_open(&L, path, err, errlen)) != AFV_OK) return st;
   got = afv_lines_next(&L, err, errlen);
-  if (got == 0)
+  if (got == 0 && ++L.lineno)
     st = line_fail(&L, AFV_EFORMAT, err, errlen, "empty file, not an afv "
                    "trajectory");
   else if (got < 0)

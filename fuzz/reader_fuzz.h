@@ -64,7 +64,7 @@ static const char *fuzz_input_file(const char *name, const uint8_t *data,
 }
 
 /* 1 if a and b hold the same n doubles, bit for bit. */
-static int fuzz_same(const double *a, const double *b, size_t n)
+static inline int fuzz_same(const double *a, const double *b, size_t n)
 {
   return n == 0 || memcmp(a, b, n * sizeof *a) == 0;
 }

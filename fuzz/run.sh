@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # fuzz/run.sh NAME SECONDS -- runs the libFuzzer harness fuzz/build/fuzz_NAME
 # for SECONDS s from the seed corpus fuzz/corpus/NAME/ (read, never written:
-# new inputs go to fuzz/build/NAME.corpus/), then prints one line: executions,
+# new inputs go to fuzz/build/NAME.corpus/), with the tokens of
+# fuzz/dict/NAME.dict if there is one, then prints one line: executions,
 # executions per second, corpus size, and the crash file if one was found.
 # The full log is fuzz/build/NAME.log.  Exit status non-zero on a crash.
 set -u
@@ -11,6 +12,7 @@ log=$build/$name.log
 mkdir -p "$build/$name.corpus"
 seeds=()
 [ -d "fuzz/corpus/$name" ] && seeds=("fuzz/corpus/$name")
+[ -f "fuzz/dict/$name.dict" ] && seeds=(-dict="fuzz/dict/$name.dict" "${seeds[@]}")
 "$build/fuzz_$name" -max_total_time="$seconds" -timeout=10 \
   -print_final_stats=1 -artifact_prefix="$build/$name-" \
   "$build/$name.corpus" "${seeds[@]}" >"$log" 2>&1

@@ -225,6 +225,10 @@ static void test_checkpoint_fields_whole(void)
     {2, "cells 5x", 2, "cells: '5x'"},        /* read as 5 */
     {2, "cells 2000000000", 2, "cells: 2000000000"},   /* int overflow */
     {2, "cells 99999999999999999999", 2, "cells: 9999"},
+    /* found by fuzz_checkpoint on the old reader (UBSan: 2 * 1073741824
+    ** overflows int; sscanf's "cells %d" also took "cells1073741824") */
+    {2, "cells1073741824", 2, "expected 'cells VALUE'"},
+    {2, "cells 1073741824", 2, "cells: 1073741824"},
     {4, "time nan", 4, "time: 'nan'"},        /* accepted */
     {5, "seed -1", 5, "seed: '-1'"},          /* read as 2^64-1 */
     {5, "seed 7x", 5, "seed: '7x'"},          /* read as 7 */
@@ -281,6 +285,8 @@ static void test_trajectory_fields_whole(void)
     {"# afv trajectory cells 2000000000 box open\n# step 0 time 0\n0 0 0\n",
      ":1: cells: 2000000000"},
     {"# afv trajectory cells 5000000000 box open\n", ":1: cells: 5000000000"},
+    /* found by fuzz_trajectory on the old reader: read as 0 cells */
+    {"", ":1: empty file"},
     {"# afv trajectory cells 2x box open\n", ":1: cells: '2x'"},
     {"# afv trajectory cells 1 box open junk\n", ":1: not an afv"},
     {"# afv trajectory cells 1 box periodic nan 10\n", ":1: box LX: 'nan'"},
