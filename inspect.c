@@ -146,12 +146,14 @@ int cmd_check(int argc, char **argv)
 /* Reads the first line of path to tell a trajectory from a POINTS file. */
 static int is_trajectory(const char *path)
 {
-  char line[64] = "";
-  FILE *fp = fopen(path, "r");
-  if (!fp) return 0;
-  if (!fgets(line, sizeof line, fp)) line[0] = 0;
-  fclose(fp);
-  return strncmp(line, "# afv trajectory", 16) == 0;
+  afv_lines L;
+  int yes;
+  /* (afv_lines: a pipe is refused, not waited on) */
+  if (afv_lines_open(&L, path, NULL, 0) != AFV_OK) return 0;
+  yes = afv_lines_next(&L, NULL, 0) > 0
+        && strncmp(L.line, "# afv trajectory", 16) == 0;
+  afv_lines_close(&L);
+  return yes;
 }
 
 /* ---- afv draw ----------------------------------------------------------- */

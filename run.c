@@ -389,16 +389,16 @@ static int obs_t1_reference(obs_analysis *an, const afv_sim *s,
   char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 256];
   int st;
   snprintf(path, sizeof path, "%s/t1_reference.txt", dir);
-  if (resume && afv_t1_reference_read(path, s->n, &an->t1, err, sizeof err)
-      != AFV_OK)
-    return !bad_input(err);
-  if (resume) return 1;
+  if (resume)
+    return afv_t1_reference_read(path, s->n, &an->t1, err, sizeof err)
+           == AFV_OK || !bad_input(err);
   if ((st = afv_clusters_compute(&an->c, &s->geom, s->r, s->par.l, &s->box))
       == AFV_OK && (st = afv_t1_start(&an->t1, &an->c)) == AFV_OK)
     st = afv_t1_reference_write(path, &an->t1);
-  if (st != AFV_OK)
+  if (st != AFV_OK)   /* an I/O error says the system's reason */
     fprintf(stderr, "afv run: %s: cannot write (C(0) of the t1 column): "
-            "%s\n", path, afv_strerror(st));
+            "%s\n", path, st == AFV_EIO && errno ? strerror(errno)
+            : afv_strerror(st));
   return st == AFV_OK;
 }
 
@@ -1000,15 +1000,6 @@ static int run_resume(run_state *R, const run_args *a)
   }
   if (afv_checkpoint_read(path, &ck, err, sizeof err) != AFV_OK)
     return bad_input(err);
-  /* (the reader makes ck.step >= 0, so LLONG_MAX - ck.step is exact) */
-  if (more > LLONG_MAX - ck.step)
-    afv_errorf(err, sizeof err, "steps: %lld more steps after the "
-               "checkpoint's step %lld pass %lld", more, ck.step, LLONG_MAX);
-  if (more > LLONG_MAX - ck.step
-      || afv_checkpoint_check_files(path, &ck, err, sizeof err) != AFV_OK) {
-    afv_checkpoint_free(&ck);
-    return bad_input(err);
-  }
   if (ck.n != R->cfg.N || ck.seed != R->cfg.seed) {
     afv_checkpoint_free(&ck);
     return bad_input("resume: checkpoint.txt does not match params.txt "
@@ -1068,22 +1059,24 @@ int cmd_run(int argc, char **argv)
 
 
 /* params.txt of a run: KEY VALUE lines; picks l, v0 and Dr, ignores the
-** rest (a tolerant reader: the run owns the format).  0 if unreadable. */
+** rest and values that are not whole finite numbers (a tolerant reader:
+** the run owns the format).  0 if unreadable. */
 int read_run_params(const char *path, double *l, double *v0,
                            double *Dr)
 {
-  char line[1024], key[64];
-  double v;
-  FILE *fp = fopen(path, "r");
-  if (!fp) return 0;
-  while (fgets(line, sizeof line, fp))
-    if (line[0] != '#' && sscanf(line, "%63s %lf", key, &v) == 2
-        && isfinite(v)) {
-      if (strcmp(key, "l") == 0) *l = v;
-      else if (strcmp(key, "v0") == 0) *v0 = v;
-      else if (strcmp(key, "Dr") == 0) *Dr = v;
-    }
-  fclose(fp);
+  afv_lines L;
+  if (afv_lines_open(&L, path, NULL, 0) != AFV_OK) return 0;
+  while (afv_lines_next(&L, NULL, 0) > 0) {
+    char *key = strtok(L.line, " \t\r"), *val = strtok(NULL, " \t\r"), *end;
+    double v;
+    if (!key || !val || key[0] == '#') continue;
+    v = strtod(val, &end);
+    if (*end || end == val || !isfinite(v)) continue;
+    if (strcmp(key, "l") == 0) *l = v;
+    else if (strcmp(key, "v0") == 0) *v0 = v;
+    else if (strcmp(key, "Dr") == 0) *Dr = v;
+  }
+  afv_lines_close(&L);
   return 1;
 }
 

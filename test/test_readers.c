@@ -146,6 +146,9 @@ static void test_points_directory_and_pipe_refused(void)
   CHECK(mkfifo(at("fifo"), 0600) == 0, "mkfifo");
   CHECK(sh("timeout 10 ./afv eval %s", at("fifo")) == 2
         && one_line_with("fifo", "pipe"), "afv eval FIFO: %s", msg);
+  /* afv draw first looks whether the file is a trajectory */
+  CHECK(sh("timeout 10 ./afv draw %s", at("fifo")) == 2
+        && one_line_with("fifo", "pipe"), "afv draw FIFO: %s", msg);
 }
 
 /* ---- CELLS ---------------------------------------------------------------- */
@@ -414,39 +417,35 @@ static int make_run(const char *name)
             at(name));
 }
 
-/* --steps MORE that overflows the step count: params.txt got a negative
-** steps and every later resume failed. */
-static void test_resume_steps_overflow_refused(void)
+/* A recorded size larger than its file is named with the checkpoint's
+** line (afv run --resume checks them before it cuts anything; before, the
+** message was "shorter than the checkpoint records", without the line). */
+static void test_checkpoint_sizes_against_files(void)
 {
-  char before[4096], after[4096];
+  afv_checkpoint c;
+  char bytes[100];
   int st;
-  CHECK(make_run("r1") == 0, "run: %s", slurp("err", msg, sizeof msg));
-  slurp("r1/params.txt", before, sizeof before);
-  st = sh("./afv run --resume %s --steps 9223372036854775807", at("r1"));
-  CHECK(st == 2 && one_line_with("steps: 9223372036854775807", NULL),
-        "exit %d: %s", st, msg);
-  slurp("r1/params.txt", after, sizeof after);
-  CHECK(strcmp(before, after) == 0, "params.txt changed");
-  CHECK(sh("./afv run --resume %s --steps 10", at("r1")) == 0,
-        "a later resume fails: %s", slurp("err", msg, sizeof msg));
-}
-
-/* A recorded size larger than its file: named with the checkpoint's line
-** (before, "shorter than the checkpoint records", after trajectory.dat
-** had been cut). */
-static void test_resume_size_larger_than_file(void)
-{
-  char before[65536], after[65536];
-  int st;
-  CHECK(make_run("r2") == 0, "run");
-  CHECK(sh("sed -i 's/^bytes observables.csv .*/bytes observables.csv "
-           "999999/' %s", at("r2/checkpoint.txt")) == 0, "sed");
-  slurp("r2/trajectory.dat", before, sizeof before);
-  st = sh("./afv run --resume %s --steps 5", at("r2"));
-  CHECK(st == 2 && one_line_with("checkpoint.txt:7: bytes observables.csv: "
-        "999999, larger than the file", NULL), "exit %d: %s", st, msg);
-  slurp("r2/trajectory.dat", after, sizeof after);
-  CHECK(strcmp(before, after) == 0, "trajectory.dat was cut");
+  mkdir(at("ckdir"), 0777);
+  put_checkpoint("ckdir/checkpoint.txt", 0, "");   /* 100, 50 and 0 bytes */
+  CHECK(afv_checkpoint_read(at("ckdir/checkpoint.txt"), &c, msg, sizeof msg)
+        == AFV_OK, "%s", msg);
+  memset(bytes, 'x', sizeof bytes);
+  put("ckdir/trajectory.dat", bytes, 100);   /* exactly the size: fine */
+  put("ckdir/observables.csv", bytes, 49);   /* one byte short */
+  msg[0] = 0;
+  st = afv_checkpoint_check_files(at("ckdir/checkpoint.txt"), &c, msg,
+                                  sizeof msg);
+  CHECK(st == AFV_EFORMAT && says("checkpoint.txt:7: bytes observables.csv: "
+        "50, larger than the file (49 bytes)", NULL, NULL), "%s", msg);
+  put("ckdir/observables.csv", bytes, 50);
+  msg[0] = 0;
+  CHECK(afv_checkpoint_check_files(at("ckdir/checkpoint.txt"), &c, msg,
+        sizeof msg) == AFV_OK, "sizes that fit: %s", msg);
+  remove(at("ckdir/trajectory.dat"));
+  CHECK(afv_checkpoint_check_files(at("ckdir/checkpoint.txt"), &c, msg,
+        sizeof msg) == AFV_EFORMAT && says("checkpoint.txt:6: bytes "
+        "trajectory.dat: 100, but ", "No such file", NULL), "%s", msg);
+  afv_checkpoint_free(&c);
 }
 
 /* The T1 reference, read back on --resume: count, order, whole fields. */
@@ -496,8 +495,7 @@ void suite_readers(void)
   RUN(test_config_directory_refused);
   RUN(test_config_long_line_not_split);
   RUN(test_config_nul_and_long_path);
-  RUN(test_resume_steps_overflow_refused);
-  RUN(test_resume_size_larger_than_file);
+  RUN(test_checkpoint_sizes_against_files);
   RUN(test_resume_t1_reference_checked);
   sh("rm -rf %s", dir);
 }
