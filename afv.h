@@ -251,7 +251,12 @@ int afv_force_check(int n, const double *r, const afv_params *p,
 **   if (afv_lines_open(&L, path, err, errlen) != AFV_OK) return ...;
 **   while ((got = afv_lines_next(&L, err, errlen)) > 0) use L.line;
 **   if (got < 0) the status is L.status;  afv_lines_close(&L); */
+#ifndef AFV_LINE_MAX
 #define AFV_LINE_MAX (1 << 20)
+#endif
+#ifndef AFV_LINES_BLOCK
+#define AFV_LINES_BLOCK 8192   /* bytes read at a time */
+#endif
 /* Most cells (rows) a reader accepts: 2n + 1 still fits an int. */
 #define AFV_CELLS_MAX 1073741823
 typedef struct afv_lines {
@@ -265,7 +270,7 @@ typedef struct afv_lines {
                        ** file that does not end with one) */
   int         status;  /* after afv_lines_next returned -1: the error */
   size_t      cap, pos, fill;  /* line capacity; unread part of buf */
-  char        buf[8192];
+  char        buf[AFV_LINES_BLOCK];
 } afv_lines;
 int  afv_lines_open(afv_lines *L, const char *path, char *err, size_t errlen);
 /* 1: the next line is in L->line; 0: end of file; -1: an error (message in

@@ -124,10 +124,11 @@ static void test_points_nul_byte_named(void)
         && says("nul.xy:2:", "NUL byte", NULL), "message: %s", msg);
 }
 
-/* A line longer than the old 4096-byte buffer is read whole. */
+/* A line longer than the old 4096-byte buffer is read whole (this one
+** spans three of afv_lines' blocks). */
 static void test_points_long_line_read_whole(void)
 {
-  char *line = padded("0 0\n1", 6000, ' ', "2\n5 5\n");
+  char *line = padded("0 0\n1", 20000, ' ', "2\n5 5\n");
   int n = 0, st;
   if (line) put_text("long.xy", line);
   st = read_points("long.xy", &n);
