@@ -55,6 +55,10 @@ int double_option(int argc, char **argv, int *k, const char *name,
                   double *out, int *bad);
 
 /* ---- run.c: tolerant readers of a run directory ------------------------- */
+/* The value of key in the params.txt at path, if it is a whole finite
+** number (the last one, if the key repeats): 1 if found, 0 if not, -1 if
+** the file cannot be read.  Lines are read whole (afv_lines). */
+int run_param(const char *path, const char *key, double *v);
 /* params.txt of a run: picks l, v0 and Dr.  0 if unreadable. */
 int read_run_params(const char *path, double *l, double *v0, double *Dr);
 /* l of the run whose trajectory is at path, from params.txt beside it. */

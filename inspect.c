@@ -207,21 +207,9 @@ static int beside(const char *path, const char *name, char *buf, size_t len)
 /* Value of key in the params.txt beside path; 1 if found. */
 static int param_beside(const char *path, const char *key, double *v)
 {
-  char file[RUN_PATH_MAX + 32], line[1024], k[64];
-  double x;
-  int found = 0;
-  FILE *fp;
-  if (!beside(path, "params.txt", file, sizeof file)
-      || !(fp = fopen(file, "r")))
-    return 0;
-  while (fgets(line, sizeof line, fp))
-    if (line[0] != '#' && sscanf(line, "%63s %lf", k, &x) == 2
-        && strcmp(k, key) == 0 && isfinite(x)) {
-      *v = x;
-      found = 1;
-    }
-  fclose(fp);
-  return found;
+  char file[RUN_PATH_MAX + 32];
+  return beside(path, "params.txt", file, sizeof file)
+         && run_param(file, key, v) > 0;
 }
 
 /* "X0,Y0,X1,Y1": four finite numbers, X0 < X1 and Y0 < Y1. */

@@ -1058,25 +1058,33 @@ int cmd_run(int argc, char **argv)
 }
 
 
-/* params.txt of a run: KEY VALUE lines; picks l, v0 and Dr, ignores the
-** rest and values that are not whole finite numbers (a tolerant reader:
-** the run owns the format).  0 if unreadable. */
+int run_param(const char *path, const char *key, double *v)
+{
+  afv_lines L;
+  int found = 0;
+  if (afv_lines_open(&L, path, NULL, 0) != AFV_OK) return -1;
+  while (afv_lines_next(&L, NULL, 0) > 0) {
+    char *k = strtok(L.line, " \t\r"), *val = strtok(NULL, " \t\r"), *end;
+    double x;
+    if (!k || !val || k[0] == '#' || strcmp(k, key) != 0) continue;
+    x = strtod(val, &end);
+    if (end != val && *end == 0 && isfinite(x)) {
+      *v = x;
+      found = 1;
+    }
+  }
+  afv_lines_close(&L);
+  return found;
+}
+
+/* params.txt of a run: picks l, v0 and Dr (a tolerant reader: the run
+** owns the format).  0 if unreadable. */
 int read_run_params(const char *path, double *l, double *v0,
                            double *Dr)
 {
-  afv_lines L;
-  if (afv_lines_open(&L, path, NULL, 0) != AFV_OK) return 0;
-  while (afv_lines_next(&L, NULL, 0) > 0) {
-    char *key = strtok(L.line, " \t\r"), *val = strtok(NULL, " \t\r"), *end;
-    double v;
-    if (!key || !val || key[0] == '#') continue;
-    v = strtod(val, &end);
-    if (*end || end == val || !isfinite(v)) continue;
-    if (strcmp(key, "l") == 0) *l = v;
-    else if (strcmp(key, "v0") == 0) *v0 = v;
-    else if (strcmp(key, "Dr") == 0) *Dr = v;
-  }
-  afv_lines_close(&L);
+  if (run_param(path, "l", l) < 0) return 0;
+  run_param(path, "v0", v0);
+  run_param(path, "Dr", Dr);
   return 1;
 }
 
