@@ -1275,6 +1275,32 @@ static int apply_args(int argc, char **argv, run_cfg *cfg, int *set)
 ** left to clean up.  The file itself stays (empty); only the lock on it
 ** counts.  1 if this process now holds the lock (R->lock_fd), else 0 with
 ** a message. */
+static int report_in_use(const char *dir, long pid)
+{
+  fprintf(stderr, "afv run: %s is in use by process %ld (it holds %s/lock): "
+          "a run directory has one writer at a time; wait for that run to "
+          "end, or stop it\n", dir, pid, dir);
+  return EXIT_BAD_INPUT;
+}
+
+/* The process holding DIR's lock, or 0 (none, or no lock file: nothing is
+** created).  Only for a process that does not hold the lock itself:
+** closing any descriptor of the file drops the caller's own locks on it. */
+static long lock_holder(const char *dir)
+{
+  char path[RUN_PATH_MAX + 32];
+  struct flock fl;
+  int fd;
+  snprintf(path, sizeof path, "%s/lock", dir);
+  if ((fd = open(path, O_RDWR)) < 0) return 0;
+  memset(&fl, 0, sizeof fl);
+  fl.l_type = F_WRLCK;
+  fl.l_whence = SEEK_SET;
+  if (fcntl(fd, F_GETLK, &fl) != 0) fl.l_type = F_UNLCK;
+  close(fd);
+  return fl.l_type == F_UNLCK ? 0 : (long)fl.l_pid;
+}
+
 static int lock_run_dir(run_state *R)
 {
   char path[RUN_PATH_MAX + 32];
@@ -1299,9 +1325,7 @@ static int lock_run_dir(run_state *R)
     fl.l_whence = SEEK_SET;
     if (fcntl(fd, F_GETLK, &fl) != 0) break;
     if (fl.l_type != F_UNLCK) {   /* else the holder just ended: try again */
-      fprintf(stderr, "afv run: %s is in use by process %ld (it holds %s): "
-              "a run directory has one writer at a time; wait for that run "
-              "to end, or stop it\n", R->dir, (long)fl.l_pid, path);
+      report_in_use(R->dir, (long)fl.l_pid);
       close(fd);
       return 0;
     }
@@ -1320,17 +1344,22 @@ static void unlock_run_dir(run_state *R)
   R->lock_fd = -1;
 }
 
-/* 1 if DIR holds a run: it has a checkpoint (a run that stopped before
-** its first checkpoint has nothing to resume, and a fresh run replaces
-** it). */
-static int holds_run(const char *dir)
+/* 1 (with a message) if R->dir holds a run: it has a checkpoint (a run
+** that stopped before its first checkpoint has nothing to resume, and a
+** fresh run replaces it).  A run still being written is named by its
+** writer's process id. */
+static int holds_run(const run_state *R)
 {
   char path[RUN_PATH_MAX + 32];
-  snprintf(path, sizeof path, "%s/checkpoint.txt", dir);
+  long pid;
+  snprintf(path, sizeof path, "%s/checkpoint.txt", R->dir);
   if (access(path, F_OK) != 0) return 0;
-  fprintf(stderr, "afv run: %s already holds a run (checkpoint.txt): "
-          "continue it with --resume %s, or choose another --out\n", dir,
-          dir);
+  if (R->lock_fd < 0 && (pid = lock_holder(R->dir)) > 0)
+    report_in_use(R->dir, pid);
+  else
+    fprintf(stderr, "afv run: %s already holds a run (checkpoint.txt): "
+            "continue it with --resume %s, or choose another --out\n",
+            R->dir, R->dir);
   return 1;
 }
 
@@ -1356,12 +1385,12 @@ static void clear_unfinished_run(const char *dir)
 static int make_out_dir(run_state *R)
 {
   const char *dir = R->dir;
-  if (holds_run(dir)) return 0;     /* refused before anything changes */
+  if (holds_run(R)) return 0;       /* refused before anything changes */
   if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
     fprintf(stderr, "afv run: cannot create %s: %s\n", dir, strerror(errno));
     return 0;
   }
-  if (!lock_run_dir(R) || holds_run(dir)) return 0;
+  if (!lock_run_dir(R) || holds_run(R)) return 0;
   clear_unfinished_run(dir);
   return 1;
 }

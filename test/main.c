@@ -57,6 +57,7 @@ int main(void)
   suite_analysis();
   suite_perf();
   suite_pictures();
+  suite_runjob();
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;
 }
