@@ -558,8 +558,9 @@ static int run_start(run_state *R, char *err, size_t errlen)
 ** here by modest factors (FIRE's velocity mixing and time step, the
 ** relaxation's slack, sums over a step's pieces): a value within
 ** COMPUTE_HEADROOM of the largest double is refused, so those products stay
-** finite.  (Refused: |F|^2 summed over the cells above 1.8e302, an energy
-** bound above 1.8e302; the paper's runs are near 1e3.) */
+** finite: |F|^2 summed over the cells above 1.8e302, or an energy bound
+** above 1.8e302 (at the paper's values, KA = KP = 1 and N = 400, the
+** bound is about 1e4). */
 #define COMPUTE_HEADROOM 1e6
 
 /* The three terms of a cell's energy (paper, Eq. energy), by modulus key. */
@@ -635,9 +636,14 @@ static int energy_computable(const afv_sim *s, char *err, size_t errlen)
     double worst = -1;
     for (i = 0; i < s->n; i++) {
       double dev2, b = term_bound(&s->par, i, k, &dev2);
-      if (huge(dev2)) {
+      if (huge(dev2)) {   /* A0 or P0 far out, or the cell's size */
         char label[96];
-        term_label(label, sizeof label, &s->par, k, i, 1);
+        double target;
+        term_modulus(&s->par, i, k, &target);
+        if (huge(target * target))
+          term_label(label, sizeof label, &s->par, k, i, 1);
+        else
+          snprintf(label, sizeof label, "l: %g", s->par.l);
         afv_errorf(err, errlen, "%s: the %s cannot be computed: its squared "
                    "deviation reaches %g", label, term_name[k], dev2);
         return 0;
@@ -726,9 +732,13 @@ static int dynamics_computable(const afv_sim *s, long long steps, char *err,
   for (i = 0; i < s->n; i++) {
     double Dr = s->dyn.Dr_i ? s->dyn.Dr_i[i] : s->dyn.Dr;
     if (!isfinite(sqrt(2 * Dr * s->dyn.dt))) {
-      afv_errorf(err, errlen, "Dr: %g%s: the angle noise sqrt(2 Dr dt) "
-                 "overflows (dt = %g)", Dr, s->dyn.Dr_i ? " (cells-file "
-                 "column)" : "", s->dyn.dt);
+      char label[96];
+      if (s->dyn.Dr_i)
+        snprintf(label, sizeof label, "Dr (cells file, cell %d): %g", i, Dr);
+      else
+        snprintf(label, sizeof label, "Dr: %g", Dr);
+      afv_errorf(err, errlen, "%s: the angle noise sqrt(2 Dr dt) overflows "
+                 "(dt = %g)", label, s->dyn.dt);
       return 0;
     }
   }
@@ -1410,8 +1420,11 @@ static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
   char err[2 * RUN_PATH_MAX] = "";
   int set[N_RUN_KEYS], st;
   memset(set, 0, sizeof set);
+  long holder;
   if (strlen(a->out) > RUN_PATH_MAX - 64) return bad_input("--out: path too long");
   snprintf(R->dir, sizeof R->dir, "%s", a->out);
+  if ((holder = lock_holder(R->dir)) > 0)   /* at once, before the start */
+    return report_in_use(R->dir, holder);
   if (a->config && !read_config(a->config, &R->cfg, set, err, sizeof err))
     return bad_input(err);
   if (!apply_args(argc, argv, &R->cfg, set)) return EXIT_BAD_INPUT;
