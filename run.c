@@ -1179,8 +1179,14 @@ static const char *run_usage =
   "observables.csv, trajectory.dat, checkpoint.txt, snap_*.svg, final.svg,\n"
   "log.txt, t1_reference.txt (C(0) for the t1 column) (and cells.txt,\n"
   "trajectory.xyz).  --resume continues from the\n"
-  "last checkpoint, to the run's steps or MORE steps past the checkpoint.\n"
-  "Exit status: 0 done, 2 bad input, 3 unstable step (dt too large).\n"
+  "last checkpoint, to the run's steps or MORE steps past the checkpoint;\n"
+  "it checks every file first and changes none if one does not match.\n"
+  "One process at a time writes in DIR (a lock on DIR/lock, which ends\n"
+  "with the process); another is refused, naming it.  DIR may exist, but\n"
+  "a fresh run refuses one with a checkpoint.txt (a run that stopped\n"
+  "before its first checkpoint is replaced).\n"
+  "Exit status: 0 done, 2 bad input or an I/O error, 3 unstable step (dt\n"
+  "too large) or a state that is not finite (never written).\n"
   "\n"
   "keys (default, unit, meaning):\n";
 
