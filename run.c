@@ -303,8 +303,8 @@ static int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
     BAD("init: 'file' needs a cells file with x and y columns");
   if (c->N < 1) BAD("N: must be >= 1 (got %lld)", c->N);
   if (c->N > 100000000) BAD("N: at most 100000000 (got %lld)", c->N);
-  if (!(c->phi > 0 && c->phi <= 1)) BAD("phi: must be in (0, 1] (got %g)",
-                                        c->phi);
+  if (!(c->phi > 0 && c->phi <= 1))   /* %.17g: 1 + 2^-52 is not "1" */
+    BAD("phi: must be in (0, 1] (got %.17g)", c->phi);
   if (c->l <= 0) BAD("l: must be > 0 (got %g)", c->l);
   if (c->KA < 0) BAD("KA: must be >= 0 (got %g)", c->KA);
   if (c->KP < 0) BAD("KP: must be >= 0 (got %g)", c->KP);

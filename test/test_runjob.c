@@ -450,25 +450,38 @@ static void test_io_error_names_file_and_reason(void)
                       EISDIR);
 }
 
-/* A box side one ulp below 4l is printed as itself, not as 4. */
-static void test_box_message_digits(void)
+/* Values a hair past a bound are printed in full, not rounded onto the
+** bound ("4,4 is smaller than 4l = 4"): a box side one ulp below 4l (afv
+** eval --box, and afv run's L from phi) and phi one ulp above 1. */
+static void test_bounds_printed_in_full(void)
 {
-  char *e;
-  int st;
-  FILE *fp;
+  static const char *const cases[][2] = {
+    {"eval --box 3.9999999999999996,4 @", "3.9999999999999996,4 "},
+    {"run --N 5 --phi 0.98174770424681057 --out @/no", "L = sqrt(N pi "
+     "l^2/phi) = 3.9999999999999996 "},
+    {"run --phi 1.0000000000000002 --out @/no", "got 1.0000000000000002"}};
   char pts[512];
+  size_t c;
+  FILE *fp;
   snprintf(pts, sizeof pts, "%s/pts.txt", root);
   if ((fp = fopen(pts, "w"))) {
     fputs("0 0\n1 1\n", fp);
     fclose(fp);
   }
-  st = test_sh("./afv eval --box 3.9999999999999996,4 %s > /dev/null "
-              "2> %s/err.txt", pts, root);
-  e = last_err();
-  CHECK(st == 2, "exit %d, want 2", st);
-  CHECK(strstr(e, "3.9999999999999996") != NULL, "the side is not printed "
-        "in full: %s", e);
-  free(e);
+  for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    char args[512], *e, *at;
+    int st;
+    snprintf(args, sizeof args, "%s", cases[c][0]);
+    if ((at = strchr(args, '@')))   /* '@': pts.txt, or the directory */
+      snprintf(at, sizeof args - (size_t)(at - args), "%s%s",
+               c == 0 ? pts : root, strchr(cases[c][0], '@') + 1);
+    st = test_sh("./afv %s > /dev/null 2> %s/err.txt", args, root);
+    e = last_err();
+    CHECK(st == 2, "'%s': exit %d, want 2", args, st);
+    CHECK(strstr(e, cases[c][1]) != NULL, "'%s': the value is not printed "
+          "in full ('%s'): %s", args, cases[c][1], e);
+    free(e);
+  }
 }
 
 void suite_runjob(void)
@@ -481,6 +494,6 @@ void suite_runjob(void)
   RUN(test_uncomputable_parameters_refused);
   RUN(test_unfinished_run_rerunnable);
   RUN(test_io_error_names_file_and_reason);
-  RUN(test_box_message_digits);
+  RUN(test_bounds_printed_in_full);
   test_sh("rm -rf %s", root);
 }
