@@ -603,8 +603,18 @@ static double term_bound(const afv_params *p, int i, int k, double *dev2)
   return m * *dev2;
 }
 
-/* "KA: 1e+200", or "KA (cells file, cell 12): 1e+200" when the value is
-** the cell's own (a column of the cells file). */
+/* "KEY: VALUE", or "KEY (cells file, cell 12): VALUE" when the value is
+** the cell's own (column, of the cells file, is not NULL). */
+static void value_label(char *buf, size_t len, const char *key,
+                        const double *column, int cell, double value)
+{
+  if (column)
+    snprintf(buf, len, "%s (cells file, cell %d): %g", key, cell, value);
+  else
+    snprintf(buf, len, "%s: %g", key, value);
+}
+
+/* value_label of term k's modulus (or, target_key = 1, of its target). */
 static void term_label(char *buf, size_t len, const afv_params *p, int k,
                        int cell, int target_key)
 {
@@ -612,12 +622,8 @@ static void term_label(char *buf, size_t len, const afv_params *p, int k,
   const double *own[N_TERMS][2] = {{p->KA_i, p->A0_i}, {p->KP_i, p->P0_i},
                                    {NULL, NULL}};
   double target, m = term_modulus(p, cell, k, &target);
-  const char *key = target_key ? target_key_name[k] : term_key[k];
-  if (own[k][target_key])
-    snprintf(buf, len, "%s (cells file, cell %d): %g", key, cell,
-             target_key ? target : m);
-  else
-    snprintf(buf, len, "%s: %g", key, target_key ? target : m);
+  value_label(buf, len, target_key ? target_key_name[k] : term_key[k],
+              own[k][target_key], cell, target_key ? target : m);
 }
 
 static int huge(double x)
@@ -716,29 +722,40 @@ static int forces_computable(const afv_sim *s, char *err, size_t errlen)
   return 0;
 }
 
-/* 1 if the clock and the angle noise stay finite for the whole run: t =
-** step dt up to steps, and sqrt(2 Dr dt) (as the step computes it; then
-** |theta| grows by at most 8.57 sqrt(2 Dr dt) a step, which cannot reach
-** the largest double within 2^63 steps). */
+/* 1 if the clock, the step's factors and the angle noise stay finite for
+** the whole run: t = step dt up to steps; mu dt and v0 dt (a step moves a
+** cell by mu dt F + v0 dt n, refused beyond l/2, so an overflow there
+** would blame a finite force); sqrt(2 Dr dt) (as the step computes it;
+** then |theta| grows by at most 8.57 sqrt(2 Dr dt) a step, which cannot
+** reach the largest double within 2^63 steps). */
 static int dynamics_computable(const afv_sim *s, long long steps, char *err,
                                size_t errlen)
 {
+  const afv_dyn *d = &s->dyn;
   int i;
-  if (huge((double)steps * s->dyn.dt)) {
+  if (huge((double)steps * d->dt)) {
     afv_errorf(err, errlen, "dt: %g: the time of the last step, steps x dt "
-               "= %lld x %g, overflows", s->dyn.dt, steps, s->dyn.dt);
+               "= %lld x %g, overflows", d->dt, steps, d->dt);
+    return 0;
+  }
+  if (huge(d->mu * d->dt)) {
+    afv_errorf(err, errlen, "mu: %g: the step's factor mu dt overflows (dt "
+               "= %g)", d->mu, d->dt);
     return 0;
   }
   for (i = 0; i < s->n; i++) {
-    double Dr = s->dyn.Dr_i ? s->dyn.Dr_i[i] : s->dyn.Dr;
-    if (!isfinite(sqrt(2 * Dr * s->dyn.dt))) {
-      char label[96];
-      if (s->dyn.Dr_i)
-        snprintf(label, sizeof label, "Dr (cells file, cell %d): %g", i, Dr);
-      else
-        snprintf(label, sizeof label, "Dr: %g", Dr);
+    double v0 = d->v0_i ? d->v0_i[i] : d->v0, Dr = d->Dr_i ? d->Dr_i[i] : d->Dr;
+    char label[96];
+    if (huge(v0 * d->dt)) {
+      value_label(label, sizeof label, "v0", d->v0_i, i, v0);
+      afv_errorf(err, errlen, "%s: the step's self-propulsion v0 dt "
+                 "overflows (dt = %g)", label, d->dt);
+      return 0;
+    }
+    if (!isfinite(sqrt(2 * Dr * d->dt))) {
+      value_label(label, sizeof label, "Dr", d->Dr_i, i, Dr);
       afv_errorf(err, errlen, "%s: the angle noise sqrt(2 Dr dt) overflows "
-                 "(dt = %g)", label, s->dyn.dt);
+                 "(dt = %g)", label, d->dt);
       return 0;
     }
   }

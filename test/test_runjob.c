@@ -358,9 +358,9 @@ static void test_failed_resume_changes_nothing(void)
 }
 
 /* ---- what the run can compute ------------------------------------------- */
-/* Values the checks let through before, but whose energy, force or angle
-** noise overflows: refused with one line naming the key (and the config
-** file's line), and no directory made.  (The code before: KA 1e200 made the
+/* Values the checks let through before, but whose energy, force, step
+** factors or angle noise overflow: refused with one line naming the key
+** (the config file's line, the cells file's cell), and no directory made.  (The code before: KA 1e200 made the
 ** directory, then failed in the relaxation, leaving a directory neither a
 ** fresh run nor a resume accepted; KA 1e308 and Dr 1e308 ran and wrote inf
 ** and nan.) */
@@ -370,13 +370,22 @@ static void test_uncomputable_parameters_refused(void)
     {"--KA 1e200", "KA:"}, {"--KA 1e308", "KA:"}, {"--A0 1e200", "A0:"},
     {"--P0 1e200", "P0:"}, {"--KP 1e300", "KP:"},
     {"--Lambda 1e300", "Lambda:"}, {"--Dr 1e308", "Dr:"},
+    {"--mu 1e300 --dt 1e10", "mu:"}, {"--v0 1e308 --dt 10", "v0:"},
+    {"--cells @/dr.txt", "Dr (cells file, cell 3): 1e+308:"},
     {"--config @/cfg.txt", "cfg.txt:2: KA:"}};
   char path[512];
   size_t c;
   FILE *fp;
+  int i;
   snprintf(path, sizeof path, "%s/cfg.txt", root);
   if ((fp = fopen(path, "w"))) {
     fputs("N 30\nKA 1e200\n", fp);
+    fclose(fp);
+  }
+  snprintf(path, sizeof path, "%s/dr.txt", root);
+  if ((fp = fopen(path, "w"))) {
+    fputs("# Dr\n", fp);
+    for (i = 0; i < 30; i++) fputs(i == 3 ? "1e308\n" : "0.1\n", fp);
     fclose(fp);
   }
   for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
