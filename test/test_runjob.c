@@ -239,7 +239,7 @@ static int refused_rightly(const char *name)
 
 /* Two fresh runs started together (released by one pipe) into the same
 ** --out: exactly one runs (exit 0, its outputs equal to a run alone), the
-** other is refused (exit 2, in use).  A 20000-row cells file, copied into
+** other is refused (exit 2, in use).  A 6000-row cells file, copied into
 ** the directory, keeps each run a while between its first look at the
 ** directory and its params.txt.  (The code before: both passed the look,
 ** and one then failed on the other's files, "cannot write the outputs";
@@ -255,14 +255,14 @@ static void test_concurrent_fresh_runs(void)
                                       "checkpoint.txt", "t1_reference.txt"};
   int trial, i;
   FILE *fp;
-  snprintf(cells, sizeof cells, "%s/cells20k.txt", root);
+  snprintf(cells, sizeof cells, "%s/cells6k.txt", root);
   if (!(fp = fopen(cells, "w"))) {
     CHECK(0, "cannot write %s", cells);
     return;
   }
   test_rng_seed(22);
   fputs("# theta v0 Dr KA KP A0 P0\n", fp);
-  for (i = 0; i < 20000; i++)
+  for (i = 0; i < 6000; i++)
     fprintf(fp, "%.17g %.17g 0.1 1 1 3.14159 %.17g\n",
             6.28 * test_rng_uniform(), 0.3 + 1e-3 * test_rng_uniform(),
             4.5 + 1e-3 * test_rng_uniform());
@@ -412,9 +412,9 @@ static void test_uncomputable_parameters_refused(void)
 
 /* ---- a run that stopped before its first checkpoint ---------------------- */
 /* trajectory.dat on a full disk (/dev/full): the run stops with the file
-** and the system's reason; its directory has no checkpoint, and a fresh
-** run into it is accepted (a resume is refused, saying so), and equals a
-** run elsewhere.  (The code before: "cannot write the outputs" without
+** and the system's reason; its directory has no checkpoint, a resume is
+** refused, proposing a fresh run from the directory's own params.txt into
+** it, which is accepted and equals a run elsewhere.  (The code before: "cannot write the outputs" without
 ** file or reason, then refused both a fresh run and a resume.) */
 static void test_unfinished_run_rerunnable(void)
 {
@@ -436,9 +436,10 @@ static void test_unfinished_run_rerunnable(void)
         "exit %d, message %s", st, e);
   free(e);
   test_sh("rm %s/u/trajectory.dat", root);
-  CHECK(test_sh("./afv run " FAST " --steps 50 --out %s/u 2> %s/err.txt",
-               root, root) == 0, "a fresh run into the unfinished directory "
-        "was refused");
+  /* as the resume's message says: its own params.txt, into itself */
+  CHECK(test_sh("./afv run --config %s/u/params.txt --out %s/u 2> "
+                "%s/err.txt", root, root, root) == 0, "a fresh run into the "
+        "unfinished directory was refused");
   CHECK(test_sh("./afv run " FAST " --steps 50 --out %s/u_ref", root) == 0,
         "the reference run");
   CHECK(same_file("u", "u_ref", "trajectory.dat")
