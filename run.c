@@ -1502,41 +1502,51 @@ static int parse_more_steps(const char *text, long long *more)
   return 0;
 }
 
-/* Every check of a resume, before any byte of any file changes: params.txt
-** (and the cells file), the checkpoint (against params.txt, --steps MORE,
-** every recorded size against its file, the state computable) and the T1
-** reference.  Fills R (cfg, sim, an) and *ck; *new_steps = 1 if MORE
-** changes the run's steps (params.txt to rewrite).  0, or an exit status
-** with the message printed. */
-static int resume_checks(run_state *R, const run_args *a, long long more,
-                         afv_checkpoint *ck, int *new_steps)
+/* Resume: params.txt (and the cells file it names) into R->cfg; set[k]
+** records the line of key k.  0, or an exit status with the message
+** printed. */
+static int resume_params(run_state *R, const run_args *a, int *set,
+                         const char *params)
 {
-  char err[2 * RUN_PATH_MAX], path[RUN_PATH_MAX + 32];
-  int set[N_RUN_KEYS], st;
-  afv_params p;
-  afv_box b;
-  afv_dyn d;
-  memset(set, 0, sizeof set);
-  snprintf(path, sizeof path, "%s/params.txt", R->dir);
-  if (!read_config(path, &R->cfg, set, err, sizeof err)) return bad_input(err);
+  char err[2 * RUN_PATH_MAX];
+  if (!read_config(params, &R->cfg, set, err, sizeof err))
+    return bad_input(err);
   if (a->quiet) R->cfg.quiet = a->quiet > 0;
   if (!cfg_validate(&R->cfg, set, &R->cells, err, sizeof err)) {
-    locate_error(err, sizeof err, set, path);
+    locate_error(err, sizeof err, set, params);
     return bad_input(err);
   }
-  snprintf(path, sizeof path, "%s/checkpoint.txt", R->dir);
-  if (access(path, F_OK) != 0) {
+  return 0;
+}
+
+/* Resume: the checkpoint at ckpt against params.txt (cells, seed), its
+** step plus --steps MORE (no overflow) and the recorded sizes against
+** their files.  *new_steps = 1 if MORE changes the run's steps (R->cfg
+** then has the new count).  0, or an exit status with the message
+** printed. */
+static int resume_checkpoint(run_state *R, long long more, const char *ckpt,
+                             afv_checkpoint *ck, int *new_steps)
+{
+  char err[2 * RUN_PATH_MAX];
+  if (access(ckpt, F_OK) != 0) {
     fprintf(stderr, "afv run: %s has no checkpoint.txt: its run stopped "
             "before its first checkpoint; start it again with afv run "
             "--config %s/params.txt --out %s (a fresh run replaces a run "
             "without a checkpoint)\n", R->dir, R->dir, R->dir);
     return EXIT_BAD_INPUT;
   }
-  if (afv_checkpoint_read(path, ck, err, sizeof err) != AFV_OK)
+  if (afv_checkpoint_read(ckpt, ck, err, sizeof err) != AFV_OK)
     return bad_input(err);
-  if (ck->n != R->cfg.N || ck->seed != R->cfg.seed || ck->step < 0)
-    return bad_input("resume: checkpoint.txt does not match params.txt "
-                     "(cells, seed or step)");
+  if (ck->n != R->cfg.N || ck->seed != R->cfg.seed) {
+    fprintf(stderr, "afv run: %s: %d cells and seed %llu, but params.txt "
+            "has N %lld and seed %llu: not this run's checkpoint\n", ckpt,
+            ck->n, ck->seed, R->cfg.N, R->cfg.seed);
+    return EXIT_BAD_INPUT;
+  }
+  if (ck->step < 0) {
+    fprintf(stderr, "afv run: %s: step %lld is negative\n", ckpt, ck->step);
+    return EXIT_BAD_INPUT;
+  }
   if (more >= 0 && more > LLONG_MAX - ck->step) {
     fprintf(stderr, "afv: --steps: %lld more steps past the checkpoint's "
             "step %lld exceed the largest step count (%lld)\n", more,
@@ -1546,23 +1556,56 @@ static int resume_checks(run_state *R, const run_args *a, long long more,
   *new_steps = more >= 0 && R->cfg.steps != ck->step + more;
   if (more >= 0) R->cfg.steps = ck->step + more;
   if (!recorded_sizes_hold(R, ck, err, sizeof err)) return bad_input(err);
+  return 0;
+}
+
+/* Resume: the simulation at the checkpoint's state, which must be one the
+** run can compute with (run_computable), and the T1 reference.  0, or an
+** exit status with the message printed. */
+static int resume_state(run_state *R, const afv_checkpoint *ck,
+                        const char *ckpt, const int *set, const char *params)
+{
+  char err[2 * RUN_PATH_MAX];
+  afv_params p;
+  afv_box b;
+  afv_dyn d;
+  int st;
   cfg_model(&R->cfg, &R->cells, &p, &b, &d);
   st = afv_sim_init(&R->sim, ck->n, ck->r, ck->theta, &p, &b, &d);
   if (st == AFV_ECOINCIDENT)
     afv_errorf(err, sizeof err, "%s: cells %d and %d have the same centre",
-               path, R->sim.geom.bad_i, R->sim.geom.bad_j);
+               ckpt, R->sim.geom.bad_i, R->sim.geom.bad_j);
   else if (st != AFV_OK)
-    afv_errorf(err, sizeof err, "%s: %s", path, afv_strerror(st));
+    afv_errorf(err, sizeof err, "%s: %s", ckpt, afv_strerror(st));
   if (st != AFV_OK) return bad_input(err);
   R->sim.step = ck->step;
   R->sim.t = ck->t;
   R->ckpt_step = ck->step;
-  if (!run_computable(R, path, err, sizeof err)) {
-    locate_error(err, sizeof err, set, path);
+  if (!run_computable(R, ckpt, err, sizeof err)) {
+    locate_error(err, sizeof err, set, params);  /* a key: its line */
     return bad_input(err);
   }
   if (!obs_t1_reference(&R->an, &R->sim, R->dir, 1)) return EXIT_BAD_INPUT;
   return 0;
+}
+
+/* Every check of a resume, before any byte of any file changes: params.txt
+** (and the cells file), the checkpoint (against params.txt, --steps MORE,
+** every recorded size against its file, the state computable) and the T1
+** reference.  Fills R (cfg, sim, an) and *ck.  0, or an exit status with
+** the message printed. */
+static int resume_checks(run_state *R, const run_args *a, long long more,
+                         afv_checkpoint *ck, int *new_steps)
+{
+  char params[RUN_PATH_MAX + 32], ckpt[RUN_PATH_MAX + 32];
+  int set[N_RUN_KEYS], st;
+  memset(set, 0, sizeof set);
+  snprintf(params, sizeof params, "%s/params.txt", R->dir);
+  snprintf(ckpt, sizeof ckpt, "%s/checkpoint.txt", R->dir);
+  if ((st = resume_params(R, a, set, params)) != 0
+      || (st = resume_checkpoint(R, more, ckpt, ck, new_steps)) != 0)
+    return st;
+  return resume_state(R, ck, ckpt, set, params);
 }
 
 static int run_resume(run_state *R, const run_args *a)

@@ -319,6 +319,9 @@ static void test_failed_resume_changes_nothing(void)
     {"printf 'torn' >> trajectory.dat", "--steps 9223372036854775807",
      "--steps"},
     {"printf 'torn' >> trajectory.dat", "--steps 1x0", "--steps"},
+    /* params.txt edited to a modulus the run cannot compute with */
+    {"sed 's/^KA .*/KA 1e200/' params.txt > p.tmp && mv p.tmp params.txt",
+     "--steps 50", "params.txt:6: KA: 1e+200"},
     /* cell 5's angle (line 14 of the checkpoint) not finite */
     {"awk 'NR == 14 { $3 = \"inf\" } { print }' checkpoint.txt > c.tmp && "
      "mv c.tmp checkpoint.txt", "--steps 50", "checkpoint.txt"}};
@@ -345,7 +348,7 @@ static void test_failed_resume_changes_nothing(void)
     CHECK(strstr(e, cases[c][2]) && strchr(e, '\n') == e + strlen(e) - 1,
           "case %d: message not one line naming %s: %s", (int)c,
           cases[c][2], e);
-    if (c == 6)   /* the cell, if the checkpoint reader let it through */
+    if (c == 7)   /* the cell, if the checkpoint reader let it through */
       CHECK(strstr(e, "checkpoint.txt:14") || strstr(e, "cell 5"),
             "the message names neither line 14 nor cell 5: %s", e);
     free(before);
