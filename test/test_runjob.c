@@ -2,8 +2,10 @@
 ** test_runjob.c -- the run directory of `afv run` as a job sees it: one
 ** writer at a time (real concurrent processes), a resume that is all or
 ** nothing (the directory byte-compared before and after), parameters
-** refused when the run could not compute with them, never an inf or nan
-** written, and I/O messages that name the file and the system's reason.
+** refused before anything is made when the run could not compute with
+** them (they wrote inf and nan), a directory whose run stopped before its
+** first checkpoint run again, and messages that name the file and the
+** system's reason, and print bounds in full.
 **
 ** Every test runs ./afv (from the repository root, where `make test`
 ** starts the runner) in a directory under /tmp, removed at the end.
@@ -24,7 +26,7 @@
 
 static char root[256];   /* the suite's directory */
 
-/* The whole file at root/name (NUL-terminated; *len its size), or NULL. */
+/* The whole file at path (NUL-terminated; *len its size), or NULL. */
 static char *read_whole(const char *path, long *len)
 {
   FILE *fp = fopen(path, "rb");
