@@ -106,8 +106,10 @@ int model_valid(const afv_params *p, const afv_box *b)
   if (p->KP < 0) return !bad_input("--KP: must be >= 0");
   if (p->cap < 0) return !bad_input("--cap: must be >= 0");
   if (b->periodic && (b->Lx < 4 * p->l || b->Ly < 4 * p->l)) {
-    fprintf(stderr, "afv: --box: %g,%g is smaller than 4l = %g, too small "
-            "for the minimum-image convention\n", b->Lx, b->Ly, 4 * p->l);
+    /* %.17g: a side one ulp below 4l must not print as 4l */
+    fprintf(stderr, "afv: --box: %.17g,%.17g is smaller than 4l = %.17g, too "
+            "small for the minimum-image convention\n", b->Lx, b->Ly,
+            4 * p->l);
     return 0;
   }
   return 1;

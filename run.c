@@ -5,6 +5,8 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <float.h>
+#include <fcntl.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -306,8 +308,8 @@ static int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
     BAD("init: 'file' needs a cells file with x and y columns");
   if (c->N < 1) BAD("N: must be >= 1 (got %lld)", c->N);
   if (c->N > 100000000) BAD("N: at most 100000000 (got %lld)", c->N);
-  if (!(c->phi > 0 && c->phi <= 1)) BAD("phi: must be in (0, 1] (got %g)",
-                                        c->phi);
+  if (!(c->phi > 0 && c->phi <= 1))   /* %.17g: 1 + 2^-52 is not "1" */
+    BAD("phi: must be in (0, 1] (got %.17g)", c->phi);
   if (c->l <= 0) BAD("l: must be > 0 (got %g)", c->l);
   if (c->KA < 0) BAD("KA: must be >= 0 (got %g)", c->KA);
   if (c->KP < 0) BAD("KP: must be >= 0 (got %g)", c->KP);
@@ -325,9 +327,9 @@ static int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
   if (c->checkpoint_every < 0) BAD("checkpoint_every: must be >= 0");
   if (c->svg_every < 0) BAD("svg_every: must be >= 0");
   if (strcmp(c->box, "periodic") == 0 && box_side(c) < 4 * c->l)
-    BAD("phi: the box side L = sqrt(N pi l^2/phi) = %g is smaller than 4l = "
-        "%g (minimum image); use more cells or a smaller phi", box_side(c),
-        4 * c->l);
+    BAD("phi: the box side L = sqrt(N pi l^2/phi) = %.17g is smaller than "
+        "4l = %.17g (minimum image); use more cells or a smaller phi",
+        box_side(c), 4 * c->l);
   return 1;
 #undef BAD
 }
@@ -419,6 +421,10 @@ typedef struct run_state {
                            ** reduced if the cluster would not fit the
                            ** box); 0 for other starts */
   obs_analysis an;         /* analysis columns of observables.csv */
+  int lock_fd;             /* DIR/lock while this process holds the run
+                           ** directory's lock, else -1 */
+  char io_path[RUN_PATH_MAX + 96];  /* the file whose writing failed */
+  int io_errno;            /* and why (errno then) */
 } run_state;
 
 enum { OUT_TRAJ, OUT_OBS, OUT_XYZ };   /* order of afv_checkpoint_files */
@@ -519,7 +525,299 @@ static int run_start(run_state *R, char *err, size_t errlen)
   return st;
 }
 
+/* ---- what a run can compute --------------------------------------------- */
+/* The run later multiplies the energy and the squared force norm checked
+** here by modest factors (FIRE's velocity mixing and time step, the
+** relaxation's slack, sums over a step's pieces): a value within
+** COMPUTE_HEADROOM of the largest double is refused, so those products stay
+** finite: |F|^2 summed over the cells above 1.8e302, or an energy bound
+** above 1.8e302 (at the paper's values, KA = KP = 1 and N = 400, the
+** bound is about 1e4). */
+#define COMPUTE_HEADROOM 1e6
+
+/* The three terms of a cell's energy (paper, Eq. energy), by modulus key. */
+enum { TERM_AREA, TERM_PERIM, TERM_ARC, N_TERMS };
+static const char *const term_key[N_TERMS] = {"KA", "KP", "Lambda"};
+static const char *const term_name[N_TERMS] = {
+  "area term KA (A - A0)^2", "perimeter term KP (P - P0)^2",
+  "arc term Lambda L"};
+
+/* The modulus of term k of cell i and the target it pulls to (A0, P0). */
+static double term_modulus(const afv_params *p, int i, int k, double *target)
+{
+  *target = 0;
+  if (k == TERM_AREA) {
+    *target = p->A0_i ? p->A0_i[i] : p->A0;
+    return p->KA_i ? p->KA_i[i] : p->KA;
+  }
+  if (k == TERM_PERIM) {
+    *target = p->P0_i ? p->P0_i[i] : p->P0;
+    return p->KP_i ? p->KP_i[i] : p->KP;
+  }
+  return p->Lambda;
+}
+
+/* The largest value term k of cell i takes over every shape the cell can
+** have: 0 <= A <= pi l^2 and 0 <= P, L <= 2 pi l (the cell is a convex set
+** inside its disk of radius l, so its perimeter is at most the circle's).
+** *dev2: the largest squared deviation alone, (A - A0)^2 or (P - P0)^2. */
+static double term_bound(const afv_params *p, int i, int k, double *dev2)
+{
+  const double pi = 3.14159265358979323846;
+  double target, m = term_modulus(p, i, k, &target), top, dev;
+  top = k == TERM_AREA ? pi * p->l * p->l : 2 * pi * p->l;
+  if (k == TERM_ARC) {
+    *dev2 = 0;
+    return fabs(m) * top;
+  }
+  dev = fmax(fabs(target), fabs(top - target));
+  *dev2 = dev * dev;
+  return m * *dev2;
+}
+
+/* "KEY: VALUE", or "KEY (cells file, cell 12): VALUE" when the value is
+** the cell's own (column, of the cells file, is not NULL). */
+static void value_label(char *buf, size_t len, const char *key,
+                        const double *column, int cell, double value)
+{
+  if (column)
+    snprintf(buf, len, "%s (cells file, cell %d): %g", key, cell, value);
+  else
+    snprintf(buf, len, "%s: %g", key, value);
+}
+
+/* value_label of term k's modulus (or, target_key = 1, of its target). */
+static void term_label(char *buf, size_t len, const afv_params *p, int k,
+                       int cell, int target_key)
+{
+  static const char *const target_key_name[N_TERMS] = {"A0", "P0", ""};
+  const double *own[N_TERMS][2] = {{p->KA_i, p->A0_i}, {p->KP_i, p->P0_i},
+                                   {NULL, NULL}};
+  double target, m = term_modulus(p, cell, k, &target);
+  value_label(buf, len, target_key ? target_key_name[k] : term_key[k],
+              own[k][target_key], cell, target_key ? target : m);
+}
+
+static int huge(double x)
+{
+  return !isfinite(x * COMPUTE_HEADROOM);
+}
+
+/* 1 if no state can overflow the energy: each term's bound, summed over
+** the cells, and their total are within the headroom.  Else names the key
+** (the target A0 or P0 when the deviation alone overflows). */
+static int energy_computable(const afv_sim *s, char *err, size_t errlen)
+{
+  double sum[N_TERMS] = {0, 0, 0};
+  int i, k, worst_cell[N_TERMS] = {0, 0, 0}, worst_k = 0;
+  for (k = 0; k < N_TERMS; k++) {
+    double worst = -1;
+    for (i = 0; i < s->n; i++) {
+      double dev2, b = term_bound(&s->par, i, k, &dev2);
+      if (huge(dev2)) {   /* A0 or P0 far out, or the cell's size */
+        char label[96];
+        double target;
+        term_modulus(&s->par, i, k, &target);
+        if (huge(target * target))
+          term_label(label, sizeof label, &s->par, k, i, 1);
+        else
+          snprintf(label, sizeof label, "l: %g", s->par.l);
+        afv_errorf(err, errlen, "%s: the %s cannot be computed: its squared "
+                   "deviation reaches %g", label, term_name[k], dev2);
+        return 0;
+      }
+      if (!(b <= worst)) {
+        worst = b;
+        worst_cell[k] = i;
+      }
+      sum[k] += b;
+    }
+    if (!(sum[k] <= sum[worst_k])) worst_k = k;
+  }
+  if (!huge(sum[0] + sum[1] + sum[2])) return 1;
+  for (k = 0; k < N_TERMS; k++)
+    if (huge(sum[k])) break;
+  if (k == N_TERMS) k = worst_k;
+  {
+    char label[96];
+    term_label(label, sizeof label, &s->par, k, worst_cell[k], 0);
+    afv_errorf(err, errlen, "%s: the %s can reach %g summed over the %d "
+               "cells, beyond %g (the largest double over a margin of %g "
+               "for the sums the run forms)", label, term_name[k], sum[k],
+               s->n, DBL_MAX / COMPUTE_HEADROOM, COMPUTE_HEADROOM);
+  }
+  return 0;
+}
+
+/* The term of the largest energy in the current state (its key names
+** what makes the forces large). */
+static int largest_term(const afv_sim *s)
+{
+  double sum[N_TERMS] = {0, 0, 0};
+  int i, k, best = 0;
+  for (i = 0; i < s->n; i++) {
+    const double *A = s->geom.area, *P = s->geom.perim, *L = s->geom.arc;
+    double target, m;
+    m = term_modulus(&s->par, i, TERM_AREA, &target);
+    sum[TERM_AREA] += fabs(m * (A[i] - target) * (A[i] - target));
+    m = term_modulus(&s->par, i, TERM_PERIM, &target);
+    sum[TERM_PERIM] += fabs(m * (P[i] - target) * (P[i] - target));
+    sum[TERM_ARC] += fabs(s->par.Lambda * L[i]);
+  }
+  for (k = 1; k < N_TERMS; k++)
+    if (sum[k] > sum[best]) best = k;
+  return best;
+}
+
+/* 1 if the forces of the current state can be computed with: |F|^2 summed
+** over the cells (what the relaxation forms) within the headroom. */
+static int forces_computable(const afv_sim *s, char *err, size_t errlen)
+{
+  char label[96];
+  double f2 = 0, fmax = -1;
+  int i, k, worst = 0;
+  for (i = 0; i < s->n; i++) {
+    double q = s->f[2*i] * s->f[2*i] + s->f[2*i+1] * s->f[2*i+1];
+    if (!(q <= fmax)) {
+      fmax = q;
+      worst = i;
+    }
+    f2 += q;
+  }
+  if (!huge(f2)) return 1;
+  k = largest_term(s);
+  term_label(label, sizeof label, &s->par, k, worst, 0);
+  afv_errorf(err, errlen, "%s: the forces of the state overflow (|F|^2 "
+             "summed over the cells is %g, beyond %g; largest at cell %d), "
+             "and the %s dominates its energy", label, f2,
+             DBL_MAX / COMPUTE_HEADROOM, worst, term_name[k]);
+  return 0;
+}
+
+/* 1 if the clock, the step's factors and the angle noise stay finite for
+** the whole run: t = step dt up to steps; mu dt and v0 dt (a step moves a
+** cell by mu dt F + v0 dt n, refused beyond l/2, so an overflow there
+** would blame a finite force); sqrt(2 Dr dt) (as the step computes it;
+** then |theta| grows by at most 8.57 sqrt(2 Dr dt) a step, which cannot
+** reach the largest double within 2^63 steps). */
+static int dynamics_computable(const afv_sim *s, long long steps, char *err,
+                               size_t errlen)
+{
+  const afv_dyn *d = &s->dyn;
+  int i;
+  if (huge((double)steps * d->dt)) {
+    afv_errorf(err, errlen, "dt: %g: the time of the last step, steps x dt "
+               "= %lld x %g, overflows", d->dt, steps, d->dt);
+    return 0;
+  }
+  if (huge(d->mu * d->dt)) {
+    afv_errorf(err, errlen, "mu: %g: the step's factor mu dt overflows (dt "
+               "= %g)", d->mu, d->dt);
+    return 0;
+  }
+  for (i = 0; i < s->n; i++) {
+    double v0 = d->v0_i ? d->v0_i[i] : d->v0, Dr = d->Dr_i ? d->Dr_i[i] : d->Dr;
+    char label[96];
+    if (huge(v0 * d->dt)) {
+      value_label(label, sizeof label, "v0", d->v0_i, i, v0);
+      afv_errorf(err, errlen, "%s: the step's self-propulsion v0 dt "
+                 "overflows (dt = %g)", label, d->dt);
+      return 0;
+    }
+    if (!isfinite(sqrt(2 * Dr * d->dt))) {
+      value_label(label, sizeof label, "Dr", d->Dr_i, i, Dr);
+      afv_errorf(err, errlen, "%s: the angle noise sqrt(2 Dr dt) overflows "
+                 "(dt = %g)", label, d->dt);
+      return 0;
+    }
+  }
+  return 1;
+}
+
+/* ---- a state the outputs can record ------------------------------------ */
+/* What of cell i is not finite, with its value, into buf ("" if none). */
+static void cell_nonfinite(const afv_sim *s, int i, char *buf, size_t len)
+{
+  const afv_geom *g = &s->geom;
+  const double *r = s->r + 2 * i, *f = s->f + 2 * i;
+  buf[0] = 0;
+  if (!isfinite(r[0]) || !isfinite(r[1]))
+    snprintf(buf, len, "position (%g, %g)", r[0], r[1]);
+  else if (!isfinite(s->theta[i]))
+    snprintf(buf, len, "polarity angle %g", s->theta[i]);
+  else if (!isfinite(f[0]) || !isfinite(f[1]))
+    snprintf(buf, len, "force (%g, %g)", f[0], f[1]);
+  else if (!isfinite(g->area[i]) || !isfinite(g->perim[i])
+           || !isfinite(g->arc[i]))
+    snprintf(buf, len, "shape (area %g, perimeter %g, arc length %g)",
+             g->area[i], g->perim[i], g->arc[i]);
+  else if (!isfinite(afv_cell_energy(&s->par, i, g->area[i], g->perim[i],
+                                     g->arc[i])))
+    snprintf(buf, len, "energy");
+}
+
+/* 1 if everything the outputs record of the state is finite; else msg
+** says what is not: the first three such cells and their values, or the
+** total energy or the time. */
+static int state_finite(const afv_sim *s, char *msg, size_t len)
+{
+  char what[192];
+  int i, named = 0;
+  msg[0] = 0;
+  for (i = 0; i < s->n; i++) {
+    cell_nonfinite(s, i, what, sizeof what);
+    if (!what[0]) continue;
+    if (named < 3)
+      afv_errorf(msg + strlen(msg), len - strlen(msg), "%scell %d's %s",
+                 named ? ", " : "not finite: ", i, what);
+    named++;
+  }
+  if (named > 3)
+    afv_errorf(msg + strlen(msg), len - strlen(msg), " (and %d more cells)",
+               named - 3);
+  else if (!named && !isfinite(s->geom.energy))
+    afv_errorf(msg, len, "not finite: the total energy (%g), each cell's "
+               "being finite", s->geom.energy);
+  else if (!named && !isfinite(s->t))
+    afv_errorf(msg, len, "not finite: the time t = %g", s->t);
+  return msg[0] == 0;
+}
+
+/* Everything the run will compute from the state R->sim (the start, or a
+** checkpoint: where names it): the state itself finite, no energy overflow
+** in any state, the forces of this one, the clock and the angle noise.
+** Else err names the key, or the cells and what of them is not finite. */
+static int run_computable(const run_state *R, const char *where, char *err,
+                          size_t errlen)
+{
+  char what[512];
+  if (!energy_computable(&R->sim, err, errlen)
+      || !dynamics_computable(&R->sim, R->cfg.steps, err, errlen))
+    return 0;
+  if (!state_finite(&R->sim, what, sizeof what)) {
+    afv_errorf(err, errlen, "%s: %s", where, what);
+    return 0;
+  }
+  return forces_computable(&R->sim, err, errlen);
+}
+
 /* ---- outputs ------------------------------------------------------------ */
+/* Records that writing path failed and why (errno, read at once); returns
+** AFV_EIO.  report_io prints it: the file and the system's reason. */
+static int io_failed(run_state *R, const char *path)
+{
+  R->io_errno = errno;
+  snprintf(R->io_path, sizeof R->io_path, "%s", path);
+  return AFV_EIO;
+}
+
+static int report_io(const run_state *R)
+{
+  fprintf(stderr, "afv run: %s: cannot write: %s\n", R->io_path,
+          R->io_errno ? strerror(R->io_errno) : "write error");
+  return EXIT_BAD_INPUT;
+}
+
 /* observables.csv: one header, one row per sample.  To add a column, add
 ** its name to the header and its value to the row, at the same place. */
 static void obs_write_header(FILE *fp)
@@ -528,12 +826,13 @@ static void obs_write_header(FILE *fp)
         "mean_contacts,max_force,ngc_frac,n_clusters,omega,t1\n", fp);
 }
 
-static void obs_write_row(FILE *fp, const afv_sim *s, obs_analysis *an)
+static int obs_write_row(FILE *fp, const afv_sim *s, obs_analysis *an)
 {
   const afv_geom *g = &s->geom;
   double A = 0, P = 0, L = 0, C = 0;
   int i, n = s->n;
-  int ok = afv_clusters_compute(&an->c, g, s->r, s->par.l, &s->box) == AFV_OK;
+  int st = afv_clusters_compute(&an->c, g, s->r, s->par.l, &s->box);
+  if (st != AFV_OK) return st;   /* no row rather than a row of NaN */
   for (i = 0; i < n; i++) {
     A += g->area[i];
     P += g->perim[i];
@@ -542,11 +841,9 @@ static void obs_write_row(FILE *fp, const afv_sim *s, obs_analysis *an)
   }
   fprintf(fp, "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,", s->step,
           s->t, g->energy, A / n, P / n, L / n, C / n, afv_sim_max_force(s));
-  if (ok)
-    fprintf(fp, "%.17g,%d,%.17g,%.17g\n", (double)an->c.giant / n,
-            an->c.count, an->c.omega, afv_t1_count(&an->t1, &an->c));
-  else
-    fputs("nan,nan,nan,nan\n", fp);   /* out of memory: no analysis */
+  fprintf(fp, "%.17g,%d,%.17g,%.17g\n", (double)an->c.giant / n,
+          an->c.count, an->c.omega, afv_t1_count(&an->t1, &an->c));
+  return AFV_OK;
 }
 
 /* Extended XYZ (OVITO): wrapped positions, z = 0, polarity as a column. */
@@ -573,14 +870,17 @@ static int write_svg(run_state *R, const char *name)
   afv_sim *s = &R->sim;
   FILE *fp;
   snprintf(path, sizeof path, "%s/%s", R->dir, name);
-  if (!(fp = afv_atomic_open(path, tmp, sizeof tmp))) return AFV_EIO;
+  if (!(fp = afv_atomic_open(path, tmp, sizeof tmp)))
+    return io_failed(R, tmp);
   if (afv_svg_write(fp, &s->geom, s->n, s->r, s->theta, &s->par, &s->box)
       != AFV_OK) {
+    io_failed(R, tmp);
     fclose(fp);
     remove(tmp);
     return AFV_EIO;
   }
-  return afv_atomic_commit(fp, tmp, path);
+  if (afv_atomic_commit(fp, tmp, path) != AFV_OK) return io_failed(R, path);
+  return AFV_OK;
 }
 
 /* Flushes the append-only files and records their sizes with the state. */
@@ -592,8 +892,11 @@ static int write_checkpoint(run_state *R)
   memset(&c, 0, sizeof c);
   for (k = 0; k < AFV_CKPT_FILES; k++)
     if (R->out[k]) {
-      if (fflush(R->out[k]) != 0) return AFV_EIO;
-      c.bytes[k] = (long long)ftell(R->out[k]);
+      if (fflush(R->out[k]) != 0 || ferror(R->out[k])
+          || (c.bytes[k] = (long long)ftell(R->out[k])) < 0) {
+        snprintf(path, sizeof path, "%s/%s", R->dir, afv_checkpoint_files[k]);
+        return io_failed(R, path);
+      }
     }
   c.n = R->sim.n;
   c.step = R->sim.step;
@@ -602,8 +905,9 @@ static int write_checkpoint(run_state *R)
   c.r = R->sim.r;
   c.theta = R->sim.theta;
   snprintf(path, sizeof path, "%s/checkpoint.txt", R->dir);
+  if (afv_checkpoint_write(path, &c) != AFV_OK) return io_failed(R, path);
   R->ckpt_step = R->sim.step;
-  return afv_checkpoint_write(path, &c);
+  return AFV_OK;
 }
 
 static int due(long long step, long long every)
@@ -611,18 +915,40 @@ static int due(long long step, long long every)
   return every > 0 && step % every == 0;
 }
 
-/* Everything that is written at the current step (also at step 0). */
+/* 1 if anything is written at the current step. */
+static int outputs_due(const run_state *R)
+{
+  const run_cfg *c = &R->cfg;
+  long long step = R->sim.step;
+  return due(step, c->sample_every) || due(step, c->frame_every)
+         || due(step, c->svg_every) || due(step, c->checkpoint_every);
+}
+
+/* Everything that is written at the current step (also at step 0).  A
+** state that is not finite is never written: AFV_ENONFINITE (state_finite
+** says what), and the files end at the last good state. */
 static int run_outputs(run_state *R)
 {
   const run_cfg *c = &R->cfg;
   afv_sim *s = &R->sim;
-  char name[64];
-  if (due(s->step, c->sample_every)) obs_write_row(R->out[OUT_OBS], s, &R->an);
+  char name[64], what[512];
+  int st, k;
+  if (!outputs_due(R)) return AFV_OK;
+  if (!state_finite(s, what, sizeof what)) return AFV_ENONFINITE;
+  if (due(s->step, c->sample_every)
+      && (st = obs_write_row(R->out[OUT_OBS], s, &R->an)) != AFV_OK)
+    return st;
   if (due(s->step, c->frame_every)) {
     afv_traj_write_frame(R->out[OUT_TRAJ], s->step, s->t, s->n, s->r,
                          s->theta);
     if (R->out[OUT_XYZ]) xyz_write_frame(R->out[OUT_XYZ], s);
   }
+  for (k = 0; k < AFV_CKPT_FILES; k++)
+    if (R->out[k] && ferror(R->out[k])) {
+      char path[RUN_PATH_MAX + 32];
+      snprintf(path, sizeof path, "%s/%s", R->dir, afv_checkpoint_files[k]);
+      return io_failed(R, path);
+    }
   if (due(s->step, c->svg_every)) {
     snprintf(name, sizeof name, "snap_%09lld.svg", s->step);
     if (write_svg(R, name) != AFV_OK) return AFV_EIO;
@@ -639,8 +965,30 @@ static int file_at_least(const char *path, long long bytes)
   return stat(path, &st) == 0 && (long long)st.st_size >= bytes;
 }
 
+/* Resume: 1 if every append-only file the run writes holds at least the
+** bytes the checkpoint records (checked for all before any is cut back). */
+static int recorded_sizes_hold(const run_state *R, const afv_checkpoint *ck,
+                               char *err, size_t errlen)
+{
+  char path[RUN_PATH_MAX + 32];
+  int k;
+  for (k = 0; k < AFV_CKPT_FILES; k++) {
+    if (k == OUT_XYZ && !R->cfg.xyz) continue;
+    snprintf(path, sizeof path, "%s/%s", R->dir, afv_checkpoint_files[k]);
+    if (!file_at_least(path, ck->bytes[k])) {
+      afv_errorf(err, errlen, "%s: %s than the checkpoint records (%lld "
+                 "bytes): not the file this checkpoint was written with",
+                 path, access(path, F_OK) == 0 ? "shorter" : "missing, less",
+                 (long long)ck->bytes[k]);
+      return 0;
+    }
+  }
+  return 1;
+}
+
 /* Opens the append-only files: fresh (with headers) or cut back to the
-** sizes of the checkpoint and appended to. */
+** sizes of the checkpoint (recorded_sizes_hold checked them) and appended
+** to. */
 static int open_outputs(run_state *R, const afv_checkpoint *ck, char *err,
                         size_t errlen)
 {
@@ -649,12 +997,6 @@ static int open_outputs(run_state *R, const afv_checkpoint *ck, char *err,
   for (k = 0; k < AFV_CKPT_FILES; k++) {
     if (k == OUT_XYZ && !R->cfg.xyz) continue;
     snprintf(path, sizeof path, "%s/%s", R->dir, afv_checkpoint_files[k]);
-    if (ck && !file_at_least(path, ck->bytes[k])) {
-      afv_errorf(err, errlen, "%s: shorter than the checkpoint records (%lld "
-                 "bytes): not the file this checkpoint was written with",
-                 path, (long long)ck->bytes[k]);
-      return 0;
-    }
     if (ck && truncate(path, (off_t)ck->bytes[k]) != 0) {
       afv_errorf(err, errlen, "%s: cannot cut back to the checkpoint: %s",
                  path, strerror(errno));
@@ -733,10 +1075,29 @@ static int relax_start(run_state *R)
   return AFV_OK;
 }
 
+/* The state became non-finite (a step failed on it, or it was about to be
+** written): names the cells and what of them; nothing of it is written.
+** Exit status 3, like an unstable step: the last checkpoint resumes. */
+static int report_nonfinite(run_state *R)
+{
+  const afv_sim *s = &R->sim;
+  char what[512];
+  if (state_finite(s, what, sizeof what))
+    snprintf(what, sizeof what, "a step made a position NaN or infinite "
+             "(and was undone)");
+  fprintf(stderr, "%safv run: step %lld (t = %g): %s; not written, the run "
+          "stops; last good checkpoint: %s/checkpoint.txt (step %lld)\n",
+          R->progress ? "\n" : "", s->step, s->t, what, R->dir,
+          R->ckpt_step);
+  if (R->log) fprintf(R->log, "stopped at step %lld: %s\n", s->step, what);
+  return EXIT_UNSTABLE;
+}
+
 /* Integrates to cfg.steps.  Returns an exit status. */
 static int run_loop(run_state *R)
 {
   afv_sim *s = &R->sim;
+  char what[512];
   int st = AFV_OK;
   R->start_step = s->step;
   R->wall0 = R->last_progress = wall_seconds();
@@ -761,25 +1122,26 @@ static int run_loop(run_state *R)
                         s->step + 1, i);
     return EXIT_UNSTABLE;
   }
-  if (st == AFV_ECOINCIDENT || st == AFV_ENONFINITE) {   /* after a step */
-    fprintf(stderr, "afv run: step %lld: %s (cells %d and %d): the time "
+  if (st == AFV_OK && R->ckpt_step != s->step && !state_finite(s, what,
+                                                                sizeof what))
+    st = AFV_ENONFINITE;   /* the final checkpoint would record it */
+  if (st == AFV_ECOINCIDENT) {   /* after a step */
+    fprintf(stderr, "%safv run: step %lld: %s (cells %d and %d): the time "
             "step dt = %g is probably too large; last good checkpoint: "
-            "%s/checkpoint.txt (step %lld)\n", s->step, afv_strerror(st),
-            s->geom.bad_i, s->geom.bad_j, s->dyn.dt, R->dir, R->ckpt_step);
+            "%s/checkpoint.txt (step %lld)\n", R->progress ? "\n" : "",
+            s->step, afv_strerror(st), s->geom.bad_i, s->geom.bad_j,
+            s->dyn.dt, R->dir, R->ckpt_step);
     return EXIT_UNSTABLE;
   }
+  if (st == AFV_ENONFINITE) return report_nonfinite(R);
+  if (st == AFV_EIO) return report_io(R);
   if (st != AFV_OK) {
     fprintf(stderr, "afv run: step %lld: %s\n", s->step, afv_strerror(st));
     return EXIT_BAD_INPUT;
   }
-  if (R->ckpt_step != s->step && write_checkpoint(R) != AFV_OK) {
-    fprintf(stderr, "afv run: %s/checkpoint.txt: cannot write\n", R->dir);
-    return EXIT_BAD_INPUT;
-  }
-  if (write_svg(R, "final.svg") != AFV_OK) {
-    fprintf(stderr, "afv run: %s/final.svg: cannot write\n", R->dir);
-    return EXIT_BAD_INPUT;
-  }
+  if ((R->ckpt_step != s->step && write_checkpoint(R) != AFV_OK)
+      || write_svg(R, "final.svg") != AFV_OK)
+    return report_io(R);
   show_progress(R, 1);
   {
     double w = wall_seconds() - R->wall0;
@@ -806,8 +1168,14 @@ static const char *run_usage =
   "observables.csv, trajectory.dat, checkpoint.txt, snap_*.svg, final.svg,\n"
   "log.txt, t1_reference.txt (C(0) for the t1 column) (and cells.txt,\n"
   "trajectory.xyz).  --resume continues from the\n"
-  "last checkpoint, to the run's steps or MORE steps past the checkpoint.\n"
-  "Exit status: 0 done, 2 bad input, 3 unstable step (dt too large).\n"
+  "last checkpoint, to the run's steps or MORE steps past the checkpoint;\n"
+  "it checks every file first and changes none if one does not match.\n"
+  "One process at a time writes in DIR (a lock on DIR/lock, which ends\n"
+  "with the process); another is refused, naming it.  DIR may exist, but\n"
+  "a fresh run refuses one with a checkpoint.txt (a run that stopped\n"
+  "before its first checkpoint is replaced).\n"
+  "Exit status: 0 done, 2 bad input or an I/O error, 3 unstable step (dt\n"
+  "too large) or a state that is not finite (never written).\n"
   "\n"
   "keys (default, unit, meaning):\n";
 
@@ -903,22 +1271,143 @@ static int apply_args(int argc, char **argv, run_cfg *cfg, int *set)
   return 1;
 }
 
-/* Creates DIR (it may exist, but must not hold a run). */
-static int make_out_dir(const char *dir)
+/* ---- one writer per run directory -------------------------------------- */
+/* A run holds a POSIX record lock (fcntl, a write lock on the whole file)
+** on DIR/lock from before its first check of DIR's files to its end, so a
+** second `afv run` on DIR (fresh or --resume) is refused at once, naming
+** the holder's process id (F_GETLK).  The kernel drops the lock when the
+** process ends, however it ends (SIGKILL included): no stale lock is ever
+** left to clean up.  The file itself stays (empty); only the lock on it
+** counts.  1 if this process now holds the lock (R->lock_fd), else 0 with
+** a message. */
+static int report_in_use(const char *dir, long pid)
+{
+  fprintf(stderr, "afv run: %s is in use by process %ld (it holds %s/lock): "
+          "a run directory has one writer at a time; wait for that run to "
+          "end, or stop it\n", dir, pid, dir);
+  return EXIT_BAD_INPUT;
+}
+
+/* The process holding DIR's lock, or 0 (none, or no lock file: nothing is
+** created).  Only for a process that does not hold the lock itself:
+** closing any descriptor of the file drops the caller's own locks on it. */
+static long lock_holder(const char *dir)
 {
   char path[RUN_PATH_MAX + 32];
-  struct stat sb;
-  snprintf(path, sizeof path, "%s/params.txt", dir);
-  if (stat(path, &sb) == 0) {
-    fprintf(stderr, "afv run: %s already holds a run (params.txt): continue "
-            "it with --resume %s, or choose another --out\n", dir, dir);
+  struct flock fl;
+  int fd;
+  snprintf(path, sizeof path, "%s/lock", dir);
+  if ((fd = open(path, O_RDWR)) < 0) return 0;
+  memset(&fl, 0, sizeof fl);
+  fl.l_type = F_WRLCK;
+  fl.l_whence = SEEK_SET;
+  if (fcntl(fd, F_GETLK, &fl) != 0) fl.l_type = F_UNLCK;
+  close(fd);
+  return fl.l_type == F_UNLCK ? 0 : (long)fl.l_pid;
+}
+
+static int lock_run_dir(run_state *R)
+{
+  char path[RUN_PATH_MAX + 32];
+  struct flock fl;
+  int fd, tries;
+  snprintf(path, sizeof path, "%s/lock", R->dir);
+  if ((fd = open(path, O_RDWR | O_CREAT, 0666)) < 0) {
+    fprintf(stderr, "afv run: %s: cannot open: %s\n", path, strerror(errno));
     return 0;
   }
+  for (tries = 0; tries < 100; tries++) {
+    memset(&fl, 0, sizeof fl);
+    fl.l_type = F_WRLCK;
+    fl.l_whence = SEEK_SET;   /* l_start = l_len = 0: the whole file */
+    if (fcntl(fd, F_SETLK, &fl) == 0) {
+      R->lock_fd = fd;
+      return 1;
+    }
+    if (errno != EACCES && errno != EAGAIN) break;
+    memset(&fl, 0, sizeof fl);
+    fl.l_type = F_WRLCK;
+    fl.l_whence = SEEK_SET;
+    if (fcntl(fd, F_GETLK, &fl) != 0) break;
+    if (fl.l_type != F_UNLCK) {   /* else the holder just ended: try again */
+      report_in_use(R->dir, (long)fl.l_pid);
+      close(fd);
+      return 0;
+    }
+  }
+  fprintf(stderr, "afv run: %s: cannot lock: %s\n", path,
+          tries < 100 ? strerror(errno) : "the lock keeps changing hands");
+  close(fd);
+  return 0;
+}
+
+/* Ends this process's hold on the run directory (closing the file drops
+** the lock). */
+static void unlock_run_dir(run_state *R)
+{
+  if (R->lock_fd >= 0) close(R->lock_fd);
+  R->lock_fd = -1;
+}
+
+/* 1 (with a message) if R->dir holds a run: it has a checkpoint (a run
+** that stopped before its first checkpoint has nothing to resume, and a
+** fresh run replaces it).  A run still being written is named by its
+** writer's process id. */
+static int holds_run(const run_state *R)
+{
+  char path[RUN_PATH_MAX + 32];
+  long pid;
+  snprintf(path, sizeof path, "%s/checkpoint.txt", R->dir);
+  if (access(path, F_OK) != 0) return 0;
+  if (R->lock_fd < 0 && (pid = lock_holder(R->dir)) > 0)
+    report_in_use(R->dir, pid);
+  else
+    fprintf(stderr, "afv run: %s already holds a run (checkpoint.txt): "
+            "continue it with --resume %s, or choose another --out\n",
+            R->dir, R->dir);
+  return 1;
+}
+
+/* Files a run that stopped before its first checkpoint may have left and
+** a fresh run does not always rewrite (the others it rewrites). */
+static void clear_unfinished_run(const char *dir)
+{
+  static const char *const left[] = {"log.txt", "cells.txt",
+                                      "trajectory.xyz", "snap_000000000.svg",
+                                      "final.svg"};
+  char path[RUN_PATH_MAX + 32];
+  size_t k;
+  for (k = 0; k < sizeof left / sizeof left[0]; k++) {
+    snprintf(path, sizeof path, "%s/%s", dir, left[k]);
+    remove(path);
+  }
+}
+
+/* Creates DIR for a fresh run and takes its lock.  DIR may exist, but must
+** not hold a run (holds_run).  Two fresh runs to the same DIR: mkdir lets
+** both in, the lock lets one on, and the other is refused (in use, or,
+** once the first has checkpointed, holding a run). */
+static int make_out_dir(run_state *R)
+{
+  const char *dir = R->dir;
+  if (holds_run(R)) return 0;       /* refused before anything changes */
   if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
     fprintf(stderr, "afv run: cannot create %s: %s\n", dir, strerror(errno));
     return 0;
   }
+  if (!lock_run_dir(R) || holds_run(R)) return 0;
+  clear_unfinished_run(dir);
   return 1;
+}
+
+/* Prints "afv run: DIR/NAME: cannot write: REASON" (errno at the call);
+** EXIT_BAD_INPUT. */
+static int write_failed(run_state *R, const char *name)
+{
+  char path[RUN_PATH_MAX + 32];
+  snprintf(path, sizeof path, "%s/%s", R->dir, name);
+  io_failed(R, path);
+  return report_io(R);
 }
 
 static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
@@ -926,8 +1415,11 @@ static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
   char err[2 * RUN_PATH_MAX] = "";
   int set[N_RUN_KEYS], st;
   memset(set, 0, sizeof set);
+  long holder;
   if (strlen(a->out) > RUN_PATH_MAX - 64) return bad_input("--out: path too long");
   snprintf(R->dir, sizeof R->dir, "%s", a->out);
+  if ((holder = lock_holder(R->dir)) > 0)   /* at once, before the start */
+    return report_in_use(R->dir, holder);
   if (a->config && !read_config(a->config, &R->cfg, set, err, sizeof err))
     return bad_input(err);
   if (!apply_args(argc, argv, &R->cfg, set)) return EXIT_BAD_INPUT;
@@ -936,100 +1428,191 @@ static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
     return bad_input(err);
   }
   if (run_start(R, err, sizeof err) != AFV_OK) return bad_input(err);
+  if (!run_computable(R, "the start", err, sizeof err)) {
+    locate_error(err, sizeof err, set, a->config);
+    return bad_input(err);
+  }
   /* everything is checked: only now is anything created */
-  if (!make_out_dir(R->dir)) return EXIT_BAD_INPUT;
+  if (!make_out_dir(R)) return EXIT_BAD_INPUT;
   R->progress = !R->cfg.quiet && isatty(STDERR_FILENO);
-  if ((R->cells.n && write_cells_copy(R->dir, &R->cells) != AFV_OK)
-      || write_params(R->dir, &R->cfg, R->cells.n ? "cells.txt" : "none")
-         != AFV_OK
-      || !open_outputs(R, NULL, err, sizeof err)) {
-    fprintf(stderr, "afv run: %s: cannot write the outputs%s%s\n", R->dir,
-            err[0] ? ": " : "", err);
+  if (R->cells.n && write_cells_copy(R->dir, &R->cells) != AFV_OK)
+    return write_failed(R, "cells.txt");
+  if (write_params(R->dir, &R->cfg, R->cells.n ? "cells.txt" : "none")
+      != AFV_OK)
+    return write_failed(R, "params.txt");
+  if (!open_outputs(R, NULL, err, sizeof err)) {
+    fprintf(stderr, "afv run: %s\n", err);
     return EXIT_BAD_INPUT;
   }
   if (R->start_spacing > 0
       && R->start_spacing < R->cfg.spacing * (1 - 1e-9))
     run_log(R, "cluster start: spacing %.6g l instead of %.6g l, so that "
             "the cluster fits the box\n", R->start_spacing, R->cfg.spacing);
-  if ((st = relax_start(R)) != AFV_OK) {
+  if ((st = relax_start(R)) == AFV_ENONFINITE) return report_nonfinite(R);
+  if (st != AFV_OK) {
     fprintf(stderr, "afv run: relaxation: %s\n", afv_strerror(st));
     return EXIT_BAD_INPUT;
   }
   if (!obs_t1_reference(&R->an, &R->sim, R->dir, 0)) return EXIT_BAD_INPUT;
-  if (run_outputs(R) != AFV_OK
-      || (!due(0, R->cfg.checkpoint_every) && write_checkpoint(R) != AFV_OK)) {
-    fprintf(stderr, "afv run: %s: cannot write the outputs\n", R->dir);
+  st = run_outputs(R);
+  if (st == AFV_OK && !due(0, R->cfg.checkpoint_every))
+    st = write_checkpoint(R);
+  if (st == AFV_ENONFINITE) return report_nonfinite(R);
+  if (st != AFV_OK) return report_io(R);
+  return run_loop(R);
+}
+
+/* --steps MORE of a resume: a count of steps, 0 .. 2^63 - 1. */
+static int parse_more_steps(const char *text, long long *more)
+{
+  char *end;
+  errno = 0;
+  *more = strtoll(text, &end, 10);
+  if (end != text && !*end && !errno && *more >= 0) return 1;
+  fprintf(stderr, "afv: --steps: '%s' is not a count of steps (an integer "
+          "from 0 to %lld)\n", text, LLONG_MAX);
+  return 0;
+}
+
+/* Resume: params.txt (and the cells file it names) into R->cfg; set[k]
+** records the line of key k.  0, or an exit status with the message
+** printed. */
+static int resume_params(run_state *R, const run_args *a, int *set,
+                         const char *params)
+{
+  char err[2 * RUN_PATH_MAX];
+  if (!read_config(params, &R->cfg, set, err, sizeof err))
+    return bad_input(err);
+  if (a->quiet) R->cfg.quiet = a->quiet > 0;
+  if (!cfg_validate(&R->cfg, set, &R->cells, err, sizeof err)) {
+    locate_error(err, sizeof err, set, params);
+    return bad_input(err);
+  }
+  return 0;
+}
+
+/* Resume: the checkpoint at ckpt against params.txt (cells, seed), its
+** step plus --steps MORE (no overflow) and the recorded sizes against
+** their files.  *new_steps = 1 if MORE changes the run's steps (R->cfg
+** then has the new count).  0, or an exit status with the message
+** printed. */
+static int resume_checkpoint(run_state *R, long long more, const char *ckpt,
+                             afv_checkpoint *ck, int *new_steps)
+{
+  char err[2 * RUN_PATH_MAX];
+  if (access(ckpt, F_OK) != 0) {
+    fprintf(stderr, "afv run: %s has no checkpoint.txt: its run stopped "
+            "before its first checkpoint; start it again with afv run "
+            "--config %s/params.txt --out %s (a fresh run replaces a run "
+            "without a checkpoint)\n", R->dir, R->dir, R->dir);
     return EXIT_BAD_INPUT;
   }
-  return run_loop(R);
+  if (afv_checkpoint_read(ckpt, ck, err, sizeof err) != AFV_OK)
+    return bad_input(err);
+  if (ck->n != R->cfg.N || ck->seed != R->cfg.seed) {
+    fprintf(stderr, "afv run: %s: %d cells and seed %llu, but params.txt "
+            "has N %lld and seed %llu: not this run's checkpoint\n", ckpt,
+            ck->n, ck->seed, R->cfg.N, R->cfg.seed);
+    return EXIT_BAD_INPUT;
+  }
+  if (ck->step < 0) {
+    fprintf(stderr, "afv run: %s: step %lld is negative\n", ckpt, ck->step);
+    return EXIT_BAD_INPUT;
+  }
+  if (more >= 0 && more > LLONG_MAX - ck->step) {
+    fprintf(stderr, "afv: --steps: %lld more steps past the checkpoint's "
+            "step %lld exceed the largest step count (%lld)\n", more,
+            ck->step, LLONG_MAX);
+    return EXIT_BAD_INPUT;
+  }
+  *new_steps = more >= 0 && R->cfg.steps != ck->step + more;
+  if (more >= 0) R->cfg.steps = ck->step + more;
+  if (!recorded_sizes_hold(R, ck, err, sizeof err)) return bad_input(err);
+  return 0;
+}
+
+/* Resume: the simulation at the checkpoint's state, which must be one the
+** run can compute with (run_computable), and the T1 reference.  0, or an
+** exit status with the message printed. */
+static int resume_state(run_state *R, const afv_checkpoint *ck,
+                        const char *ckpt, const int *set, const char *params)
+{
+  char err[2 * RUN_PATH_MAX];
+  afv_params p;
+  afv_box b;
+  afv_dyn d;
+  int st;
+  cfg_model(&R->cfg, &R->cells, &p, &b, &d);
+  st = afv_sim_init(&R->sim, ck->n, ck->r, ck->theta, &p, &b, &d);
+  if (st == AFV_ECOINCIDENT)
+    afv_errorf(err, sizeof err, "%s: cells %d and %d have the same centre",
+               ckpt, R->sim.geom.bad_i, R->sim.geom.bad_j);
+  else if (st != AFV_OK)
+    afv_errorf(err, sizeof err, "%s: %s", ckpt, afv_strerror(st));
+  if (st != AFV_OK) return bad_input(err);
+  R->sim.step = ck->step;
+  R->sim.t = ck->t;
+  R->ckpt_step = ck->step;
+  if (!run_computable(R, ckpt, err, sizeof err)) {
+    locate_error(err, sizeof err, set, params);  /* a key: its line */
+    return bad_input(err);
+  }
+  if (!obs_t1_reference(&R->an, &R->sim, R->dir, 1)) return EXIT_BAD_INPUT;
+  return 0;
+}
+
+/* Every check of a resume, before any byte of any file changes: params.txt
+** (and the cells file), the checkpoint (against params.txt, --steps MORE,
+** every recorded size against its file, the state computable) and the T1
+** reference.  Fills R (cfg, sim, an) and *ck.  0, or an exit status with
+** the message printed. */
+static int resume_checks(run_state *R, const run_args *a, long long more,
+                         afv_checkpoint *ck, int *new_steps)
+{
+  char params[RUN_PATH_MAX + 32], ckpt[RUN_PATH_MAX + 32];
+  int set[N_RUN_KEYS], st;
+  memset(set, 0, sizeof set);
+  snprintf(params, sizeof params, "%s/params.txt", R->dir);
+  snprintf(ckpt, sizeof ckpt, "%s/checkpoint.txt", R->dir);
+  if ((st = resume_params(R, a, set, params)) != 0
+      || (st = resume_checkpoint(R, more, ckpt, ck, new_steps)) != 0)
+    return st;
+  return resume_state(R, ck, ckpt, set, params);
 }
 
 static int run_resume(run_state *R, const run_args *a)
 {
   char err[2 * RUN_PATH_MAX], path[RUN_PATH_MAX + 32];
-  int set[N_RUN_KEYS];
   afv_checkpoint ck;
   long long more = -1;
-  memset(set, 0, sizeof set);
+  int st, new_steps = 0;
   if (a->n_keys > (a->steps != NULL) + a->quiet_kv || a->config || a->out)
     return bad_input("run: with --resume only --steps MORE and --quiet are "
                      "allowed (the parameters are DIR/params.txt)");
-  if (a->steps) {
-    char *end;
-    errno = 0;
-    more = strtoll(a->steps, &end, 10);
-    if (end == a->steps || *end || errno || more < 0)
-      return bad_input("steps: MORE must be an integer >= 0");
-  }
+  if (a->steps && !parse_more_steps(a->steps, &more)) return EXIT_BAD_INPUT;
   if (strlen(a->resume) > RUN_PATH_MAX - 64)
     return bad_input("--resume: path too long");
   snprintf(R->dir, sizeof R->dir, "%s", a->resume);
   snprintf(path, sizeof path, "%s/params.txt", R->dir);
-  if (!read_config(path, &R->cfg, set, err, sizeof err)) return bad_input(err);
-  if (a->quiet) R->cfg.quiet = a->quiet > 0;
-  if (!cfg_validate(&R->cfg, set, &R->cells, err, sizeof err)) {
-    locate_error(err, sizeof err, set, path);
-    return bad_input(err);
-  }
-  snprintf(path, sizeof path, "%s/checkpoint.txt", R->dir);
-  if (access(path, F_OK) != 0) {
-    fprintf(stderr, "afv run: %s has no checkpoint.txt: the run stopped "
-            "before its first checkpoint (during the relaxation); remove "
-            "the directory and start again\n", R->dir);
+  if (access(path, F_OK) != 0) {   /* not a run: refused before the lock */
+    fprintf(stderr, "afv run: %s: cannot open: %s (--resume needs a run "
+            "directory)\n", path, strerror(errno));
     return EXIT_BAD_INPUT;
   }
-  if (afv_checkpoint_read(path, &ck, err, sizeof err) != AFV_OK)
-    return bad_input(err);
-  if (ck.n != R->cfg.N || ck.seed != R->cfg.seed) {
-    afv_checkpoint_free(&ck);
-    return bad_input("resume: checkpoint.txt does not match params.txt "
-                     "(cells or seed)");
-  }
-  if (more >= 0 && R->cfg.steps != ck.step + more) {
-    R->cfg.steps = ck.step + more;
-    if (write_params(R->dir, &R->cfg, R->cells.n ? "cells.txt" : "none")
-        != AFV_OK) {
-      afv_checkpoint_free(&ck);
-      return bad_input("resume: cannot rewrite params.txt");
-    }
-  }
-  {
-    afv_params p;
-    afv_box b;
-    afv_dyn d;
-    int st;
-    cfg_model(&R->cfg, &R->cells, &p, &b, &d);
-    st = afv_sim_init(&R->sim, ck.n, ck.r, ck.theta, &p, &b, &d);
-    R->sim.step = ck.step;
-    R->sim.t = ck.t;
-    R->ckpt_step = ck.step;
-    if (st != AFV_OK || !open_outputs(R, &ck, err, sizeof err)) {
-      afv_checkpoint_free(&ck);
-      return bad_input(st != AFV_OK ? afv_strerror(st) : err);
-    }
+  if (!lock_run_dir(R)) return EXIT_BAD_INPUT;
+  memset(&ck, 0, sizeof ck);
+  st = resume_checks(R, a, more, &ck, &new_steps);
+  /* all checked: from here on files change (params.txt atomically) */
+  if (st == 0 && new_steps
+      && write_params(R->dir, &R->cfg, R->cells.n ? "cells.txt" : "none")
+         != AFV_OK)
+    st = write_failed(R, "params.txt");
+  if (st == 0 && !open_outputs(R, &ck, err, sizeof err)) {
+    fprintf(stderr, "afv run: %s\n", err);
+    st = EXIT_BAD_INPUT;
   }
   afv_checkpoint_free(&ck);
-  if (!obs_t1_reference(&R->an, &R->sim, R->dir, 1)) return EXIT_BAD_INPUT;
+  if (st != 0) return st;
   R->progress = !R->cfg.quiet && isatty(STDERR_FILENO);
   run_log(R, "resuming at step %lld (t = %.6g), to step %lld\n", R->sim.step,
           R->sim.t, R->cfg.steps);
@@ -1047,9 +1630,11 @@ int cmd_run(int argc, char **argv)
     return bad_input("run: give either --out DIR (a new run) or --resume "
                      "DIR (see afv run --help)");
   memset(&R, 0, sizeof R);
+  R.lock_fd = -1;
   cfg_defaults(&R.cfg);
   status = a.resume ? run_resume(&R, &a) : run_fresh(&R, &a, argc, argv);
   close_outputs(&R);
+  unlock_run_dir(&R);
   afv_sim_free(&R.sim);
   afv_cells_free(&R.cells);
   afv_clusters_free(&R.an.c);

@@ -1,7 +1,11 @@
 /* fixtures.c -- small helpers shared by the test suites. */
+#define _POSIX_C_SOURCE 200809L   /* sys/wait.h */
 #include "test.h"
 
 #include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <sys/wait.h>
 
 #define PI 3.14159265358979323846
 
@@ -58,4 +62,17 @@ afv_box test_tri_lattice(int nx, int ny, double D, double x0, double y0,
       r[2 * (j * nx + i) + 1] = y0 + j * rowh;
     }
   return test_periodic_box(nx * D, ny * rowh);
+}
+
+/* ---- shell commands ----------------------------------------------------- */
+int test_sh(const char *fmt, ...)
+{
+  char cmd[4096];
+  va_list ap;
+  int st;
+  va_start(ap, fmt);
+  vsnprintf(cmd, sizeof cmd, fmt, ap);
+  va_end(ap);
+  st = system(cmd);
+  return st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }

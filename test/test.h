@@ -56,6 +56,10 @@ afv_box test_periodic_box(double Lx, double Ly);
 afv_box test_tri_lattice(int nx, int ny, double D, double x0, double y0,
                          double *r);
 
+/* Runs a shell command (printf-style); its exit status, -1 if it did not
+** exit normally. */
+int test_sh(const char *fmt, ...);
+
 /* Test suites, one per source file. */
 void suite_core(void);
 void suite_cli(void);
@@ -64,5 +68,6 @@ void suite_analysis(void);
 void suite_perf(void);
 void suite_pictures(void);
 void suite_readers(void);
+void suite_runjob(void);
 
 #endif

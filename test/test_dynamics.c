@@ -546,17 +546,7 @@ static void test_large_cluster_start(void)
 static char tmpdir[256];
 
 /* Runs a shell command quietly; returns its exit status (-1 if killed). */
-static int sh(const char *fmt, ...)
-{
-  char cmd[4096];
-  va_list ap;
-  int st;
-  va_start(ap, fmt);
-  vsnprintf(cmd, sizeof cmd, fmt, ap);
-  va_end(ap);
-  st = system(cmd);
-  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
+#define sh test_sh
 
 static char *slurp(const char *path, long *len)
 {

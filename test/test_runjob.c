@@ -1,0 +1,514 @@
+/*
+** test_runjob.c -- the run directory of `afv run` as a job sees it: one
+** writer at a time (real concurrent processes), a resume that is all or
+** nothing (the directory byte-compared before and after), parameters
+** refused before anything is made when the run could not compute with
+** them (they wrote inf and nan), a directory whose run stopped before its
+** first checkpoint run again, and messages that name the file and the
+** system's reason, and print bounds in full.
+**
+** Every test runs ./afv (from the repository root, where `make test`
+** starts the runner) in a directory under /tmp, removed at the end.
+*/
+#define _POSIX_C_SOURCE 200809L
+#include "test.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+static char root[256];   /* the suite's directory */
+
+/* The whole file at path (NUL-terminated; *len its size), or NULL. */
+static char *read_whole(const char *path, long *len)
+{
+  FILE *fp = fopen(path, "rb");
+  char *buf = NULL;
+  long n = 0, cap = 0;
+  size_t got;
+  *len = -1;
+  if (!fp) return NULL;
+  do {
+    char *grown;
+    cap = cap ? 2 * cap : 4096;
+    if (!(grown = realloc(buf, (size_t)cap + 1))) {
+      free(buf);
+      fclose(fp);
+      return NULL;
+    }
+    buf = grown;
+    got = fread(buf + n, 1, (size_t)(cap - n), fp);
+    n += (long)got;
+  } while (n == cap);
+  fclose(fp);
+  buf[n] = 0;
+  *len = n;
+  return buf;
+}
+
+/* The stderr a command left in root/err.txt. */
+static char *last_err(void)
+{
+  char path[512];
+  long len;
+  char *e;
+  snprintf(path, sizeof path, "%s/err.txt", root);
+  e = read_whole(path, &len);
+  return e ? e : calloc(1, 1);
+}
+
+static int exists(const char *sub)
+{
+  char p[512];
+  struct stat sb;
+  snprintf(p, sizeof p, "%s/%s", root, sub);
+  return stat(p, &sb) == 0;
+}
+
+/* 1 if root/a/name and root/b/name exist and are byte-identical. */
+static int same_file(const char *a, const char *b, const char *name)
+{
+  return test_sh("cmp -s %s/%s/%s %s/%s/%s", root, a, name, root, b, name)
+         == 0;
+}
+
+/* Runs `./afv run ARGS --out root/sub`, which must fail on writing: exit 2,
+** one message naming file and the system's reason for errno_value. */
+static void check_write_failure(const char *args, const char *sub,
+                                const char *file, int errno_value)
+{
+  char *e;
+  int st = test_sh("./afv run %s --out %s/%s 2> %s/err.txt", args, root, sub,
+                  root);
+  e = last_err();
+  CHECK(st == 2, "%s: exit %d, want 2", file, st);
+  CHECK(strstr(e, file) && strstr(e, strerror(errno_value))
+        && strchr(e, '\n') == e + strlen(e) - 1, "the message is not one "
+        "line naming %s and '%s': %s", file, strerror(errno_value), e);
+  free(e);
+}
+
+/* Every file of root/sub, in name order, as "name size\n" + its bytes:
+** two pictures compare equal iff no file was added, removed or changed. */
+static char *picture(const char *sub, long *len)
+{
+  char dir[512], path[1024];
+  struct dirent **names;
+  char *all = calloc(1, 1);
+  long total = 0;
+  int k, m;
+  snprintf(dir, sizeof dir, "%s/%s", root, sub);
+  m = scandir(dir, &names, NULL, alphasort);
+  for (k = 0; k < m; k++) {
+    long n;
+    char *bytes, *grown, head[600];
+    int h;
+    snprintf(path, sizeof path, "%s/%s", dir, names[k]->d_name);
+    bytes = names[k]->d_name[0] == '.' ? NULL : read_whole(path, &n);
+    if (bytes) {
+      h = snprintf(head, sizeof head, "%s %ld\n", names[k]->d_name, n);
+      grown = realloc(all, (size_t)(total + h + n + 1));
+      if (grown) {
+        all = grown;
+        memcpy(all + total, head, (size_t)h);
+        memcpy(all + total + h, bytes, (size_t)n);
+        total += h + n;
+        all[total] = 0;
+      }
+      free(bytes);
+    }
+    free(names[k]);
+  }
+  if (m >= 0) free(names);
+  *len = total;
+  return all;
+}
+
+static void sleep_ms(long ms)
+{
+  struct timespec ts;
+  ts.tv_sec = ms / 1000;
+  ts.tv_nsec = (ms % 1000) * 1000000L;
+  nanosleep(&ts, NULL);
+}
+
+/* Starts ./afv with argv (NULL-terminated) in a child, stderr to
+** root/name; returns the child's pid.  gate: -1, or the read end of a pipe
+** whose write end the parent closes to let every waiting child go at once
+** (the child reads it to end of file before exec). */
+static pid_t start_afv(const char *const *argv, const char *errname,
+                       const int *gate)
+{
+  pid_t pid = fork();
+  if (pid == 0) {
+    char path[512], c;
+    snprintf(path, sizeof path, "%s/%s", root, errname);
+    if (!freopen(path, "w", stderr)) _exit(126);
+    if (gate) {
+      close(gate[1]);
+      while (read(gate[0], &c, 1) > 0) {}
+      close(gate[0]);
+    }
+    execv("./afv", (char *const *)argv);
+    _exit(127);
+  }
+  return pid;
+}
+
+static int exit_status(pid_t pid)
+{
+  int st;
+  if (waitpid(pid, &st, 0) != pid) return -1;
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* A fast system that writes a checkpoint every 5 steps. */
+#define FAST "--N 64 --P0 4.5 --v0 0.3 --sample_every 5 --frame_every 10 " \
+             "--checkpoint_every 5 --svg_every 0 --quiet"
+
+/* ---- one writer per run directory --------------------------------------- */
+/* While a run writes in DIR, a resume and a fresh run on DIR are refused at
+** once (exit 2, naming the writer's pid) and leave it alone; SIGKILLed,
+** the writer blocks nothing: the resume that follows continues it, and the
+** result equals one uninterrupted run byte for byte.  (The code before:
+** the resume exited 0, writing into the same files as the live run.) */
+static void test_second_writer_refused(void)
+{
+  char out[512], want[64], *e;
+  const char *argv[] = {"afv", "run", "--N", "64", "--P0", "4.5", "--v0",
+                        "0.3", "--sample_every", "5", "--frame_every", "10",
+                        "--checkpoint_every", "5", "--svg_every", "0",
+                        "--quiet", "--steps", "100000000", "--out", out, NULL};
+  pid_t pid;
+  int waited, st;
+  snprintf(out, sizeof out, "%s/w", root);
+  pid = start_afv(argv, "writer.txt", NULL);
+  for (waited = 0; waited < 20000 && !exists("w/checkpoint.txt"); waited += 5)
+    sleep_ms(5);
+  CHECK(exists("w/checkpoint.txt"), "the writer never checkpointed");
+  snprintf(want, sizeof want, "process %ld", (long)pid);
+  st = test_sh("./afv run --resume %s --steps 10 --quiet 2> %s/err.txt", out,
+              root);
+  e = last_err();
+  CHECK(st == 2, "resume beside a live writer: exit %d, want 2", st);
+  CHECK(strstr(e, want) != NULL, "the message does not name '%s': %s", want,
+        e);
+  free(e);
+  st = test_sh("./afv run " FAST " --steps 10 --out %s 2> %s/err.txt", out,
+              root);
+  e = last_err();
+  CHECK(st == 2, "fresh run into a live run's directory: exit %d, want 2",
+        st);
+  CHECK(strstr(e, want) != NULL, "the message does not name '%s': %s", want,
+        e);
+  free(e);
+  kill(pid, SIGKILL);
+  CHECK(exit_status(pid) == -1, "the writer ended before it was killed");
+  /* no stale lock: the killed writer's directory resumes at once */
+  CHECK(test_sh("./afv run --resume %s --steps 20 --quiet 2> %s/err.txt", out,
+               root) == 0, "resume after SIGKILL of the writer failed");
+  CHECK(test_sh("./afv run --config %s/params.txt --out %s/w_ref", out, root)
+        == 0, "the reference run failed");
+  CHECK(same_file("w", "w_ref", "trajectory.dat"), "trajectory.dat: killed, "
+        "refused twice and resumed, it differs from one straight run");
+  CHECK(same_file("w", "w_ref", "observables.csv"), "observables.csv "
+        "differs from one straight run");
+  CHECK(same_file("w", "w_ref", "checkpoint.txt"), "checkpoint.txt differs "
+        "from one straight run");
+}
+
+/* 1 if the stderr a refused run left in root/name says why, rightly: the
+** directory is in use, or (its writer done) holds a run. */
+static int refused_rightly(const char *name)
+{
+  char path[512], *e;
+  long len;
+  int ok;
+  snprintf(path, sizeof path, "%s/%s", root, name);
+  e = read_whole(path, &len);
+  ok = e && (strstr(e, "in use by process") || strstr(e, "already holds"));
+  if (!ok) printf("  refused with: %s\n", e ? e : "(nothing)");
+  free(e);
+  return ok;
+}
+
+/* Two fresh runs started together (released by one pipe) into the same
+** --out: exactly one runs (exit 0, its outputs equal to a run alone), the
+** other is refused (exit 2, in use).  A 6000-row cells file, copied into
+** the directory, keeps each run a while between its first look at the
+** directory and its params.txt.  (The code before: both passed the look,
+** and one then failed on the other's files, "cannot write the outputs";
+** with other timings both exited 0.) */
+static void test_concurrent_fresh_runs(void)
+{
+  char out[512], ref[512], cells[512], sub[64];
+  const char *argv[] = {"afv", "run", "--cells", cells, "--steps", "0",
+                        "--relax_max_steps", "0", "--svg_every", "0",
+                        "--quiet", "--out", out, NULL};
+  static const char *const files[] = {"cells.txt", "params.txt",
+                                      "trajectory.dat", "observables.csv",
+                                      "checkpoint.txt", "t1_reference.txt"};
+  int trial, i;
+  FILE *fp;
+  snprintf(cells, sizeof cells, "%s/cells6k.txt", root);
+  if (!(fp = fopen(cells, "w"))) {
+    CHECK(0, "cannot write %s", cells);
+    return;
+  }
+  test_rng_seed(22);
+  fputs("# theta v0 Dr KA KP A0 P0\n", fp);
+  for (i = 0; i < 6000; i++)
+    fprintf(fp, "%.17g %.17g 0.1 1 1 3.14159 %.17g\n",
+            6.28 * test_rng_uniform(), 0.3 + 1e-3 * test_rng_uniform(),
+            4.5 + 1e-3 * test_rng_uniform());
+  fclose(fp);
+  snprintf(ref, sizeof ref, "%s/c_ref", root);
+  argv[12] = ref;
+  CHECK(exit_status(start_afv(argv, "ref.txt", NULL)) == 0, "the reference "
+        "run");
+  argv[12] = out;
+  for (trial = 0; trial < 4; trial++) {
+    pid_t a, b;
+    int sa, sb, gate[2];
+    size_t k;
+    snprintf(sub, sizeof sub, "c%d", trial);
+    snprintf(out, sizeof out, "%s/%s", root, sub);
+    if (pipe(gate) != 0) {
+      CHECK(0, "pipe: %s", strerror(errno));
+      return;
+    }
+    a = start_afv(argv, "a.txt", gate);
+    b = start_afv(argv, "b.txt", gate);
+    close(gate[0]);
+    close(gate[1]);   /* both go */
+    sa = exit_status(a);
+    sb = exit_status(b);
+    CHECK((sa == 0 && sb == 2) || (sa == 2 && sb == 0), "trial %d: exit "
+          "statuses %d and %d, want one 0 and one 2", trial, sa, sb);
+    CHECK(refused_rightly(sa == 2 ? "a.txt" : "b.txt"), "trial %d: the "
+          "second run was not refused as the directory's second writer",
+          trial);
+    for (k = 0; k < sizeof files / sizeof files[0]; k++)
+      if (k != 1)   /* params.txt names the cells file it copied */
+        CHECK(same_file(sub, "c_ref", files[k]), "trial %d: the winner's "
+              "%s differs from a run alone", trial, files[k]);
+  }
+}
+
+/* ---- a resume is all or nothing ----------------------------------------- */
+/* A completed run copied, damaged, then resumed: exit 2, a message, and
+** every file of the directory as it was (the code before cut
+** trajectory.dat back before finding observables.csv short, rewrote
+** params.txt before reading the T1 reference, and took --steps
+** 2^63 - 1 into a negative step count). */
+static void test_failed_resume_changes_nothing(void)
+{
+  static const char *const cases[][3] = {
+    /* damage (shell, in the copy), resume options, the message names */
+    {"printf 'torn' >> trajectory.dat && truncate -s 200 observables.csv",
+     "", "observables.csv"},
+    {"printf 'torn' >> trajectory.dat && printf 'torn' >> observables.csv "
+     "&& rm trajectory.xyz", "", "trajectory.xyz"},
+    {"printf '1\\n' > t1_reference.txt", "--steps 50", "t1_reference.txt"},
+    {"rm t1_reference.txt", "--steps 50", "t1_reference.txt"},
+    {"printf 'torn' >> trajectory.dat", "--steps 9223372036854775807",
+     "--steps"},
+    {"printf 'torn' >> trajectory.dat", "--steps 1x0", "--steps"},
+    /* params.txt edited to a modulus the run cannot compute with */
+    {"sed 's/^KA .*/KA 1e200/' params.txt > p.tmp && mv p.tmp params.txt",
+     "--steps 50", "params.txt:6: KA: 1e+200"},
+    /* cell 5's angle (line 14 of the checkpoint) not finite */
+    {"awk 'NR == 14 { $3 = \"inf\" } { print }' checkpoint.txt > c.tmp && "
+     "mv c.tmp checkpoint.txt", "--steps 50", "checkpoint.txt"}};
+  size_t c;
+  CHECK(test_sh("./afv run " FAST " --xyz 1 --steps 100 --out %s/base",
+               root) == 0, "the base run");
+  for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    char sub[32], *before, *after, *e;
+    long nb, na;
+    int st;
+    snprintf(sub, sizeof sub, "d%d", (int)c);
+    CHECK(test_sh("cp -R %s/base %s/%s && cd %s/%s && %s", root, root, sub,
+                 root, sub, cases[c][0]) == 0, "case %d: damaging", (int)c);
+    before = picture(sub, &nb);
+    st = test_sh("./afv run --resume %s/%s %s --quiet 2> %s/err.txt", root,
+                sub, cases[c][1], root);
+    after = picture(sub, &na);
+    e = last_err();
+    CHECK(st == 2, "case %d (%s; %s): exit %d, want 2", (int)c, cases[c][0],
+          cases[c][1], st);
+    CHECK(nb > 0 && na == nb && memcmp(before, after, (size_t)nb) == 0,
+          "case %d (%s; %s): a failed resume changed the directory",
+          (int)c, cases[c][0], cases[c][1]);
+    CHECK(strstr(e, cases[c][2]) && strchr(e, '\n') == e + strlen(e) - 1,
+          "case %d: message not one line naming %s: %s", (int)c,
+          cases[c][2], e);
+    if (c == 7)   /* the cell, if the checkpoint reader let it through */
+      CHECK(strstr(e, "checkpoint.txt:14") || strstr(e, "cell 5"),
+            "the message names neither line 14 nor cell 5: %s", e);
+    free(before);
+    free(after);
+    free(e);
+  }
+  /* the refused --steps left a run that still resumes */
+  CHECK(test_sh("./afv run --resume %s/d4 --steps 10 --quiet", root) == 0,
+        "after a refused --steps the run no longer resumes");
+}
+
+/* ---- what the run can compute ------------------------------------------- */
+/* Values the checks let through before, but whose energy, force, step
+** factors or angle noise overflow: refused with one line naming the key
+** (the config file's line, the cells file's cell), and no directory made.  (The code before: KA 1e200 made the
+** directory, then failed in the relaxation, leaving a directory neither a
+** fresh run nor a resume accepted; KA 1e308 and Dr 1e308 ran and wrote inf
+** and nan.) */
+static void test_uncomputable_parameters_refused(void)
+{
+  static const char *const cases[][2] = {
+    {"--KA 1e200", "KA:"}, {"--KA 1e308", "KA:"}, {"--A0 1e200", "A0:"},
+    {"--P0 1e200", "P0:"}, {"--KP 1e300", "KP:"},
+    {"--Lambda 1e300", "Lambda:"}, {"--Dr 1e308", "Dr:"},
+    {"--mu 1e300 --dt 1e10", "mu:"}, {"--v0 1e308 --dt 10", "v0:"},
+    {"--cells @/dr.txt", "Dr (cells file, cell 3): 1e+308:"},
+    {"--config @/cfg.txt", "cfg.txt:2: KA:"}};
+  char path[512];
+  size_t c;
+  FILE *fp;
+  int i;
+  snprintf(path, sizeof path, "%s/cfg.txt", root);
+  if ((fp = fopen(path, "w"))) {
+    fputs("N 30\nKA 1e200\n", fp);
+    fclose(fp);
+  }
+  snprintf(path, sizeof path, "%s/dr.txt", root);
+  if ((fp = fopen(path, "w"))) {
+    fputs("# Dr\n", fp);
+    for (i = 0; i < 30; i++) fputs(i == 3 ? "1e308\n" : "0.1\n", fp);
+    fclose(fp);
+  }
+  for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    char args[512], *e, *at;
+    int st;
+    snprintf(args, sizeof args, "%s", cases[c][0]);
+    if ((at = strchr(args, '@')))   /* '@' stands for the suite's directory */
+      snprintf(at, sizeof args - (size_t)(at - args), "%s%s", root,
+               strchr(cases[c][0], '@') + 1);
+    st = test_sh("./afv run --N 30 --steps 20 --quiet %s --out %s/bad "
+                "2> %s/err.txt", args, root, root);
+    e = last_err();
+    CHECK(st == 2, "'%s': exit %d, want 2", args, st);
+    CHECK(strstr(e, cases[c][1]) && strchr(e, '\n') == e + strlen(e) - 1,
+          "'%s': message not one line naming '%s': %s", args, cases[c][1], e);
+    CHECK(!exists("bad"), "'%s': the directory was made", args);
+    free(e);
+    test_sh("rm -rf %s/bad", root);
+  }
+  /* just inside: the paper's values scaled far up still run */
+  CHECK(test_sh("./afv run --N 30 --steps 0 --KA 1e100 --quiet --out %s/big "
+               "2> %s/err.txt", root, root) == 0, "KA 1e100 refused");
+}
+
+/* ---- a run that stopped before its first checkpoint ---------------------- */
+/* trajectory.dat on a full disk (/dev/full): the run stops with the file
+** and the system's reason; its directory has no checkpoint, a resume is
+** refused, proposing a fresh run from the directory's own params.txt into
+** it, which is accepted and equals a run elsewhere.  (The code before: "cannot write the outputs" without
+** file or reason, then refused both a fresh run and a resume.) */
+static void test_unfinished_run_rerunnable(void)
+{
+  char *e;
+  int st;
+  struct stat sb;
+  if (stat("/dev/full", &sb) != 0) {
+    SKIP("no /dev/full");
+    return;
+  }
+  CHECK(test_sh("mkdir -p %s/u && ln -s /dev/full %s/u/trajectory.dat",
+               root, root) == 0, "making the full disk");
+  check_write_failure(FAST " --steps 50", "u", "u/trajectory.dat", ENOSPC);
+  CHECK(!exists("u/checkpoint.txt") && exists("u/params.txt"),
+        "not the state of a run stopped before its first checkpoint");
+  st = test_sh("./afv run --resume %s/u 2> %s/err.txt", root, root);
+  e = last_err();
+  CHECK(st == 2 && strstr(e, "--config"), "resume without a checkpoint: "
+        "exit %d, message %s", st, e);
+  free(e);
+  test_sh("rm %s/u/trajectory.dat", root);
+  /* as the resume's message says: its own params.txt, into itself */
+  CHECK(test_sh("./afv run --config %s/u/params.txt --out %s/u 2> "
+                "%s/err.txt", root, root, root) == 0, "a fresh run into the "
+        "unfinished directory was refused");
+  CHECK(test_sh("./afv run " FAST " --steps 50 --out %s/u_ref", root) == 0,
+        "the reference run");
+  CHECK(same_file("u", "u_ref", "trajectory.dat")
+        && same_file("u", "u_ref", "observables.csv"), "the re-run differs "
+        "from a run in a fresh directory");
+  /* now it holds a run: a fresh run is refused, nothing changes */
+  CHECK(test_sh("./afv run " FAST " --steps 50 --out %s/u 2>/dev/null", root)
+        == 2, "a completed run was overwritten");
+}
+
+/* ---- messages ------------------------------------------------------------ */
+/* A snapshot that cannot be written: the message names the file and the
+** reason (the code before: "DIR: cannot write the outputs"). */
+static void test_io_error_names_file_and_reason(void)
+{
+  CHECK(test_sh("mkdir -p %s/s/snap_000000000.svg.tmp", root) == 0, "setup");
+  check_write_failure("--N 30 --steps 10 --quiet", "s", "snap_000000000.svg",
+                      EISDIR);
+}
+
+/* Values a hair past a bound are printed in full, not rounded onto the
+** bound ("4,4 is smaller than 4l = 4"): a box side one ulp below 4l (afv
+** eval --box, and afv run's L from phi) and phi one ulp above 1. */
+static void test_bounds_printed_in_full(void)
+{
+  static const char *const cases[][2] = {
+    {"eval --box 3.9999999999999996,4 @", "3.9999999999999996,4 "},
+    {"run --N 5 --phi 0.98174770424681057 --out @/no", "L = sqrt(N pi "
+     "l^2/phi) = 3.9999999999999996 "},
+    {"run --phi 1.0000000000000002 --out @/no", "got 1.0000000000000002"}};
+  char pts[512];
+  size_t c;
+  FILE *fp;
+  snprintf(pts, sizeof pts, "%s/pts.txt", root);
+  if ((fp = fopen(pts, "w"))) {
+    fputs("0 0\n1 1\n", fp);
+    fclose(fp);
+  }
+  for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    char args[512], *e, *at;
+    int st;
+    snprintf(args, sizeof args, "%s", cases[c][0]);
+    if ((at = strchr(args, '@')))   /* '@': pts.txt, or the directory */
+      snprintf(at, sizeof args - (size_t)(at - args), "%s%s",
+               c == 0 ? pts : root, strchr(cases[c][0], '@') + 1);
+    st = test_sh("./afv %s > /dev/null 2> %s/err.txt", args, root);
+    e = last_err();
+    CHECK(st == 2, "'%s': exit %d, want 2", args, st);
+    CHECK(strstr(e, cases[c][1]) != NULL, "'%s': the value is not printed "
+          "in full ('%s'): %s", args, cases[c][1], e);
+    free(e);
+  }
+}
+
+void suite_runjob(void)
+{
+  snprintf(root, sizeof root, "/tmp/afv_test_runjob.%ld", (long)getpid());
+  test_sh("rm -rf %s && mkdir -p %s", root, root);
+  RUN(test_second_writer_refused);
+  RUN(test_concurrent_fresh_runs);
+  RUN(test_failed_resume_changes_nothing);
+  RUN(test_uncomputable_parameters_refused);
+  RUN(test_unfinished_run_rerunnable);
+  RUN(test_io_error_names_file_and_reason);
+  RUN(test_bounds_printed_in_full);
+  test_sh("rm -rf %s", root);
+}
