@@ -2,6 +2,7 @@
 #include "test.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 #define PI 3.14159265358979323846
 
@@ -58,4 +59,148 @@ afv_box test_tri_lattice(int nx, int ny, double D, double x0, double y0,
       r[2 * (j * nx + i) + 1] = y0 + j * rowh;
     }
   return test_periodic_box(nx * D, ny * rowh);
+}
+
+/* ---- configurations for the twin checks (test_reference.c, twins.c) ----- */
+/* Each is a function filling c; l = 1 throughout. */
+
+static int config_alloc(test_config *c, const char *name, int n, afv_box b)
+{
+  c->name = name;
+  c->n = n;
+  c->box = b;
+  c->r = calloc((size_t)(2 * n + 1), sizeof(double));
+  return c->r != NULL;
+}
+
+/* A pair at distance d with its axis at angle a, centred at (x, y). */
+static void put_pair(double *r, double x, double y, double d, double a)
+{
+  r[0] = x - 0.5 * d * cos(a);
+  r[1] = y - 0.5 * d * sin(a);
+  r[2] = x + 0.5 * d * cos(a);
+  r[3] = y + 0.5 * d * sin(a);
+}
+
+/* Two cells at 1.2 l: a lens, two arcs. */
+static int config_lens(test_config *c)
+{
+  if (!config_alloc(c, "lens", 2, test_open_box())) return -1;
+  put_pair(c->r, 0, 0, 1.2, 0);
+  return 1;
+}
+
+/* Pairs about to detach, 2l - d = 1e-3 .. 1e-12 l, 10 l apart, and a
+** triple: a pair 2l - 1e-8 apart with a third cell in contact with one. */
+static int config_near_detachment(test_config *c)
+{
+  static const double eps[5] = {1e-3, 1e-6, 1e-9, 1e-11, 1e-12};
+  int k;
+  if (!config_alloc(c, "near_detachment", 13, test_open_box())) return -1;
+  for (k = 0; k < 5; k++)
+    put_pair(c->r + 4 * k, 10.0 * k, 0, 2 - eps[k], 0.3 + 1.1 * k);
+  put_pair(c->r + 20, 0, 10, 2 - 1e-8, 0.7);
+  c->r[24] = c->r[20] - 1.5;
+  c->r[25] = c->r[21] + 0.4;
+  return 1;
+}
+
+/* Three cells at the corners of an equilateral triangle of side
+** sqrt(3) s: their triple junction lies s l from each centre, on the circle
+** for s = 1, a hair inside or outside for s = 1 -+ 1e-9. */
+static int config_junction_on_circle(test_config *c)
+{
+  static const double s[3] = {1, 1 - 1e-9, 1 + 1e-9};
+  int k, q;
+  if (!config_alloc(c, "junction_on_circle", 9, test_open_box())) return -1;
+  for (k = 0; k < 3; k++)
+    for (q = 0; q < 3; q++) {
+      double a = 0.4 + q * 2.0943951023931957;   /* 2 pi / 3 */
+      c->r[6*k + 2*q] = 10.0 * k + s[k] * cos(a);
+      c->r[6*k + 2*q + 1] = s[k] * sin(a);
+    }
+  return 1;
+}
+
+/* An open 3 x 3 square cluster of spacing 1.3 l: its 2 x 2 blocks are
+** cocircular squares (four cells at one vertex), the rim has arcs. */
+static int config_square_cocircular(test_config *c)
+{
+  int k;
+  if (!config_alloc(c, "square_cocircular", 9, test_open_box())) return -1;
+  for (k = 0; k < 9; k++) {
+    c->r[2*k] = 1.3 * (k % 3);
+    c->r[2*k+1] = 1.3 * (k / 3);
+  }
+  return 1;
+}
+
+/* Periodic triangular lattices: spacing 1.8 l (hexagons with their corners
+** cut by arcs), 1.7 l (whole hexagons), and 1.8 l with each centre moved by
+** up to 0.05 l. */
+static int config_lattice(test_config *c, const char *name, int side,
+                          double D, double jitter)
+{
+  int k;
+  if (!config_alloc(c, name, side * side, test_open_box())) return -1;
+  c->box = test_tri_lattice(side, side, D, 0.3, 0.2, c->r);
+  for (k = 0; k < 2 * c->n; k++)
+    c->r[k] += jitter * (2 * test_rng_uniform() - 1);
+  return 1;
+}
+
+/* The paper's state: 400 cells at packing fraction 0.5, uniform in a
+** periodic box (afv_init_random), and a compact open cluster of 200 cells
+** 1.7 l apart moved by up to 0.1 l. */
+static int config_random_periodic(test_config *c)
+{
+  double side = sqrt(400 * PI / 0.5);
+  if (!config_alloc(c, "random_periodic", 400, test_periodic_box(side, side)))
+    return -1;
+  afv_init_random(400, 7, &c->box, 0, c->r);
+  return 1;
+}
+
+static int config_cluster(test_config *c)
+{
+  int k;
+  if (!config_alloc(c, "cluster", 200, test_open_box())) return -1;
+  if (afv_init_cluster(200, 1.7, &c->box, c->r) != AFV_OK) return -1;
+  for (k = 0; k < 400; k++) c->r[k] += 0.1 * (2 * test_rng_uniform() - 1);
+  return 1;
+}
+
+/* 80 cells uniform in an open square of side 14 l: most cells isolated or
+** in small clusters, with arcs. */
+static int config_random_open(test_config *c)
+{
+  int k;
+  if (!config_alloc(c, "random_open", 80, test_open_box())) return -1;
+  for (k = 0; k < 160; k++) c->r[k] = 14 * test_rng_uniform();
+  return 1;
+}
+
+int test_config_make(int k, test_config *c)
+{
+  c->r = NULL;
+  test_rng_seed(1000 + (unsigned long long)k);
+  switch (k) {
+  case 0: return config_lens(c);
+  case 1: return config_near_detachment(c);
+  case 2: return config_junction_on_circle(c);
+  case 3: return config_square_cocircular(c);
+  case 4: return config_lattice(c, "lattice_arcs", 6, 1.8, 0);
+  case 5: return config_lattice(c, "lattice_closed", 6, 1.7, 0);
+  case 6: return config_lattice(c, "lattice_jittered", 8, 1.8, 0.05);
+  case 7: return config_random_periodic(c);
+  case 8: return config_cluster(c);
+  case 9: return config_random_open(c);
+  default: return 0;
+  }
+}
+
+void test_config_free(test_config *c)
+{
+  free(c->r);
+  c->r = NULL;
 }

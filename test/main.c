@@ -58,6 +58,7 @@ int main(void)
   suite_perf();
   suite_pictures();
   suite_readers();
+  suite_reference();
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;
 }

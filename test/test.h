@@ -56,6 +56,18 @@ afv_box test_periodic_box(double Lx, double Ly);
 afv_box test_tri_lattice(int nx, int ny, double D, double x0, double y0,
                          double *r);
 
+/* The configurations of the twin checks (test_reference.c, twins.c),
+** numbered from 0: test_config_make fills c (r allocated; l = 1) and
+** returns 1; 0 past the last, -1 out of memory. */
+typedef struct test_config {
+  const char *name;
+  int         n;
+  double     *r;
+  afv_box     box;
+} test_config;
+int  test_config_make(int k, test_config *c);
+void test_config_free(test_config *c);
+
 /* Test suites, one per source file. */
 void suite_core(void);
 void suite_cli(void);
@@ -64,5 +76,6 @@ void suite_analysis(void);
 void suite_perf(void);
 void suite_pictures(void);
 void suite_readers(void);
+void suite_reference(void);
 
 #endif
