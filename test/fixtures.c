@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define PI 3.14159265358979323846
 
@@ -105,20 +106,60 @@ static int config_near_detachment(test_config *c)
   return 1;
 }
 
-/* Three cells at the corners of an equilateral triangle of side
-** sqrt(3) s: their triple junction lies s l from each centre, on the circle
-** for s = 1, a hair inside or outside for s = 1 -+ 1e-9. */
+/* Triples at the corners of an equilateral triangle of side sqrt(3) s:
+** their triple junction lies s l from each centre, on the circle for s = 1
+** (eight triangles turned by 0.4 + 0.7 k: the computed gap between the two
+** edges then comes out a hair above or below 0), a hair inside or outside
+** for s = 1 -+ 1e-9. */
 static int config_junction_on_circle(test_config *c)
 {
-  static const double s[3] = {1, 1 - 1e-9, 1 + 1e-9};
   int k, q;
-  if (!config_alloc(c, "junction_on_circle", 9, test_open_box())) return -1;
-  for (k = 0; k < 3; k++)
+  if (!config_alloc(c, "junction_on_circle", 30, test_open_box())) return -1;
+  for (k = 0; k < 10; k++)
     for (q = 0; q < 3; q++) {
-      double a = 0.4 + q * 2.0943951023931957;   /* 2 pi / 3 */
-      c->r[6*k + 2*q] = 10.0 * k + s[k] * cos(a);
-      c->r[6*k + 2*q + 1] = s[k] * sin(a);
+      double s = k == 8 ? 1 - 1e-9 : k == 9 ? 1 + 1e-9 : 1;
+      double a = 0.4 + 0.7 * k + q * 2.0943951023931957;   /* 2 pi / 3 */
+      c->r[6*k + 2*q] = 10.0 * k + s * cos(a);
+      c->r[6*k + 2*q + 1] = s * sin(a);
     }
+  return 1;
+}
+
+/* Three squares of four cells on a circle of radius l (within 3e-16 l), a
+** junction of four cells on each one's circle, where the computed arc
+** between two edges comes out a hair below 0, as 2 pi - 1e-15 (found among
+** random such squares: 183 of 200000 do this). */
+static int config_cocircular_on_circle(test_config *c)
+{
+  static const double r[24] = {
+    2.7728860386578527, -0.026321498686697531, 2.7239825250278118,
+    -1.5531607509317533, 4.2162105363021052, -1.3789266812938639,
+    3.834781984698767, 0.086986304250814772,
+    -1.8407266423988324, 2.6998548046903759, -0.73657126192405542,
+    3.0710435391864581, -1.0612747999209886, 4.5296883813224254,
+    -2.4159040153909213, 4.152108328350276,
+    -4.3412415133625322, -4.6893574083649909, -3.8727033884207791,
+    -3.3652376542521614, -5.30648249325096, -2.940821904806119,
+    -5.6793360101372006, -4.223133495038601};
+  if (!config_alloc(c, "cocircular_on_circle", 12, test_open_box()))
+    return -1;
+  memcpy(c->r, r, sizeof r);
+  return 1;
+}
+
+/* Three cells on a line, 0.8 l apart: the middle cell's bisectors are
+** parallel to each other, and the end cells' two are parallel (one behind
+** the other); the same turned by 0.9 (parallel up to rounding). */
+static int config_collinear(test_config *c)
+{
+  int k;
+  if (!config_alloc(c, "collinear", 6, test_open_box())) return -1;
+  for (k = 0; k < 3; k++) {
+    c->r[2*k] = 0.8 * k;
+    c->r[2*k+1] = 0;
+    c->r[6 + 2*k] = 0.8 * k * cos(0.9);
+    c->r[6 + 2*k + 1] = 10 + 0.8 * k * sin(0.9);
+  }
   return 1;
 }
 
@@ -195,6 +236,8 @@ int test_config_make(int k, test_config *c)
   case 7: return config_random_periodic(c);
   case 8: return config_cluster(c);
   case 9: return config_random_open(c);
+  case 10: return config_collinear(c);
+  case 11: return config_cocircular_on_circle(c);
   default: return 0;
   }
 }
