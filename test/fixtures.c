@@ -91,18 +91,21 @@ static int config_lens(test_config *c)
   return 1;
 }
 
-/* Pairs about to detach, 2l - d = 1e-3 .. 1e-12 l, 10 l apart, and a
+/* Pairs about to detach, 2l - d = 1e-3 .. 1e-12 l, then five at random
+** 2l - d in [1e-13, 1e-3] l, each turned at random, 10 l apart; and a
 ** triple: a pair 2l - 1e-8 apart with a third cell in contact with one. */
 static int config_near_detachment(test_config *c)
 {
   static const double eps[5] = {1e-3, 1e-6, 1e-9, 1e-11, 1e-12};
   int k;
-  if (!config_alloc(c, "near_detachment", 13, test_open_box())) return -1;
-  for (k = 0; k < 5; k++)
-    put_pair(c->r + 4 * k, 10.0 * k, 0, 2 - eps[k], 0.3 + 1.1 * k);
-  put_pair(c->r + 20, 0, 10, 2 - 1e-8, 0.7);
-  c->r[24] = c->r[20] - 1.5;
-  c->r[25] = c->r[21] + 0.4;
+  if (!config_alloc(c, "near_detachment", 23, test_open_box())) return -1;
+  for (k = 0; k < 10; k++) {
+    double e = k < 5 ? eps[k] : pow(10, -3 - 10 * test_rng_uniform());
+    put_pair(c->r + 4 * k, 10.0 * k, 0, 2 - e, 2 * PI * test_rng_uniform());
+  }
+  put_pair(c->r + 40, 0, 10, 2 - 1e-8, 0.7);
+  c->r[44] = c->r[40] - 1.5;
+  c->r[45] = c->r[41] + 0.4;
   return 1;
 }
 
