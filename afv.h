@@ -207,7 +207,8 @@ int  afv_geometry_prepare(afv_geom *g, int n, const double *r, double l,
                           const afv_box *b);
 /* Fills g's neighbour lists: every centre closer than 2l, sorted by
 ** direction (counter-clockwise from +x), filtered from candidates that a
-** cell list refreshes only when cells have moved (geom.c, Verlet skin). */
+** cell list refreshes only when cells have moved (geom.c, Verlet skin);
+** in the reference build, found in a cell list built at every call. */
 int  afv_neighbours(afv_geom *g, int n, const double *r, double l,
                     const afv_box *b);
 /* The cells that may now lie within R of the point (x, y), from the cell
