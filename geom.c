@@ -937,9 +937,11 @@ static int plain_list(const afv_geom *g, int i, double l, const afv_box *b,
     for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++) {
       int j = g->bin_cell[k];
       double dx = g->rw[2*j] - g->rw[2*i], dy = g->rw[2*j+1] - g->rw[2*i+1];
+      double d2;
       afv_min_image(b, &dx, &dy);
-      if (j == i || !(dx * dx + dy * dy < 4 * l * l)) continue;
-      if (dx * dx + dy * dy == 0) return -1 - j;
+      d2 = dx * dx + dy * dy;
+      if (j == i || !(d2 < 4 * l * l)) continue;
+      if (d2 == 0) return -1 - j;
       if (nbr) {
         nbr[count] = j;
         nbr_d[2*count] = dx;
