@@ -86,7 +86,7 @@ static void check_one_step(const test_config *c, int per_cell)
                         AFV_RNG_NOISE);
     x = r0[2*i] + d.dt * (d.mu * f[2*i] + v * cs);
     y = r0[2*i+1] + d.dt * (d.mu * f[2*i+1] + v * sn);
-    th = D > 0 ? th0[i] + sqrt(2 * D * d.dt) * xi : th0[i];
+    th = th0[i] + sqrt(2 * D * d.dt) * xi;    /* Dr_i = 0: th + 0 */
     if (s.r[2*i] != x || s.r[2*i+1] != y)
       moved++;
     if (s.theta[i] != th)
