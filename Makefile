@@ -7,10 +7,14 @@
 #   make bench-compare  per-cell cost against N = 400 (and threads, OPENMP=1)
 #   make fuzz       every libFuzzer harness fuzz/fuzz_*.c for FUZZ_SECONDS s
 #                   (default 60; clang; make -j2 fuzz runs two at a time)
+#   make twins      the two modes side by side (test/twins.c, doc/reference.md)
 #   make clean
 #
 # CC and CFLAGS may be overridden (make CC=clang, make CC=tcc).
 # OPENMP=1 adds -fopenmp (optional; the default build is plain C99).
+# REFERENCE=1 builds the reference mode (-DAFV_REFERENCE, doc/reference.md):
+# the C library's atan2, sin and cos, a plain neighbour search, a plain
+# loop for the noise; the same model to rounding, slower.
 
 # -O3 and -fno-math-errno (sqrt inline, without the errno branch; afv never
 # reads errno) take 2-4% fewer instructions per step than -O2 (callgrind)
@@ -23,18 +27,23 @@ ifeq ($(OPENMP),1)
 CFLAGS  += -fopenmp
 LDLIBS  += -fopenmp
 endif
+# (override: also appended to a CFLAGS given on the command line; after
+# the OpenMP lines, which an override would silence)
+ifeq ($(REFERENCE),1)
+override CFLAGS += -DAFV_REFERENCE
+endif
 
 LIB_SRC  = geom.c afv.c dynamics.c analysis.c svg.c io.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
-.PHONY: all test run bench bench-quick bench-compare fuzz clean FORCE
+.PHONY: all test run bench bench-quick bench-compare fuzz twins clean FORCE
 
 all: afv libafv.a
 
 # Every object and program depends on .build-flags, which holds the
 # compiler and flags of the last build and is rewritten only when they
-# change: switching CC, CFLAGS or OPENMP rebuilds everything.  (Else the
+# change: switching CC, CFLAGS, OPENMP or REFERENCE rebuilds everything.  (Else the
 # builds mix: after a serial build, make OPENMP=1 test linked the serial
 # library into an OpenMP test program; the other way round, the serial
 # programs failed to link the OpenMP library.)
@@ -135,6 +144,25 @@ fuzz-%: fuzz/build/fuzz_%
 
 fuzz: $(addprefix fuzz-,$(FUZZ_NAMES))
 
+# The twin check (test/twins.c): one program built from the sources in each
+# mode (whatever REFERENCE says) prints every result of its configurations
+# in %.17g; the fast one then compares the two outputs (shapes, energy and
+# forces to 1e-12, 100 steps to 1e-9 l) and refuses two of one mode.
+TWIN_SRC    = test/twins.c test/fixtures.c $(LIB_SRC)
+TWIN_CFLAGS = $(filter-out -DAFV_REFERENCE,$(CFLAGS))
+
+test/twins_fast: $(TWIN_SRC) test/test.h afv.h .build-flags
+	$(CC) $(TWIN_CFLAGS) -I. -o $@ $(TWIN_SRC) $(LDLIBS)
+
+test/twins_ref: $(TWIN_SRC) test/test.h afv.h .build-flags
+	$(CC) $(TWIN_CFLAGS) -DAFV_REFERENCE -I. -o $@ $(TWIN_SRC) $(LDLIBS)
+
+twins: test/twins_fast test/twins_ref
+	./test/twins_fast > test/twins_fast.out
+	./test/twins_ref > test/twins_ref.out
+	./test/twins_fast --compare test/twins_fast.out test/twins_ref.out
+
 clean:
 	rm -f *.o libafv.a afv test/run_tests test/bench .build-flags
+	rm -f test/twins_fast test/twins_ref test/twins_fast.out test/twins_ref.out
 	rm -rf fuzz/build

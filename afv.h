@@ -40,6 +40,19 @@ const char *afv_strerror(int status);   /* one-line description of a status */
 ** contact: it is kept in the boundary but not counted in afv_geom.contacts. */
 #define AFV_CONTACT_TOL 1e-9
 
+/* ---- reference build (make REFERENCE=1) -------------------------------- */
+/* 1 in a build with -DAFV_REFERENCE: the C library's atan2, sin and cos in
+** place of afv_angle's and afv_sincos's own arithmetic, a plain neighbour
+** search (a cell list rebuilt at every call: no Verlet candidates, no
+** movers) and one plain per-cell loop for the noise, with the same random
+** numbers.  The same model to rounding (doc/reference.md); 0 otherwise.
+** The library tests it with `if`, so both paths are always compiled. */
+#ifdef AFV_REFERENCE
+#define AFV_REFERENCE_MODE 1
+#else
+#define AFV_REFERENCE_MODE 0
+#endif
+
 /* ---- OpenMP build (make OPENMP=1) -------------------------------------- */
 /* A per-cell loop over fewer than AFV_PARALLEL_MIN cells runs on the
 ** calling thread alone (see geom.c): starting and joining a team costs
@@ -194,7 +207,8 @@ int  afv_geometry_prepare(afv_geom *g, int n, const double *r, double l,
                           const afv_box *b);
 /* Fills g's neighbour lists: every centre closer than 2l, sorted by
 ** direction (counter-clockwise from +x), filtered from candidates that a
-** cell list refreshes only when cells have moved (geom.c, Verlet skin). */
+** cell list refreshes only when cells have moved (geom.c, Verlet skin);
+** in the reference build, found in a cell list built at every call. */
 int  afv_neighbours(afv_geom *g, int n, const double *r, double l,
                     const afv_box *b);
 /* The cells that may now lie within R of the point (x, y), from the cell
@@ -469,12 +483,13 @@ void afv_init_angles(int n, unsigned long long seed, double *theta);
 /* The counter-clockwise angle from +x to the vector (x, y), in [0, 2 pi]
 ** (2 pi only by rounding, for y a hair below 0): atan2(y, x) + (2 pi if
 ** negative), within 8.9e-16 (measured), in plain arithmetic (geom.c);
-** NaN if both components are infinite. */
+** NaN if both components are infinite.  Reference build: exactly
+** atan2(y, x) + (2 pi if negative). */
 double afv_angle(double y, double x);
 /* sin x and cos x to within 2.22e-16 of the C library's (measured), in
 ** plain arithmetic (dynamics.c: about 70 instructions without a branch,
 ** where the library's sincos takes about 130); |x| >= 1e6, inf and NaN
-** are passed to sin and cos. */
+** are passed to sin and cos.  Reference build: sin x and cos x. */
 void afv_sincos(double x, double *sin_x, double *cos_x);
 
 /* ---- random numbers ---------------------------------------------------- */

@@ -79,7 +79,8 @@ void afv_sincos(double x, double *sin_x, double *cos_x)
   double t, r, z, sr, cr;
   long m, k;
   unsigned q;
-  if (!(fabs(x) < SINCOS_FAST_LIMIT)) {
+  /* the C library's also in the reference build (make REFERENCE=1) */
+  if (AFV_REFERENCE_MODE || !(fabs(x) < SINCOS_FAST_LIMIT)) {
     *sin_x = sin(x);
     *cos_x = cos(x);
     return;
@@ -811,6 +812,21 @@ static void rotate_block(afv_sim *s, int first, int m, unsigned long long seed,
   }
 }
 
+/* The reference twin of the noise (make REFERENCE=1), one plain loop over
+** the cells: th_i <- th_i + sqrt(2 Dr_i dt) xi_i (paper, Eq. abp), xi_i the
+** normal of cell i at this step (afv_rng_normal: the draw of rotate_block,
+** which gets the two normals of a pair from one counter). */
+static void rotate_plain(afv_sim *s, unsigned long long seed,
+                         unsigned long long step)
+{
+  int i;
+  for (i = 0; i < s->n; i++) {
+    double Dr = s->dyn.Dr_i ? s->dyn.Dr_i[i] : s->dyn.Dr;
+    double xi = afv_rng_normal(seed, (uint32_t)i, step, AFV_RNG_NOISE);
+    if (Dr > 0) s->theta[i] += sqrt(2 * Dr * s->dyn.dt) * xi;
+  }
+}
+
 int afv_sim_step(afv_sim *s)
 {
   unsigned long long seed = s->dyn.seed, step = (unsigned long long)s->step;
@@ -828,11 +844,15 @@ int afv_sim_step(afv_sim *s)
     }
     return st;
   }
-  pairs = (s->n + 1) / 2;          /* cells 2p and 2p + 1 share one draw */
-  AFV_PARALLEL_FOR(s->n)
-  for (i = 0; i < pairs; i += NOISE_BLOCK)
-    rotate_block(s, i, pairs - i < NOISE_BLOCK ? pairs - i : NOISE_BLOCK,
-                 seed, step);
+  if (AFV_REFERENCE_MODE) {
+    rotate_plain(s, seed, step);
+  } else {
+    pairs = (s->n + 1) / 2;        /* cells 2p and 2p + 1 share one draw */
+    AFV_PARALLEL_FOR(s->n)
+    for (i = 0; i < pairs; i += NOISE_BLOCK)
+      rotate_block(s, i, pairs - i < NOISE_BLOCK ? pairs - i : NOISE_BLOCK,
+                   seed, step);
+  }
   s->step++;
   s->t = (double)s->step * s->dyn.dt;   /* no drift from summing dt */
   return AFV_OK;

@@ -915,6 +915,82 @@ static int reserve_pieces(afv_geom *g, int n)
               sizeof(afv_piece));
 }
 
+/* ---- the reference neighbour search (make REFERENCE=1) ---------------- */
+/* The same lists as the candidates' (below), found plainly at every call:
+** a cell list with bins of side >= 2l, and for each cell i, in the bins
+** within 2l of it, every cell j closer than 2l, D = r_j - r_i between the
+** wrapped centres, minimum image (afv_min_image: the bits of filter_cell's
+** fold, but at a tie of half a box), sorted by direction (sort_slots).
+** The lists have no gaps.  The grid stays in g as the one afv_cells_around
+** reads, with cand_moved = 0: it is the grid of these very positions. */
+
+/* Cell i's neighbours, written to nbr[] and nbr_d[] unless nbr is NULL;
+** returns how many, or -1 - j for the first cell j at i's centre (cells
+** at one centre share a bin, in increasing order: j is the smallest). */
+static int plain_list(const afv_geom *g, int i, double l, const afv_box *b,
+                      int *nbr, double *nbr_d)
+{
+  bin_window w = window_around(g, g->rw[2*i], g->rw[2*i+1], 2 * l, 0);
+  int q, k, count = 0;
+  for (q = 0; q < w.nx * w.ny; q++) {
+    int bin = window_bin(g, &w, q);
+    for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++) {
+      int j = g->bin_cell[k];
+      double dx = g->rw[2*j] - g->rw[2*i], dy = g->rw[2*j+1] - g->rw[2*i+1];
+      double d2;
+      afv_min_image(b, &dx, &dy);
+      d2 = dx * dx + dy * dy;
+      if (j == i || !(d2 < 4 * l * l)) continue;
+      if (d2 == 0) return -1 - j;
+      if (nbr) {
+        nbr[count] = j;
+        nbr_d[2*count] = dx;
+        nbr_d[2*count+1] = dy;
+      }
+      count++;
+    }
+  }
+  return count;
+}
+
+/* Counts every list, then writes, sorts and links them in cell order (a
+** cell's smaller neighbours are listed when link_cell pairs them).  The
+** offsets go to cand_start, where reserve_pieces reads a cell's room. */
+static int plain_neighbours(afv_geom *g, int n, const double *r, double l,
+                            const afv_box *b)
+{
+  grid G;
+  int i, st;
+  if (b && b->periodic) grid_periodic(&G, b, l, n);
+  else grid_open(&G, n, r, l);
+  if ((st = fill_bins(g, &G, n, r)) != AFV_OK) return st;
+  g->cand_grid = G;
+  g->cand_l = l;
+  g->cand_moved = 0;
+  wrap_all(g, n, r, b);
+  g->cand_start[0] = 0;
+  for (i = 0; i < n; i++) {
+    int count = plain_list(g, i, l, b, NULL, NULL);
+    if (count < 0) {                 /* the first cell i with a twin j > i */
+      g->bad_i = i;
+      g->bad_j = -1 - count;
+      return AFV_ECOINCIDENT;
+    }
+    g->cand_start[i + 1] = g->cand_start[i] + count;
+  }
+  if (grow_nbr(g, g->cand_start[n] + 1) || reserve_pieces(g, n))
+    return AFV_ENOMEM;
+  for (i = 0; i < n; i++) {
+    int s0 = g->cand_start[i];
+    g->nbr_start[i] = s0;
+    g->nbr_end[i] = s0 + plain_list(g, i, l, b, g->nbr + s0, g->nbr_d + 2*s0);
+    sort_slots(g->nbr + s0, g->nbr_d + 2 * s0, g->nbr_end[i] - s0);
+    link_cell(g, i, l);
+  }
+  g->nbr_start[n] = g->cand_start[n];
+  return AFV_OK;
+}
+
 /* The exact lists from the candidates, then the pairs linked.  Serially,
 ** one pass: cell i is linked right after it is listed, to its smaller
 ** neighbours, listed moments before, whose slots are still in cache (at
@@ -929,6 +1005,7 @@ int afv_neighbours(afv_geom *g, int n, const double *r, double l,
   g->n = n;
   g->nbr_start[0] = g->piece_start[0] = 0;
   if (n == 0) return AFV_OK;
+  if (AFV_REFERENCE_MODE) return plain_neighbours(g, n, r, l, b);
   wrap_all(g, n, r, b);
   if (!candidates_valid(g, n, r, l, b)) {
     if ((st = build_candidates(g, n, r, l, b)) != AFV_OK) return st;
@@ -1132,6 +1209,13 @@ static afv_piece *store_piece(const afv_geom *g, afv_piece *pc, int slot,
 #define ATAN_C_HI   0.4124104415973873      /* atan(7/16) = HI + LO */
 #define ATAN_C_LO   (-1.587652227770689e-17)
 
+/* The reference twin (make REFERENCE=1): the C library's atan2. */
+static double angle_libm(double y, double x)
+{
+  double a = atan2(y, x);
+  return a < 0 ? a + TWO_PI : a;
+}
+
 double afv_angle(double y, double x)
 {
   static const double aT[11] = {
@@ -1147,6 +1231,7 @@ double afv_angle(double y, double x)
   static const double sgn[8] = {1, -1, -1, 1, -1, 1, 1, -1};
   double ax = fabs(x), ay = fabs(y), lo, hi, num, den, u, z, z2, z4, Q, a;
   int steep = ay > ax, k;
+  if (AFV_REFERENCE_MODE) return angle_libm(y, x);
   if (isnan(x) || isnan(y)) return x + y;
   lo = ay < ax ? ay : ax;                     /* min and max (minsd, maxsd */
   hi = ay > ax ? ay : ax;                     /* on x86): no branch */

@@ -59,6 +59,7 @@ int main(void)
   suite_pictures();
   suite_readers();
   suite_runjob();
+  suite_reference();
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;
 }

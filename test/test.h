@@ -59,6 +59,17 @@ afv_box test_tri_lattice(int nx, int ny, double D, double x0, double y0,
 /* Runs a shell command (printf-style); its exit status, -1 if it did not
 ** exit normally. */
 int test_sh(const char *fmt, ...);
+/* The configurations of the twin checks (test_reference.c, twins.c),
+** numbered from 0: test_config_make fills c (r allocated; l = 1) and
+** returns 1; 0 past the last, -1 out of memory. */
+typedef struct test_config {
+  const char *name;
+  int         n;
+  double     *r;
+  afv_box     box;
+} test_config;
+int  test_config_make(int k, test_config *c);
+void test_config_free(test_config *c);
 
 /* Test suites, one per source file. */
 void suite_core(void);
@@ -69,5 +80,6 @@ void suite_perf(void);
 void suite_pictures(void);
 void suite_readers(void);
 void suite_runjob(void);
+void suite_reference(void);
 
 #endif
