@@ -313,7 +313,7 @@ static void test_failed_resume_changes_nothing(void)
   static const char *const cases[][3] = {
     /* damage (shell, in the copy), resume options, the message names */
     {"printf 'torn' >> trajectory.dat && truncate -s 200 observables.csv",
-     "", "observables.csv"},
+     "", "checkpoint.txt:7: bytes observables.csv"},
     {"printf 'torn' >> trajectory.dat && printf 'torn' >> observables.csv "
      "&& rm trajectory.xyz", "", "trajectory.xyz"},
     {"printf '1\\n' > t1_reference.txt", "--steps 50", "t1_reference.txt"},
