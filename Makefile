@@ -33,7 +33,7 @@ ifeq ($(REFERENCE),1)
 override CFLAGS += -DAFV_REFERENCE
 endif
 
-LIB_SRC  = geom.c afv.c dynamics.c analysis.c svg.c io.c
+LIB_SRC  = geom.c afv.c dynamics.c analysis.c svg.c io.c phase.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
@@ -59,7 +59,7 @@ libafv.a: $(LIB_OBJ)
 	$(AR) rcs $@ $(LIB_OBJ)
 
 # The program: main.c dispatches to the commands (cli.h lists their files).
-CLI_SRC  = main.c cli.c inspect.c run.c report.c
+CLI_SRC  = main.c cli.c inspect.c run.c report.c sweep.c collect.c
 CLI_OBJ  = $(CLI_SRC:.c=.o)
 
 afv: $(CLI_OBJ) libafv.a .build-flags

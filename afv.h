@@ -664,6 +664,11 @@ typedef struct afv_analysis {
   double  d0, deff;     /* D_0 = v0^2 / (2 Dr), D_eff = D_s / D_0 */
   double  tau_ngc;      /* autocorrelation time of N_GC (time units) */
   int     tau_reliable; /* 0 if the series was too short for the window */
+  long    ds_origins;   /* time origins behind the lag of D_s */
+  double  t1_rate;      /* T1 events per cell per unit time between
+                        ** consecutive steady frames (NaN: < 2 frames) */
+  double  msd_beta;     /* slope of log MSD_rel vs log lag at long lags
+                        ** (analysis.c: MSD_BETA_*; NaN if too few lags) */
 } afv_analysis;
 /* Analyses every frame of tr (unwrapped); steady part: t >= steady_from;
 ** D_s at the computed lag nearest to `lag`. */
@@ -739,5 +744,40 @@ int afv_svg_plot(FILE *out, const afv_plot *pl, const afv_plot_series *s,
 int afv_svg_msd(FILE *out, const afv_analysis *a);
 int afv_svg_series(FILE *out, const afv_analysis *a);
 int afv_svg_csd(FILE *out, const afv_analysis *a);
+
+/* ---- phase diagrams (phase.c) --------------------------------------------- */
+/* The first x where y falls from >= level to < level as x grows (linear
+** interpolation between consecutive finite points); 1 if found into *xc. */
+int afv_crossing(int n, const double *x, const double *y, double level,
+                 double *xc);
+
+/* Least-squares fit of the dispersal boundary v_s(P0) = v0* - c P0^alpha
+** (the paper's form) to n >= 3 points (P0 > 0): linear in (v0*, c) at each
+** alpha, alpha in [0.05, 12] by a scan and a golden-section search.
+** Standard errors from s^2 (J^T J)^-1 with s^2 = rss / (n - 3): NaN when
+** n = 3.  AFV_EINVAL if n < 3 or a point is not finite. */
+typedef struct afv_boundary {
+  int    n;                  /* points fitted */
+  double v0star, c, alpha;   /* the fit */
+  double se_v0star, se_c, se_alpha;  /* their standard errors */
+  double rss;                /* residual sum of squares */
+} afv_boundary;
+int afv_boundary_fit(int n, const double *p0, const double *vs,
+                     afv_boundary *b);
+
+/* A map of z over an nx x ny grid (x, y increasing), one coloured rectangle
+** per point (grey: NaN), the contour z = level (marching squares; NaN
+** level: none), an optional dashed curve (cx, cy; cn points), a colour bar. */
+typedef struct afv_map {
+  const char   *title, *xlabel, *ylabel, *zlabel;
+  int           nx, ny;
+  const double *x, *y;       /* grid coordinates */
+  const double *z;           /* z[j nx + i] at (x[i], y[j]) */
+  int           logz;        /* 1: colour by log10 z */
+  double        level;       /* contour level */
+  const double *cx, *cy;     /* curve (may be NULL with cn = 0) */
+  int           cn;
+} afv_map;
+int afv_svg_map(FILE *out, const afv_map *m);
 
 #endif /* AFV_H */

@@ -46,6 +46,18 @@
 /* Log-spaced MSD lags: this many per decade of frame lags. */
 #define MSD_LAGS_PER_DECADE 10
 
+/* msd_beta, the long-time slope of log MSD_rel against log lag, is fitted
+** on the lags from MSD_BETA_FROM to MSD_BETA_TO of the steady window: the
+** upper end keeps at least 90% of the frames as time origins behind every
+** lag; the lower end, a decade below, is past the polarity's persistence
+** time 1/Dr = 10 once the window is longer than 1000 time units (10^5 steps
+** at dt = 0.01).  As fractions of the window the slope does not change with
+** the run's length: a caged (glassy) tissue has beta near 0, a fluid one
+** near 1.  Fewer than MSD_BETA_MIN_LAGS lags in that range: beta is NaN. */
+#define MSD_BETA_FROM 0.01
+#define MSD_BETA_TO 0.1
+#define MSD_BETA_MIN_LAGS 3
+
 /* ---- buffers ----------------------------------------------------------- */
 static int grow(void **ptr, int *cap, int need, size_t elem)
 {
@@ -655,18 +667,20 @@ static int analysis_alloc(afv_analysis *a, int nframes, int n)
          ? AFV_OK : AFV_ENOMEM;
 }
 
-/* Per-frame order parameters; cluster sizes of steady frames into csd. */
+/* Per-frame order parameters; cluster sizes of steady frames into csd;
+** contact changes between consecutive steady frames into t1_rate. */
 static int analyze_frames(afv_analysis *a, const afv_traj *tr, double l)
 {
   afv_geom g;
   afv_clusters c;
-  afv_t1 t1;
+  afv_t1 t1, prev;
   afv_params p;
   int f, k, st = AFV_OK, n = tr->n;
-  double nclusters = 0;
+  double nclusters = 0, changes = 0;
   memset(&g, 0, sizeof g);
   memset(&c, 0, sizeof c);
   memset(&t1, 0, sizeof t1);
+  memset(&prev, 0, sizeof prev);
   afv_params_default(&p);
   p.l = l;
   for (f = 0; f < tr->nframes && st == AFV_OK; f++) {
@@ -680,13 +694,23 @@ static int analyze_frames(afv_analysis *a, const afv_traj *tr, double l)
     a->omega[f] = c.omega;
     a->t1[f] = afv_t1_count(&t1, &c);
     if (f < a->first) continue;
+    if (f > a->first) changes += afv_t1_count(&prev, &c);
+    if ((st = afv_t1_start(&prev, &c)) != AFV_OK) break;
     for (k = 0; k < c.count; k++) a->csd[c.size[k]] += 1;
     nclusters += c.count;
   }
   for (k = 1; k <= n && nclusters > 0; k++) a->csd[k] /= nclusters;
+  /* T1 events per cell per unit time: each neighbour exchange between two
+  ** frames changes one pair lost and one gained, |C(f) sym-diff C(f-1)|/2
+  ** counts it once (exchanges undone within one frame interval are
+  ** missed, so the rate is a lower bound that depends on frame_every) */
+  f = tr->nframes - 1;
+  a->t1_rate = f > a->first ? changes / (n * (tr->t[f] - tr->t[a->first]))
+               : NAN;
   afv_geom_free(&g);
   afv_clusters_free(&c);
   afv_t1_free(&t1);
+  afv_t1_free(&prev);
   return st;
 }
 
@@ -707,12 +731,35 @@ static void diffusivity(afv_analysis *a, double v0, double Dr, double lag)
   int k = afv_msd_lag_index(&a->msd, lag);
   a->d0 = Dr > 0 ? v0 * v0 / (2 * Dr) : HUGE_VAL;
   a->ds = a->ds_plain = a->ds_lag = 0;
+  a->ds_origins = 0;
   if (k >= 0 && a->msd.dt[k] > 0) {
     a->ds_lag = a->msd.dt[k];
     a->ds = a->msd.msd_rel[k] / (4 * a->ds_lag);
     a->ds_plain = a->msd.msd[k] / (4 * a->ds_lag);
+    a->ds_origins = a->n > 0 ? a->msd.samples[k] / a->n : 0;
   }
-  a->deff = a->d0 > 0 ? a->ds / a->d0 : HUGE_VAL;  /* v0 = 0: undefined */
+  /* v0 = 0 (D_0 = 0): D_eff = D_s / D_0 is undefined, not infinite */
+  a->deff = a->d0 > 0 ? a->ds / a->d0 : NAN;
+}
+
+/* Least-squares slope of log MSD_rel against log lag over the lags between
+** MSD_BETA_FROM and MSD_BETA_TO of the steady window (see there). */
+static double msd_beta(const afv_msd *m, double window)
+{
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int k, n = 0;
+  for (k = 0; k < m->nlags; k++) {
+    double x, y;
+    if (m->dt[k] < MSD_BETA_FROM * window || m->dt[k] > MSD_BETA_TO * window
+        || !(m->msd_rel[k] > 0))
+      continue;
+    x = log(m->dt[k]);
+    y = log(m->msd_rel[k]);
+    sx += x; sy += y; sxx += x * x; sxy += x * y;
+    n++;
+  }
+  if (n < MSD_BETA_MIN_LAGS) return NAN;
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 int afv_analyze(afv_analysis *a, const afv_traj *tr, double l, double v0,
@@ -742,6 +789,7 @@ int afv_analyze(afv_analysis *a, const afv_traj *tr, double l, double v0,
   mean_sd(a->omega + a->first, m, &a->mean[2], &a->sd[2]);
   a->t1_final = a->t1[tr->nframes - 1];
   diffusivity(a, v0, Dr, lag);
+  a->msd_beta = msd_beta(&a->msd, tr->t[tr->nframes - 1] - tr->t[a->first]);
   a->tau_ngc = afv_autocorr_time(a->ngc_frac + a->first, m, &a->tau_reliable);
   k = tr->nframes - 1;
   if (m > 1 && a->tau_ngc < HUGE_VAL)
@@ -769,10 +817,12 @@ int afv_csd_log_bins(const double *csd, int n, int *lo, int *hi, double *p)
 /* ---- writing the results ------------------------------------------------ */
 typedef void (*writer_fn)(FILE *fp, const afv_analysis *a);
 
-/* "inf" for HUGE_VAL, so that summary.txt stays KEY VALUE */
+/* "inf" for HUGE_VAL and "nan" for NaN (the C library's spelling varies),
+** so that summary.txt stays KEY VALUE */
 static void put_value(FILE *fp, const char *key, double v)
 {
   if (v >= HUGE_VAL) fprintf(fp, "%s inf\n", key);
+  else if (isnan(v)) fprintf(fp, "%s nan\n", key);
   else fprintf(fp, "%s %.10g\n", key, v);
 }
 
@@ -782,8 +832,9 @@ static void write_summary(FILE *fp, const afv_analysis *a)
   int k;
   fprintf(fp, "# afv analyze: steady part = frames %d..%d (t >= %.10g)\n",
           a->first, a->nframes - 1, a->t[a->first]);
-  fprintf(fp, "cells %d\nframes %d\nsteady_from %.10g\n", a->n, a->nframes,
-          a->t[a->first]);
+  fprintf(fp, "cells %d\nframes %d\nsteady_from %.10g\nsteady_to %.10g\n"
+          "steady_frames %d\n", a->n, a->nframes, a->t[a->first],
+          a->t[a->nframes - 1], a->nframes - a->first);
   for (k = 0; k < 3; k++) {
     fprintf(fp, "%s_mean %.10g\n", names[k], a->mean[k]);
     fprintf(fp, "%s_sd %.10g\n", names[k], a->sd[k]);
@@ -791,11 +842,14 @@ static void write_summary(FILE *fp, const afv_analysis *a)
   fprintf(fp, "t1_final %.10g\n", a->t1_final);
   put_value(fp, "D_s", a->ds);
   put_value(fp, "D_s_lag", a->ds_lag);
+  fprintf(fp, "D_s_origins %ld\n", a->ds_origins);
   put_value(fp, "D_s_plain", a->ds_plain);
   put_value(fp, "D_0", a->d0);
   put_value(fp, "D_eff", a->deff);
   put_value(fp, "tau_NGC", a->tau_ngc);
   fprintf(fp, "tau_NGC_reliable %d\n", a->tau_reliable);
+  put_value(fp, "t1_rate", a->t1_rate);
+  put_value(fp, "msd_beta", a->msd_beta);
 }
 
 static void write_msd(FILE *fp, const afv_analysis *a)

@@ -7,6 +7,8 @@
 **   inspect.c  eval, check, draw, meanfield: one configuration
 **   run.c      run: the simulation job (run directory, outputs, resume)
 **   report.c   analyze: a run's order parameters and plots
+**   sweep.c    sweep: a grid of runs and its runners (make, parallel, SLURM)
+**   collect.c  collect: a sweep's table, missing jobs, fits and figures
 **
 ** Exit status of every command: 0 success, 1 a check failed, 2 bad input
 ** or options, 3 a run stopped on an unstable step.  Only these files decide
@@ -31,6 +33,8 @@ int cmd_run(int argc, char **argv);
 int cmd_draw(int argc, char **argv);
 int cmd_analyze(int argc, char **argv);
 int cmd_meanfield(int argc, char **argv);
+int cmd_sweep(int argc, char **argv);
+int cmd_collect(int argc, char **argv);
 
 /* ---- cli.c -------------------------------------------------------------- */
 /* Prints "afv: MSG" on stderr and returns EXIT_BAD_INPUT. */
@@ -53,6 +57,17 @@ void print_wrapped(const char *text);
 /* Option NAME with a finite double value; returns 1 if consumed. */
 int double_option(int argc, char **argv, int *k, const char *name,
                   double *out, int *bad);
+
+/* ---- run.c: the keys of afv run, for afv sweep -------------------------- */
+/* 1 if NAME is a key of afv run and TEXT a value it accepts; else 0 and
+** err says why ("KEY: 'TEXT' is not ...", or "unknown key"). */
+int run_key_check(const char *name, const char *text, char *err,
+                  size_t errlen);
+/* Applies the n KEY VALUE pairs to the defaults, checks the whole set as
+** afv run does (ranges, cells file) and, if path is not NULL, writes every
+** key to path in params.txt form.  1, or 0 with the reason in err. */
+int run_config_write(const char *path, int n, const char *const *names,
+                     const char *const *values, char *err, size_t errlen);
 
 /* ---- run.c: tolerant readers of a run directory ------------------------- */
 /* The value of key in the params.txt at path, if it is a whole finite

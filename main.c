@@ -8,6 +8,8 @@
 **   afv draw FILE [options]       SVG of a POINTS file or a trajectory frame
 **   afv analyze DIR [options]     order parameters, MSD and plots of a run
 **   afv meanfield [options]       the hexagonal mean-field E/M point P0*
+**   afv sweep --out DIR [options] a grid of runs and its runners
+**   afv collect DIR               a sweep's table, fits and figures
 **
 ** Exit status: 0 success, 1 a check failed, 2 bad input or options,
 ** 3 a run stopped on an unstable step.
@@ -29,6 +31,8 @@ static const char *usage_text =
   "  draw FILE       SVG picture of a POINTS file or a trajectory frame\n"
   "  analyze DIR     order parameters, MSD and plots of a run\n"
   "  meanfield       the hexagonal mean-field E/M point P0*\n"
+  "  sweep           a grid of runs (make, GNU parallel or SLURM runs it)\n"
+  "  collect DIR     a sweep's table, phase labels, fits and figures\n"
   "\n"
   "Run 'afv COMMAND --help' for the options of a command (afv run --help\n"
   "lists every simulation key with its default, unit and meaning).\n";
@@ -46,6 +50,8 @@ static const command commands[] = {
   {"draw", cmd_draw},
   {"analyze", cmd_analyze},
   {"meanfield", cmd_meanfield},
+  {"sweep", cmd_sweep},
+  {"collect", cmd_collect},
 };
 
 int main(int argc, char **argv)

@@ -21,6 +21,9 @@
 ** average of a handful of displacements is not a diffusivity. */
 #define MIN_LAG_ORIGINS 10
 
+/* Lag of D_s when --lag is not given (the paper's, in time units). */
+#define DEFAULT_LAG 5000.0
+
 static const char *analyze_usage =
   "usage: afv analyze DIR [--lag L] [--steady-from T] [--l L] [--v0 V]"
   " [--Dr D]\n\n"
@@ -28,7 +31,11 @@ static const char *analyze_usage =
   "override) and writes DIR/analysis/:\n"
   "  summary.txt  KEY VALUE: steady means and standard deviations of\n"
   "               N_GC/N, number of clusters and Omega; final T1; D_s,\n"
-  "               D_eff = D_s / D_0 (D_0 = v0^2 / (2 Dr)); tau_NGC\n"
+  "               D_eff = D_s / D_0 (D_0 = v0^2 / (2 Dr); nan at v0 = 0);\n"
+  "               tau_NGC; t1_rate (T1 events per cell per unit time\n"
+  "               between steady frames); msd_beta (slope of log MSD_rel\n"
+  "               vs log lag, lags 1% .. 10% of the window: ~0 caged,\n"
+  "               ~1 fluid); the window, the lag of D_s and its origins\n"
   "  series.csv   time, ngc_frac, n_clusters, omega, t1 per frame\n"
   "  msd.csv      lag, msd, msd_rel (relative to contacting neighbours)\n"
   "  csd.csv      n, p(n): cluster size distribution over steady frames\n"
@@ -36,8 +43,11 @@ static const char *analyze_usage =
   "               (sizes 2^k .. 2^(k+1) - 1)\n"
   "  msd.svg, series.svg, csd.svg   plots\n\n"
   "  --lag L          lag for D_s = MSD_rel / (4 L), in time units; the\n"
-  "                   computed lag nearest to L is used (default 5000)\n"
-  "  --steady-from T  steady part: frames with time >= T (default 0)\n"
+  "                   computed lag nearest to L is used (default 5000, or\n"
+  "                   the longest the run holds); a lag longer than the\n"
+  "                   steady window or shorter than a frame is refused\n"
+  "  --steady-from T  steady part: frames with time >= T (default 0); a\n"
+  "                   window with fewer than 2 frames is refused\n"
   "  --l L            maximal cell radius (default: params.txt, else 1)\n"
   "  --v0 V           self-propulsion speed for D_0 (default: params.txt,\n"
   "                   else 0.5)\n"
@@ -45,8 +55,36 @@ static const char *analyze_usage =
   "                   else 0.1)\n";
 
 
-/* D_s is only as good as the lag it is measured at: say so when the lag
-** asked for is beyond the run, or has few time origins behind it. */
+/* The steady window [steady_from, end] must hold two frames, and a lag
+** given by the user (lag_given) must fit in it and be no shorter than the
+** frame interval: else D_s would be measured at another lag (before, a
+** window past the end gave D_s = 0, a glassy label for any tissue).
+** Prints one line and returns 0 when it does not. */
+static int window_holds(const afv_traj *tr, const char *path, double from,
+                        double lag, int lag_given)
+{
+  int first = 0, last = tr->nframes - 1;
+  double span;
+  while (first < last && tr->t[first] < from) first++;
+  if (tr->t[first] < from || first == last) {
+    fprintf(stderr, "afv analyze: --steady-from %g: %s ends at t = %g, the "
+            "steady window needs 2 frames or more\n", from, path,
+            tr->t[last]);
+    return 0;
+  }
+  span = tr->t[last] - tr->t[first];
+  if (lag_given && (lag > span * (1 + 1e-9)
+                    || lag < 0.5 * (tr->t[first + 1] - tr->t[first]))) {
+    fprintf(stderr, "afv analyze: --lag %g: the steady window t = %g .. %g "
+            "of %s holds lags %g .. %g only\n", lag, tr->t[first],
+            tr->t[last], path, tr->t[first + 1] - tr->t[first], span);
+    return 0;
+  }
+  return 1;
+}
+
+/* D_s is only as good as the lag it is measured at: say so when the
+** default lag is beyond the run, or has few time origins behind it. */
 static void warn_if_lag_unsupported(const afv_analysis *a, double lag)
 {
   const afv_msd *m = &a->msd;
@@ -54,8 +92,9 @@ static void warn_if_lag_unsupported(const afv_analysis *a, double lag)
   for (k = 0; k < m->nlags && m->dt[k] != a->ds_lag; k++) {}
   if (k == m->nlags) return;
   if (lag > 1.5 * a->ds_lag)
-    fprintf(stderr, "afv analyze: warning: --lag %g is beyond the run; D_s "
-            "is measured at lag %g instead\n", lag, a->ds_lag);
+    fprintf(stderr, "afv analyze: warning: the default lag %g is beyond the "
+            "run; D_s is measured at lag %g instead (give --lag)\n", lag,
+            a->ds_lag);
   if (a->n > 0 && m->samples[k] / a->n < MIN_LAG_ORIGINS)
     fprintf(stderr, "afv analyze: warning: D_s at lag %g rests on %ld "
             "time origin(s) only (fewer than %d)\n", a->ds_lag,
@@ -109,8 +148,9 @@ static int analyze_write(const char *dir, const afv_analysis *a)
   if (analyze_plots(out, a) != 0) return EXIT_BAD_INPUT;
   printf("frames %d (steady from %d)\nngc_frac_mean %.6g\nn_clusters_mean "
          "%.6g\nomega_mean %.6g\nt1_final %g\nD_s %.6g\nD_eff %.6g\n"
-         "tau_NGC %.6g\nwritten: %s/\n", a->nframes, a->first, a->mean[0],
-         a->mean[1], a->mean[2], a->t1_final, a->ds, a->deff, a->tau_ngc,
+         "tau_NGC %.6g\nt1_rate %.6g\nmsd_beta %.6g\nwritten: %s/\n",
+         a->nframes, a->first, a->mean[0], a->mean[1], a->mean[2],
+         a->t1_final, a->ds, a->deff, a->tau_ngc, a->t1_rate, a->msd_beta,
          out);
   return 0;
 }
@@ -119,11 +159,11 @@ int cmd_analyze(int argc, char **argv)
 {
   const char *dir = NULL;
   char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
-  double lag = 5000, from = 0, l = 1, v0 = 0.5, Dr = 0.1;
+  double lag = NAN, from = 0, l = 1, v0 = 0.5, Dr = 0.1;
   double l_o = NAN, v0_o = NAN, Dr_o = NAN;   /* NAN: option not given */
   afv_traj tr;
   afv_analysis a;
-  int k, st, bad = 0;
+  int k, st, bad = 0, lag_given;
   for (k = 1; k < argc && !bad; k++) {
     if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
       fputs(analyze_usage, stdout);
@@ -147,6 +187,8 @@ int cmd_analyze(int argc, char **argv)
   if (!dir) return bad_input("analyze: missing DIR (see afv analyze --help)");
   if (strlen(dir) > RUN_PATH_MAX - 64) return bad_input("analyze: DIR too long");
   if (lag <= 0) return bad_input("--lag: must be > 0");
+  lag_given = !isnan(lag);
+  if (!lag_given) lag = DEFAULT_LAG;
   snprintf(path, sizeof path, "%s/params.txt", dir);
   if (!read_run_params(path, &l, &v0, &Dr))
     fprintf(stderr, "afv analyze: %s not found: using l = 1, v0 = 0.5, "
@@ -161,6 +203,10 @@ int cmd_analyze(int argc, char **argv)
   /* afv run writes unwrapped centres (io.c, TRAJECTORY format): no
   ** unwrapping here, which would fold moves of more than half a box
   ** between two frames back into the box */
+  if (!window_holds(&tr, path, from, lag, lag_given)) {
+    afv_traj_free(&tr);
+    return EXIT_BAD_INPUT;
+  }
   st = afv_analyze(&a, &tr, l, v0, Dr, from, lag);
   afv_traj_free(&tr);
   if (st == AFV_OK) warn_if_lag_unsupported(&a, lag);

@@ -334,13 +334,14 @@ static int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
 #undef BAD
 }
 
-/* Writes every key as KEY VALUE (reals in %.17g: they read back exactly). */
-static int write_params(const char *dir, const run_cfg *c, const char *cells)
+/* Writes every key to path as KEY VALUE (reals in %.17g: they read back
+** exactly); cells is the value written for the cells key. */
+static int write_params_to(const char *path, const run_cfg *c,
+                           const char *cells)
 {
-  char path[RUN_PATH_MAX + 32], tmp[RUN_PATH_MAX + 64];
+  char tmp[RUN_PATH_MAX + 96];
   FILE *fp;
   int k;
-  snprintf(path, sizeof path, "%s/params.txt", dir);
   if (!(fp = afv_atomic_open(path, tmp, sizeof tmp))) return AFV_EIO;
   fprintf(fp, "# afv run parameters: afv run --config THIS_FILE --out DIR "
           "repeats the run\n");
@@ -360,6 +361,51 @@ static int write_params(const char *dir, const run_cfg *c, const char *cells)
   if (strcmp(c->box, "periodic") == 0)
     fprintf(fp, "# box side L = %.17g\n", box_side(c));
   return afv_atomic_commit(fp, tmp, path);
+}
+
+static int write_params(const char *dir, const run_cfg *c, const char *cells)
+{
+  char path[RUN_PATH_MAX + 32];
+  snprintf(path, sizeof path, "%s/params.txt", dir);
+  return write_params_to(path, c, cells);
+}
+
+/* ---- the keys seen from afv sweep (cli.h) -------------------------------- */
+int run_key_check(const char *name, const char *text, char *err,
+                  size_t errlen)
+{
+  run_cfg cfg;
+  const run_key *K = find_key(name);
+  if (!K) {
+    afv_errorf(err, errlen, "unknown key '%s' (see afv run --help)", name);
+    return 0;
+  }
+  cfg_defaults(&cfg);
+  return set_key(&cfg, K, text, NULL, err, errlen);
+}
+
+int run_config_write(const char *path, int n, const char *const *names,
+                     const char *const *values, char *err, size_t errlen)
+{
+  run_cfg cfg;
+  afv_cells cl;
+  int set[N_RUN_KEYS], k, ok = 1;
+  memset(set, 0, sizeof set);
+  memset(&cl, 0, sizeof cl);
+  cfg_defaults(&cfg);
+  for (k = 0; k < n && ok; k++) {
+    const run_key *K = find_key(names[k]);
+    ok = run_key_check(names[k], values[k], err, errlen)
+         && set_key(&cfg, K, values[k], NULL, err, errlen);
+    if (ok) set[K - run_keys] = -1;
+  }
+  ok = ok && cfg_validate(&cfg, set, &cl, err, errlen);
+  if (ok && path && write_params_to(path, &cfg, cfg.cells) != AFV_OK) {
+    afv_errorf(err, errlen, "%s: cannot write", path);
+    ok = 0;
+  }
+  afv_cells_free(&cl);
+  return ok;
 }
 
 static int write_cells_copy(const char *dir, const afv_cells *cl)
@@ -1151,6 +1197,7 @@ static int run_loop(run_state *R)
 
 static const char *run_usage =
   "usage: afv run [--config FILE] [--KEY VALUE ...] --out DIR\n"
+  "       afv run [--config FILE] [--KEY VALUE ...] --out DIR --continue\n"
   "       afv run --resume DIR [--steps MORE] [--quiet]\n"
   "\n"
   "Simulates the active finite Voronoi model (paper protocol): a compact\n"
@@ -1167,7 +1214,11 @@ static const char *run_usage =
   "One process at a time writes in DIR (a lock on DIR/lock, which ends\n"
   "with the process); another is refused, naming it.  DIR may exist, but\n"
   "a fresh run refuses one with a checkpoint.txt (a run that stopped\n"
-  "before its first checkpoint is replaced).\n"
+  "before its first checkpoint is replaced).  --continue makes the command\n"
+  "idempotent (the jobs of afv sweep): a new run if DIR holds none (or one\n"
+  "that stopped before its first checkpoint), a resumed one if DIR holds\n"
+  "an unfinished run, nothing if it is finished.  Missing parent folders\n"
+  "of DIR are created.\n"
   "Exit status: 0 done, 2 bad input or an I/O error, 3 unstable step (dt\n"
   "too large) or a state that is not finite (never written).\n"
   "\n"
@@ -1191,6 +1242,7 @@ typedef struct run_args {
   int quiet;              /* 0: not given; 1: --quiet or --quiet 1; -1: --quiet 0 */
   int quiet_kv;           /* 1 if given as --quiet VALUE */
   int n_keys;             /* --KEY VALUE pairs other than the above */
+  int cont;               /* --continue: fresh, resumed or left alone */
 } run_args;
 
 /* First pass: --help, --config, --out, --resume, --quiet; checks that
@@ -1208,6 +1260,10 @@ static int scan_args(int argc, char **argv, run_args *a)
     if (strcmp(o, "--quiet") == 0
         && (k + 1 >= argc || strncmp(argv[k + 1], "--", 2) == 0)) {
       a->quiet = 1;
+      continue;
+    }
+    if (strcmp(o, "--continue") == 0) {
+      a->cont = 1;
       continue;
     }
     if (strncmp(o, "--", 2) != 0
@@ -1256,11 +1312,32 @@ static int apply_args(int argc, char **argv, run_cfg *cfg, int *set)
       k++;
       continue;
     }
+    if (strcmp(argv[k], "--continue") == 0) continue;
     K = find_key(argv[k] + 2);
     if (!set_key(cfg, K, argv[k + 1], NULL, err, sizeof err))
       return !bad_input(err);
     set[K - run_keys] = -1;
     k++;
+  }
+  return 1;
+}
+
+/* Creates the missing parent folders of dir (mkdir -p of its dirname), so
+** that many jobs can write to runs/ID of a folder nobody made yet. */
+static int make_parents(const char *dir)
+{
+  char path[RUN_PATH_MAX];
+  size_t k;
+  snprintf(path, sizeof path, "%s", dir);
+  for (k = 1; path[k]; k++) {
+    if (path[k] != '/' || path[k - 1] == '/') continue;
+    path[k] = 0;
+    if (mkdir(path, 0777) != 0 && errno != EEXIST) {
+      fprintf(stderr, "afv run: cannot create %s: %s\n", path,
+              strerror(errno));
+      return 0;
+    }
+    path[k] = '/';
   }
   return 1;
 }
@@ -1385,6 +1462,7 @@ static int make_out_dir(run_state *R)
 {
   const char *dir = R->dir;
   if (holds_run(R)) return 0;       /* refused before anything changes */
+  if (!make_parents(dir)) return 0;
   if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
     fprintf(stderr, "afv run: cannot create %s: %s\n", dir, strerror(errno));
     return 0;
@@ -1613,6 +1691,51 @@ static int run_resume(run_state *R, const run_args *a)
   return run_loop(R);
 }
 
+/* 1 if the run in dir has reached its steps (its checkpoint is at the end);
+** -1 if params.txt or the checkpoint cannot be read (message printed). */
+static int run_finished(const char *dir)
+{
+  char path[RUN_PATH_MAX + 32], err[2 * RUN_PATH_MAX];
+  int set[N_RUN_KEYS], done;
+  run_cfg cfg;
+  afv_checkpoint ck;
+  memset(set, 0, sizeof set);
+  cfg_defaults(&cfg);
+  snprintf(path, sizeof path, "%s/params.txt", dir);
+  if (!read_config(path, &cfg, set, err, sizeof err)) return -bad_input(err);
+  snprintf(path, sizeof path, "%s/checkpoint.txt", dir);
+  if (afv_checkpoint_read(path, &ck, err, sizeof err) != AFV_OK)
+    return -bad_input(err);
+  done = ck.step >= cfg.steps;
+  afv_checkpoint_free(&ck);
+  return done;
+}
+
+/* --continue --out DIR: the idempotent job of afv sweep.  No checkpoint in
+** DIR (no run, or one that stopped before its first checkpoint, which a
+** fresh run replaces): a fresh run.  A checkpointed run short of its
+** steps: resumed.  A finished run: left alone.  The fresh run and the
+** resume take DIR's lock as always, so a run still being written by
+** another process is refused, not touched. */
+static int run_continue(run_state *R, run_args *a, int argc, char **argv)
+{
+  char ckpt[RUN_PATH_MAX + 32];
+  run_args resume;
+  int done;
+  if (strlen(a->out) > RUN_PATH_MAX - 64) return bad_input("--out: path too long");
+  snprintf(ckpt, sizeof ckpt, "%s/checkpoint.txt", a->out);
+  if (access(ckpt, F_OK) != 0) return run_fresh(R, a, argc, argv);
+  if ((done = run_finished(a->out)) != 0) {
+    if (done > 0 && !a->quiet)
+      fprintf(stderr, "afv run: %s: finished already\n", a->out);
+    return done > 0 ? 0 : EXIT_BAD_INPUT;
+  }
+  memset(&resume, 0, sizeof resume);
+  resume.resume = a->out;
+  resume.quiet = a->quiet;
+  return run_resume(R, &resume);
+}
+
 int cmd_run(int argc, char **argv)
 {
   run_state R;
@@ -1623,10 +1746,15 @@ int cmd_run(int argc, char **argv)
   if (!a.out == !a.resume)
     return bad_input("run: give either --out DIR (a new run) or --resume "
                      "DIR (see afv run --help)");
+  if (a.cont && !a.out)
+    return bad_input("run: --continue goes with --out DIR (see afv run "
+                     "--help)");
   memset(&R, 0, sizeof R);
   R.lock_fd = -1;
   cfg_defaults(&R.cfg);
-  status = a.resume ? run_resume(&R, &a) : run_fresh(&R, &a, argc, argv);
+  status = a.resume ? run_resume(&R, &a)
+           : a.cont ? run_continue(&R, &a, argc, argv)
+           : run_fresh(&R, &a, argc, argv);
   close_outputs(&R);
   unlock_run_dir(&R);
   afv_sim_free(&R.sim);
