@@ -208,7 +208,8 @@ static void map_cells(FILE *out, const afv_map *m, const map_frame *f)
       double yb = py(f, cell_edge(m->y, m->ny, j, 0));
       if (isfinite(z)) ramp((z - f->zlo) / (f->zhi - f->zlo), rgb);
       fprintf(out, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\""
-              " fill=\"%s\"/>\n", xa, ya, xb - xa, yb - ya,
+              " fill=\"%s\" shape-rendering=\"crispEdges\"/>\n", xa, ya,
+              xb - xa, yb - ya,
               isfinite(z) ? rgb : "#dddddd");
       if (m->nx * m->ny <= 150)
         fprintf(out, "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"middle\" "

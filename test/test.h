@@ -81,5 +81,6 @@ void suite_pictures(void);
 void suite_readers(void);
 void suite_runjob(void);
 void suite_reference(void);
+void suite_sweep(void);
 
 #endif

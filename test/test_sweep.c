@@ -1,0 +1,459 @@
+/*
+** test_sweep.c -- afv sweep and afv collect as a user runs them (./afv
+** through system(), from the repository root), the boundary fit and the
+** crossing of phase.c, and the analysis quantities collect reads (t1_rate,
+** msd_beta, the steady window and lag refusals of afv analyze).
+** The make runner killed part-way is test/sweep_kill.sh (too slow here).
+*/
+#define _POSIX_C_SOURCE 200809L
+#include "afv.h"
+#include "test.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#define TEXT_MAX 65536
+
+static char base[64];              /* the suite's temporary directory */
+static char err_text[TEXT_MAX];    /* stderr of the last command */
+
+static int have_afv(void)
+{
+  if (access("./afv", X_OK) == 0) return 1;
+  SKIP("./afv not built");
+  return 0;
+}
+
+/* Reads a whole file into buf ("" if missing). */
+static const char *slurp(const char *path, char *buf)
+{
+  FILE *fp = fopen(path, "r");
+  size_t k = 0;
+  buf[0] = 0;
+  if (!fp) return buf;
+  k = fread(buf, 1, TEXT_MAX - 1, fp);
+  buf[k] = 0;
+  fclose(fp);
+  return buf;
+}
+
+/* Runs "./afv ARGS" (every %s in args is base) with stdout to a file and
+** stderr into err_text; returns the exit status. */
+static int afv(const char *args)
+{
+  char a[1024], cmd[1400], se[96];
+  const char *p = args;
+  size_t m = 0;
+  int st;
+  while (*p && m < sizeof a - 80) {
+    if (p[0] == '%' && p[1] == 's') {
+      m += (size_t)snprintf(a + m, sizeof a - m, "%s", base);
+      p += 2;
+    } else {
+      a[m++] = *p++;
+    }
+  }
+  a[m] = 0;
+  snprintf(se, sizeof se, "%s/stderr", base);
+  snprintf(cmd, sizeof cmd, "./afv %s >%s/stdout 2>%s", a, base, se);
+  st = system(cmd);
+  slurp(se, err_text);
+  return st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static int exists(const char *rel)
+{
+  char p[256];
+  struct stat sb;
+  snprintf(p, sizeof p, "%s/%s", base, rel);
+  return stat(p, &sb) == 0;
+}
+
+static const char *read_rel(const char *rel, char *buf)
+{
+  char p[256];
+  snprintf(p, sizeof p, "%s/%s", base, rel);
+  return slurp(p, buf);
+}
+
+static int count_lines(const char *s)
+{
+  int n = 0;
+  for (; *s; s++) n += *s == '\n';
+  return n;
+}
+
+static void write_rel(const char *rel, const char *text)
+{
+  char p[256];
+  FILE *fp;
+  snprintf(p, sizeof p, "%s/%s", base, rel);
+  fp = fopen(p, "w");
+  CHECK(fp != NULL, "cannot write %s", p);
+  if (!fp) return;
+  fputs(text, fp);
+  fclose(fp);
+}
+
+static void shell(const char *fmt, const char *arg)
+{
+  char cmd[512];
+  snprintf(cmd, sizeof cmd, fmt, arg, arg);
+  CHECK(system(cmd) == 0, "%s failed", cmd);
+}
+
+/* ---- grid syntax ---------------------------------------------------------- */
+/* Ranges (inclusive, robust to rounding: 0.1:0.3:0.1 has 3 values, the
+** 25th value of 4:8.8:0.2 prints as 8.8), lists, seeds; points.csv in
+** job order (first key slowest, seed fastest); the job files hold every
+** key; the three runners hold the same job lines. */
+static void sweep_grid_ranges_and_lists(void)
+{
+  static char buf[TEXT_MAX], jobs[TEXT_MAX], mk[TEXT_MAX];
+  char line[2048], *p;
+  int n = 0;
+  if (!have_afv()) return;
+  CHECK(afv("sweep --out %s/g1 --P0 4:5:0.5 --v0 0.1:0.3:0.1 --seeds 2 "
+            "--steps 10 --Dr 0.2 --per-task 5") == 0, "sweep: %s", err_text);
+  read_rel("g1/points.csv", buf);
+  {
+    const char *head = "id,P0,v0,seed\n0001,4,0.1,1\n0002,4,0.1,2\n"
+                       "0003,4,0.2,1\n";
+    CHECK(!strncmp(buf, head, strlen(head)), "points.csv starts:\n%.120s",
+          buf);
+  }
+  CHECK(count_lines(buf) == 1 + 3 * 3 * 2, "points.csv: %d lines",
+        count_lines(buf));
+  CHECK(strstr(buf, "0018,5,0.3,2\n") != NULL, "last job:\n%s", buf);
+  read_rel("g1/jobs/0018.conf", buf);
+  CHECK(strstr(buf, "\nP0               5\n") && strstr(buf, "\nv0               "
+        "0.29999999999999999\n") && strstr(buf, "\nseed             2\n")
+        && strstr(buf, "\nDr               0.20000000000000001\n")
+        && strstr(buf, "\nsteps            10\n"), "0018.conf:\n%s", buf);
+  read_rel("g1/jobs.txt", jobs);
+  read_rel("g1/Makefile", mk);
+  CHECK(count_lines(jobs) == 18, "jobs.txt: %d lines", count_lines(jobs));
+  for (p = jobs; sscanf(p, "%2047[^\n]", line) == 1; p += strlen(line) + 1) {
+    n++;
+    CHECK(strstr(mk, line) != NULL, "Makefile lacks the job line %s", line);
+    CHECK(strstr(line, " --continue ") != NULL, "job not idempotent: %s",
+          line);
+  }
+  CHECK(n == 18, "%d job lines read", n);
+  read_rel("g1/slurm.sh", buf);
+  CHECK(strstr(buf, "#SBATCH --array=0-3\n") && strstr(buf, "per_task=5\n"),
+        "slurm.sh: 18 jobs, 5 per task: want array 0-3");
+  CHECK(afv("sweep --out %s/g2 --P0 4:8.8:0.2 --seed 7,9") == 0, "%s",
+        err_text);
+  read_rel("g2/points.csv", buf);
+  CHECK(count_lines(buf) == 1 + 25 * 2 && strstr(buf, ",8.8,9\n")
+        && strstr(buf, ",5.8,7\n") && strstr(buf, "id,P0,seed\n"),
+        "points.csv of 4:8.8:0.2, seeds 7,9:\n%.300s", buf);
+}
+
+/* Every bad grid is refused before anything is written: exit status 2,
+** one line on stderr naming the option, no DIR. */
+static void sweep_bad_values(void)
+{
+  static const char *bad[] = {
+    "--P0 4:x:0.2", "--P0 4:5:0", "--P0 5:4:0.5", "--P0 4:5:0.3",
+    "--P0 4:5", "--v0 0.1,,0.2", "--v0 abc", "--v0 0.1,2,nan",
+    "--N 0", "--N 50,0", "--bogus 1", "--box square", "--steps 1.5",
+    "--seeds 0", "--seeds 2 --seed 1,2", "--P0 4 --P0 5", "--lag 0",
+    "--seed -1", "--phi 0,0.5", "--P0",
+  };
+  char args[256];
+  int k;
+  if (!have_afv()) return;
+  for (k = 0; k < (int)(sizeof bad / sizeof bad[0]); k++) {
+    snprintf(args, sizeof args, "sweep --out %%s/bad %s", bad[k]);
+    CHECK(afv(args) == 2, "'%s': not exit 2", bad[k]);
+    CHECK(count_lines(err_text) == 1 && !strncmp(err_text, "afv", 3),
+          "'%s': stderr not one line: %s", bad[k], err_text);
+    CHECK(!exists("bad"), "'%s': DIR created", bad[k]);
+  }
+  CHECK(afv("sweep --P0 4") == 2 && strstr(err_text, "--out"),
+        "no --out: %s", err_text);
+  CHECK(afv("sweep --out %s/g1 --P0 4") == 2 || exists("g1"), "existing DIR");
+}
+
+/* ---- collect ------------------------------------------------------------------ */
+/* A summary.txt as afv analyze writes it, with the values collect reads. */
+static void fake_summary(const char *id, double ngc, double ncl, double om,
+                         double deff, double tau, double t1, double beta)
+{
+  char rel[128], text[1024], cmd[256];
+  snprintf(cmd, sizeof cmd, "mkdir -p %s/c/runs/%s/analysis", base, id);
+  CHECK(system(cmd) == 0, "%s failed", cmd);
+  snprintf(text, sizeof text, "# afv analyze: fake\ncells 400\n"
+           "ngc_frac_mean %.17g\nngc_frac_sd 0.1\nn_clusters_mean %.17g\n"
+           "omega_mean %.17g\nD_eff %.17g\ntau_NGC %.17g\nt1_rate %.17g\n"
+           "msd_beta %.17g\n", ngc, ncl, om, deff, tau, t1, beta);
+  snprintf(rel, sizeof rel, "c/runs/%s/analysis/summary.txt", id);
+  write_rel(rel, text);
+}
+
+/* Field k (0-based) of the table row that starts with prefix. */
+static double table_field(const char *table, const char *prefix, int k,
+                          char *word)
+{
+  const char *row = strstr(table, prefix);
+  int i;
+  if (!row) return NAN;
+  for (i = 0; i < k; i++) row = strchr(row, ',') + 1;
+  sscanf(row, "%63[^,\n]", word);
+  return atof(word);
+}
+
+/* Known summaries: means and standard errors over the seeds, the labels at
+** the thresholds (0.99 exactly is clustered), a missing job named with its
+** log's last line in missing.txt and on stderr, exit status 1, and the
+** table still written for the finished points. */
+static void collect_known_summaries(void)
+{
+  static char table[TEXT_MAX], miss[TEXT_MAX];
+  char w[64];
+  const double s2 = sqrt(2.0);
+  if (!have_afv()) return;
+  shell("mkdir -p %s/c/logs", base);
+  write_rel("c/points.csv", "id,P0,v0,seed\n0001,4,0,1\n0002,4,0,2\n"
+            "0003,4,1,1\n0004,4,1,2\n0005,8,1,1\n0006,8,1,2\n");
+  /* point (4, 0): v0 = 0, D_eff nan (no D_0) */
+  fake_summary("0001", 1, 1, 0.6, NAN, HUGE_VAL, 0.01, 0.1);
+  fake_summary("0002", 1, 1, 0.4, NAN, HUGE_VAL, 0.03, 0.3);
+  /* point (4, 1): seeds 0.98 and 1.0 */
+  fake_summary("0003", 0.98, 2, 0.5, 1e-9, 10, 0.2, 0.9);
+  fake_summary("0004", 1.00, 1, 0.5, 3e-9, 30, 0.4, 1.1);
+  /* point (8, 1): one seed; 0006 failed */
+  fake_summary("0005", 0.5, 7, 0.1, 0.2, 5, 0.5, 0.95);
+  write_rel("c/logs/0006.log", "afv run: relaxation at v0 = 0: ...\n"
+            "afv run: step 12: cell 3 would move 9 l: the time step is too "
+            "large\n\n");
+  CHECK(afv("collect %s/c") == 1, "collect with a missing job: not exit 1 "
+        "(%s)", err_text);
+  CHECK(strstr(err_text, "0006") && strstr(err_text, "would move 9 l"),
+        "stderr does not name the missing job: %s", err_text);
+  read_rel("c/missing.txt", miss);
+  CHECK(strstr(miss, "0006 P0=8 v0=1 seed=2: afv run: step 12: cell 3 would "
+                "move 9 l") != NULL, "missing.txt:\n%s", miss);
+  CHECK(count_lines(miss) == 2, "missing.txt has %d lines", count_lines(miss));
+  read_rel("c/table.csv", table);
+  CHECK(!strncmp(table, "P0,v0,n_seeds,ngc_frac_mean,ngc_frac_sem,"
+                 "n_clusters_mean,n_clusters_sem,omega_mean,omega_sem,"
+                 "D_eff_mean,D_eff_sem,tau_NGC_mean,tau_NGC_sem,t1_rate_mean,"
+                 "t1_rate_sem,msd_beta_mean,msd_beta_sem,cluster_phase,"
+                 "confluency_phase,dynamic_phase,dynamic_phase_deff\n", 250),
+        "header:\n%.300s", table);
+  CHECK(count_lines(table) == 4, "table.csv: %d lines", count_lines(table));
+  CHECK_CLOSE(table_field(table, "\n4,1,", 2, w), 2, 0, 0, "n_seeds (4,1)");
+  CHECK_CLOSE(table_field(table, "\n4,1,", 3, w), 0.99, 1e-6, 0, "ngc mean");
+  /* sem of {0.98, 1}: sd 0.01 sqrt 2 over sqrt 2 = 0.01 */
+  CHECK_CLOSE(table_field(table, "\n4,1,", 4, w), 0.01, 1e-5, 0, "ngc sem");
+  CHECK_CLOSE(table_field(table, "\n4,1,", 9, w), 2e-9, 1e-5, 0, "D_eff mean");
+  CHECK_CLOSE(table_field(table, "\n4,1,", 10, w), 1e-9, 1e-5, 0, "D_eff sem");
+  CHECK_CLOSE(table_field(table, "\n4,1,", 13, w), 0.3, 1e-5, 0, "t1 mean");
+  CHECK_CLOSE(table_field(table, "\n4,1,", 14, w), 0.1, 1e-5, 0, "t1 sem");
+  CHECK_CLOSE(table_field(table, "\n4,0,", 7, w), 0.5, 1e-5, 0, "omega mean");
+  CHECK_CLOSE(table_field(table, "\n4,0,", 8, w), 0.1, 1e-5, 0, "omega sem");
+  CHECK_CLOSE(table_field(table, "\n4,0,", 16, w), 0.1 * s2 / s2, 1e-5, 0,
+              "beta sem");
+  CHECK(strstr(table, "\n4,0,2,") && strstr(table, ",clustered,epithelial,"
+        "glassy,undefined\n"), "labels of (4, 0):\n%s", table);
+  CHECK(strstr(table, ",0.99,0.01,1.5,0.5,0.5,0,2e-09,1e-09,20,10,0.3,0.1,1,"
+        "0.1,clustered,epithelial,fluid,glassy\n") != NULL,
+        "row (4, 1):\n%s", table);
+  table_field(table, "\n4,0,", 9, w);
+  CHECK(!strcmp(w, "nan"), "D_eff at v0 = 0: '%s', want nan", w);
+  table_field(table, "\n4,0,", 11, w);
+  CHECK(!strcmp(w, "inf"), "tau of a constant N_GC: '%s', want inf", w);
+  CHECK(strstr(table, "\n8,1,1,0.5,nan,7,nan,0.1,nan,0.2,nan,5,nan,0.5,nan,"
+               "0.95,nan,dispersed,mesenchymal,fluid,fluid\n") != NULL,
+        "row (8, 1), one seed:\n%s", table);
+  /* every job finished: exit 0 */
+  fake_summary("0006", 0.7, 5, 0.1, 0.2, 5, 0.5, 0.95);
+  CHECK(afv("collect %s/c") == 0, "collect of a complete sweep: %s", err_text);
+  CHECK(afv("collect %s/nonexistent") == 2, "collect of no sweep: not exit 2");
+}
+
+/* ---- the boundary fit -------------------------------------------------------- */
+/* 25 points of v_s = 3 - 0.01 P0^2.5 over P0 in [4, 8.8] with Gaussian
+** noise 0.01: the fit recovers v0*, c and alpha within twice their
+** standard errors, and those are small; with 3 exact points it is exact,
+** with standard errors nan. */
+static void boundary_fit_recovers(void)
+{
+  double p0[25], vs[25];
+  afv_boundary b;
+  int k;
+  test_rng_seed(20);
+  for (k = 0; k < 25; k++) {
+    p0[k] = 4 + 0.2 * k;
+    vs[k] = 3 - 0.01 * pow(p0[k], 2.5) + 0.01 * test_rng_normal();
+  }
+  CHECK(afv_boundary_fit(25, p0, vs, &b) == AFV_OK, "fit failed");
+  CHECK(fabs(b.v0star - 3) < 2 * b.se_v0star && b.se_v0star < 0.2,
+        "v0* %g +- %g, want 3", b.v0star, b.se_v0star);
+  CHECK(fabs(b.c - 0.01) < 2 * b.se_c && b.se_c < 0.01, "c %g +- %g, want "
+        "0.01", b.c, b.se_c);
+  CHECK(fabs(b.alpha - 2.5) < 2 * b.se_alpha && b.se_alpha < 0.5,
+        "alpha %g +- %g, want 2.5", b.alpha, b.se_alpha);
+  CHECK(b.n == 25 && b.rss > 0 && b.rss < 25 * 4e-4, "rss %g", b.rss);
+  for (k = 0; k < 3; k++) {
+    p0[k] = 4 + 2 * k;
+    vs[k] = 2.5 - 0.3 * pow(p0[k], 0.7);
+  }
+  CHECK(afv_boundary_fit(3, p0, vs, &b) == AFV_OK, "3-point fit failed");
+  CHECK_CLOSE(b.v0star, 2.5, 1e-6, 0, "3 points: v0*");
+  CHECK_CLOSE(b.alpha, 0.7, 1e-6, 0, "3 points: alpha");
+  CHECK(isnan(b.se_alpha), "3 points: standard error %g, want nan",
+        b.se_alpha);
+  CHECK(afv_boundary_fit(2, p0, vs, &b) == AFV_EINVAL, "2 points accepted");
+}
+
+/* The first fall below the level, interpolated; NaN points skipped. */
+static void crossing_interpolates(void)
+{
+  const double x[5] = {0.5, 1, 1.5, 2, 2.5}, y[5] = {1, 1, NAN, 0.97, 0.5};
+  const double up[3] = {0.5, 0.995, 1};
+  double xc = 0;
+  CHECK(afv_crossing(5, x, y, 0.99, &xc) == 1, "no crossing found");
+  CHECK_CLOSE(xc, 1 + 1 * 0.01 / 0.03, 1e-12, 0, "crossing");
+  CHECK(afv_crossing(3, x, up, 0.99, &xc) == 0, "a rise taken for a fall");
+}
+
+/* ---- what afv analyze computes for collect ------------------------------------- */
+static int traj_make(afv_traj *tr, int n, int nframes, double L)
+{
+  memset(tr, 0, sizeof *tr);
+  tr->n = n;
+  tr->nframes = nframes;
+  tr->box = test_periodic_box(L, L);
+  tr->step = calloc((size_t)nframes, sizeof *tr->step);
+  tr->t = calloc((size_t)nframes, sizeof(double));
+  tr->r = calloc((size_t)nframes * 2 * n, sizeof(double));
+  tr->theta = calloc((size_t)nframes * n, sizeof(double));
+  CHECK(tr->step && tr->t && tr->r && tr->theta, "out of memory");
+  return tr->step && tr->t && tr->r && tr->theta;
+}
+
+/* 16 cells on a 4 x 4 square lattice of spacing 1.9 (contacts along the
+** rows and columns) in a 20 x 20 box; at odd frames the corner cell 0 sits
+** far from all (it loses its 2 contacts, gains none): one T1 event per
+** frame interval, t1_rate = 1 / (n dt). */
+static void t1_rate_counts_changes(void)
+{
+  afv_traj tr;
+  afv_analysis a;
+  int f, i, n = 16;
+  if (!traj_make(&tr, n, 21, 20)) return;
+  for (f = 0; f < 21; f++) {
+    double *r = tr.r + (size_t)f * 2 * n;
+    tr.t[f] = 0.5 * f;
+    for (i = 0; i < n; i++) {
+      r[2*i] = 1.9 * (i % 4) + 1;
+      r[2*i+1] = 1.9 * (i / 4) + 1;
+    }
+    if (f % 2) { r[0] = 15; r[1] = 15; }
+  }
+  CHECK(afv_analyze(&a, &tr, 1.0, 1, 0.1, 0, 1) == AFV_OK, "analyze");
+  CHECK_CLOSE(a.t1[1], 1, 0, 0, "T1 at frame 1");
+  CHECK_CLOSE(a.t1_rate, 1.0 * 20 / (n * 10.0), 1e-12, 0, "t1_rate");
+  afv_analysis_free(&a);
+  /* steady part from t = 5: frames 10 .. 20, still one event per interval */
+  CHECK(afv_analyze(&a, &tr, 1.0, 1, 0.1, 5, 1) == AFV_OK, "analyze");
+  CHECK_CLOSE(a.t1_rate, 1.0 * 10 / (n * 5.0), 1e-12, 0, "steady t1_rate");
+  afv_analysis_free(&a);
+  afv_traj_free(&tr);
+}
+
+/* msd_beta: 2 for ballistic cells, about 1 for random walkers, about 0 for
+** cells jittering about fixed sites (no contacts: relative = plain MSD). */
+static void msd_beta_slopes(void)
+{
+  enum { N = 16, F = 1000 };
+  afv_traj tr;
+  afv_analysis a;
+  double want[3] = {2, 1, 0}, tol[3] = {1e-9, 0.15, 0.1};
+  int kind, f, i;
+  for (kind = 0; kind < 3; kind++) {
+    if (!traj_make(&tr, N, F, 400)) return;
+    test_rng_seed(7 + kind);
+    for (f = 0; f < F; f++) {
+      double *r = tr.r + (size_t)f * 2 * N, *q = r - 2 * N;
+      tr.t[f] = f;
+      for (i = 0; i < N; i++) {
+        double sx = 100.0 * (i % 4), sy = 100.0 * (i / 4);
+        if (kind == 0) { r[2*i] = sx + 0.01 * (i + 1) * f; r[2*i+1] = sy; }
+        else if (kind == 1) {
+          r[2*i] = f ? q[2*i] + test_rng_normal() : sx;
+          r[2*i+1] = f ? q[2*i+1] + test_rng_normal() : sy;
+        } else {
+          r[2*i] = sx + 0.3 * test_rng_normal();
+          r[2*i+1] = sy + 0.3 * test_rng_normal();
+        }
+      }
+    }
+    CHECK(afv_analyze(&a, &tr, 1.0, 1, 0.1, 0, 10) == AFV_OK, "analyze");
+    CHECK(fabs(a.msd_beta - want[kind]) <= tol[kind], "kind %d: msd_beta "
+          "%g, want %g", kind, a.msd_beta, want[kind]);
+    afv_analysis_free(&a);
+    afv_traj_free(&tr);
+  }
+}
+
+/* afv run creates the parents of --out; --continue leaves a finished run
+** alone; afv analyze refuses a window or lag the run does not hold (exit
+** 2, one line, no summary), writes D_eff nan at v0 = 0 and records the
+** window, the lag and its origins. */
+static void analyze_window_and_run_continue(void)
+{
+  static char buf[TEXT_MAX], before[TEXT_MAX];
+  if (!have_afv()) return;
+  CHECK(afv("run --out %s/a/b/r --N 30 --v0 0 --steps 400 --frame_every 50 "
+            "--svg_every 0 --quiet") == 0, "run into new parents: %s",
+        err_text);
+  read_rel("a/b/r/trajectory.dat", before);
+  CHECK(afv("run --out %s/a/b/r --N 30 --v0 0 --steps 400 --frame_every 50 "
+            "--svg_every 0 --quiet --continue") == 0, "--continue: %s",
+        err_text);
+  CHECK(!strcmp(read_rel("a/b/r/trajectory.dat", buf), before),
+        "--continue changed a finished run");
+  CHECK(afv("analyze %s/a/b/r --steady-from 4.5") == 2
+        && count_lines(err_text) == 1 && strstr(err_text, "--steady-from"),
+        "window past the end: %s", err_text);
+  CHECK(afv("analyze %s/a/b/r --steady-from 1 --lag 3.5") == 2
+        && count_lines(err_text) == 1 && strstr(err_text, "--lag"),
+        "lag longer than the window: %s", err_text);
+  CHECK(afv("analyze %s/a/b/r --lag 0.1") == 2, "lag under a frame accepted");
+  CHECK(!exists("a/b/r/analysis/summary.txt"), "a refused analyze wrote");
+  CHECK(afv("analyze %s/a/b/r --steady-from 1 --lag 2") == 0, "%s", err_text);
+  read_rel("a/b/r/analysis/summary.txt", buf);
+  CHECK(strstr(buf, "\nD_eff nan\n") != NULL, "v0 = 0: D_eff not nan:\n%s",
+        buf);
+  CHECK(strstr(buf, "\nsteady_from 1\n") && strstr(buf, "\nsteady_to 4\n")
+        && strstr(buf, "\nsteady_frames 7\n") && strstr(buf, "\nD_s_lag 2\n")
+        && strstr(buf, "\nD_s_origins 3\n") && strstr(buf, "\nt1_rate ")
+        && strstr(buf, "\nmsd_beta "), "summary.txt:\n%s", buf);
+}
+
+void suite_sweep(void)
+{
+  snprintf(base, sizeof base, "/tmp/afv_sweep_test_%ld", (long)getpid());
+  if (mkdir(base, 0700) != 0) {
+    printf("  cannot create %s\n", base);
+    return;
+  }
+  RUN(sweep_grid_ranges_and_lists);
+  RUN(sweep_bad_values);
+  RUN(collect_known_summaries);
+  RUN(boundary_fit_recovers);
+  RUN(crossing_interpolates);
+  RUN(t1_rate_counts_changes);
+  RUN(msd_beta_slopes);
+  RUN(analyze_window_and_run_continue);
+  shell("rm -rf %s", base);
+}
