@@ -301,8 +301,8 @@ static void write_table(FILE *fp, const sweep_table *T)
   }
 }
 
-/* Why job J has no summary: the last non-empty line of logs/ID.log, or the
-** state of its run folder. */
+/* Why job J has no summary: the last non-empty line of logs/ID.log that is
+** not a warning (else its last line), or the state of its run folder. */
 static void missing_reason(const sweep_table *T, const job *J, char *out,
                            size_t len)
 {
@@ -312,9 +312,13 @@ static void missing_reason(const sweep_table *T, const job *J, char *out,
   out[0] = 0;
   snprintf(path, sizeof path, "%s/logs/%s.log", T->dir, J->id);
   if ((fp = fopen(path, "r"))) {
+    int warned = 0;
     while (fgets(line, sizeof line, fp)) {
       line[strcspn(line, "\r\n")] = 0;
-      if (line[0]) snprintf(out, len, "%s", line);
+      if (!line[0] || (strstr(line, "warning:") && out[0] && !warned))
+        continue;
+      warned = strstr(line, "warning:") != NULL;
+      snprintf(out, len, "%s", line);
     }
     fclose(fp);
   }

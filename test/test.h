@@ -53,6 +53,8 @@ afv_box test_open_box(void);
 afv_box test_periodic_box(double Lx, double Ly);
 /* nx x ny triangular lattice of spacing D (ny even for periodicity), first
 ** cell at (x0, y0), rows offset by D/2; returns its periodic box. */
+/* A zeroed trajectory of nframes frames of n cells in box b. */
+int test_traj_alloc(afv_traj *tr, int n, int nframes, afv_box b);
 afv_box test_tri_lattice(int nx, int ny, double D, double x0, double y0,
                          double *r);
 

@@ -345,20 +345,6 @@ static void t1_flicker_cancels(void)
 }
 
 /* ---- trajectories ------------------------------------------------------ */
-static int traj_alloc(afv_traj *tr, int n, int nframes, afv_box b)
-{
-  memset(tr, 0, sizeof *tr);
-  tr->n = n;
-  tr->nframes = nframes;
-  tr->box = b;
-  tr->step = calloc((size_t)nframes, sizeof *tr->step);
-  tr->t = calloc((size_t)nframes, sizeof(double));
-  tr->r = calloc((size_t)nframes * 2 * n, sizeof(double));
-  tr->theta = calloc((size_t)nframes * n, sizeof(double));
-  CHECK(tr->step && tr->t && tr->r && tr->theta, "out of memory");
-  return tr->step && tr->t && tr->r && tr->theta;
-}
-
 /* A tight square of 4 cells drifting by v per frame across a 6 x 6 box,
 ** stored wrapped: after unwrapping, MSD = (v t)^2 and relative MSD = 0. */
 static void msd_translation_and_unwrap(void)
@@ -368,7 +354,7 @@ static void msd_translation_and_unwrap(void)
   afv_msd m;
   int f, i, k, n = 4, nf = 60;
   double err_unwrap = 0, err_msd = 0, err_rel = 0;
-  if (!traj_alloc(&tr, n, nf, test_periodic_box(6, 6))) return;
+  if (!test_traj_alloc(&tr, n, nf, test_periodic_box(6, 6))) return;
   for (f = 0; f < nf; f++) {
     tr.t[f] = 0.5 * f;
     for (i = 0; i < n; i++) {
@@ -411,7 +397,7 @@ static void msd_relative_by_hand(void)
 {
   afv_traj tr;
   afv_msd m;
-  if (!traj_alloc(&tr, 2, 2, test_open_box())) return;
+  if (!test_traj_alloc(&tr, 2, 2, test_open_box())) return;
   tr.t[1] = 1;
   tr.r[2] = tr.r[6] = 1.5;
   tr.r[4] = 1;
@@ -436,7 +422,7 @@ static void msd_random_walks(void)
   afv_traj tr;
   afv_msd m;
   int f, i, k, checked = 0;
-  if (!traj_alloc(&tr, N, T, test_open_box())) return;
+  if (!test_traj_alloc(&tr, N, T, test_open_box())) return;
   test_rng_seed(11);
   for (i = 0; i < N; i++) {
     /* 30 l apart: each walk spreads by s sqrt(T) = 2 l per coordinate, so
@@ -759,7 +745,7 @@ static void analyze_synthetic_run(void)
   int n = tri_lattice(4, 4, 1.5, r0, &b), f, i, k;
   static const char *files[] = {"summary.txt", "msd.csv", "csd.csv",
                                 "csd_binned.csv", "series.csv"};
-  if (!traj_alloc(&tr, n, 30, b)) return;
+  if (!test_traj_alloc(&tr, n, 30, b)) return;
   for (f = 0; f < 30; f++) {
     tr.t[f] = 10.0 * f;
     for (i = 0; i < n; i++) {

@@ -326,20 +326,6 @@ static void crossing_interpolates(void)
 }
 
 /* ---- what afv analyze computes for collect ------------------------------------- */
-static int traj_make(afv_traj *tr, int n, int nframes, double L)
-{
-  memset(tr, 0, sizeof *tr);
-  tr->n = n;
-  tr->nframes = nframes;
-  tr->box = test_periodic_box(L, L);
-  tr->step = calloc((size_t)nframes, sizeof *tr->step);
-  tr->t = calloc((size_t)nframes, sizeof(double));
-  tr->r = calloc((size_t)nframes * 2 * n, sizeof(double));
-  tr->theta = calloc((size_t)nframes * n, sizeof(double));
-  CHECK(tr->step && tr->t && tr->r && tr->theta, "out of memory");
-  return tr->step && tr->t && tr->r && tr->theta;
-}
-
 /* 16 cells on a 4 x 4 square lattice of spacing 1.9 (contacts along the
 ** rows and columns) in a 20 x 20 box; at odd frames the corner cell 0 sits
 ** far from all (it loses its 2 contacts, gains none): one T1 event per
@@ -349,7 +335,7 @@ static void t1_rate_counts_changes(void)
   afv_traj tr;
   afv_analysis a;
   int f, i, n = 16;
-  if (!traj_make(&tr, n, 21, 20)) return;
+  if (!test_traj_alloc(&tr, n, 21, test_periodic_box(20, 20))) return;
   for (f = 0; f < 21; f++) {
     double *r = tr.r + (size_t)f * 2 * n;
     tr.t[f] = 0.5 * f;
@@ -380,7 +366,7 @@ static void msd_beta_slopes(void)
   double want[3] = {2, 1, 0}, tol[3] = {1e-9, 0.15, 0.1};
   int kind, f, i;
   for (kind = 0; kind < 3; kind++) {
-    if (!traj_make(&tr, N, F, 400)) return;
+    if (!test_traj_alloc(&tr, N, F, test_periodic_box(400, 400))) return;
     test_rng_seed(7 + kind);
     for (f = 0; f < F; f++) {
       double *r = tr.r + (size_t)f * 2 * N, *q = r - 2 * N;
