@@ -414,6 +414,8 @@ static void analyze_window_and_run_continue(void)
   CHECK(afv("analyze %s/a/b/r --steady-from 1 --lag 3.5") == 2
         && count_lines(err_text) == 1 && strstr(err_text, "--lag"),
         "lag longer than the window: %s", err_text);
+  CHECK(afv("analyze %s/a/b/r --steady-from 4") == 2, "a window of one "
+        "frame accepted");
   CHECK(afv("analyze %s/a/b/r --lag 0.1") == 2, "lag under a frame accepted");
   CHECK(!exists("a/b/r/analysis/summary.txt"), "a refused analyze wrote");
   CHECK(afv("analyze %s/a/b/r --steady-from 1 --lag 2") == 0, "%s", err_text);
