@@ -484,6 +484,8 @@ typedef struct curves {
   char (*label)[128];
 } curves;
 
+/* qsort has no context argument in C99: the table and the v0 column of the
+** sort in progress. */
 static const sweep_table *sort_table;
 static int sort_kv;
 static int cmp_v0(const void *a, const void *b)

@@ -202,11 +202,16 @@ static int sweep_option(sweep_opts *o, const char *opt, const char *val)
   else if (!strcmp(opt, "--seeds")) return count_value(opt, val, &o->seeds);
   else if (!strcmp(opt, "--per-task"))
     return count_value(opt, val, &o->per_task);
-  else if (!strcmp(opt, "--steady-from") || !strcmp(opt, "--lag")) {
-    if (!whole_double(val, &d) || d < 0 || (d == 0 && opt[2] == 'l'))
-      return !fprintf(stderr, "afv sweep: %s '%s': expected a number %s\n",
-                      opt, val, opt[2] == 'l' ? "> 0" : ">= 0");
-    *(opt[2] == 'l' ? &o->lag : &o->steady_from) = val;
+  else if (!strcmp(opt, "--steady-from")) {
+    if (!whole_double(val, &d) || d < 0)
+      return !fprintf(stderr, "afv sweep: %s '%s': expected a number >= 0\n",
+                      opt, val);
+    o->steady_from = val;
+  } else if (!strcmp(opt, "--lag")) {
+    if (!whole_double(val, &d) || d <= 0)
+      return !fprintf(stderr, "afv sweep: %s '%s': expected a number > 0\n",
+                      opt, val);
+    o->lag = val;
   } else {
     sweep_axis *x = &o->ax[o->nax];
     for (k = 0; k < o->nax; k++)
@@ -575,22 +580,22 @@ static int write_job_configs(const sweep_grid *g, const char *dir)
   return 1;
 }
 
-/* A relative cells path becomes absolute (the job files live elsewhere). */
+/* Relative cells paths become absolute (the job files live elsewhere). */
 static int absolute_cells(sweep_opts *o, char *buf)
 {
-  int k;
+  int k, v;
   for (k = 0; k < o->nax; k++) {
     sweep_axis *x = &o->ax[k];
-    if (strcmp(x->key, "cells") || x->n != 1 || x->value[0][0] == '/'
-        || !strcmp(x->value[0], "none"))
-      continue;
-    if (!realpath(x->value[0], buf) || strlen(buf) >= VALUE_MAX) {
-      fprintf(stderr, "afv sweep: --cells %s: %s\n", x->value[0],
-              strlen(buf) >= VALUE_MAX ? "absolute path too long"
-              : strerror(errno));
-      return 0;
+    for (v = 0; !strcmp(x->key, "cells") && v < x->n; v++) {
+      if (x->value[v][0] == '/' || !strcmp(x->value[v], "none")) continue;
+      errno = 0;
+      if (!realpath(x->value[v], buf) || strlen(buf) >= VALUE_MAX) {
+        fprintf(stderr, "afv sweep: --cells %s: %s\n", x->value[v],
+                errno ? strerror(errno) : "absolute path too long");
+        return 0;
+      }
+      snprintf(x->value[v], VALUE_MAX, "%s", buf);
     }
-    snprintf(x->value[0], VALUE_MAX, "%s", buf);
   }
   return 1;
 }
