@@ -408,6 +408,14 @@ static void analyze_window_and_run_continue(void)
         err_text);
   CHECK(!strcmp(read_rel("a/b/r/trajectory.dat", buf), before),
         "--continue changed a finished run");
+  /* a run killed before its first checkpoint starts again, same bytes */
+  shell("rm %s/a/b/r/checkpoint.txt", base);
+  CHECK(afv("run --out %s/a/b/r --N 30 --v0 0 --steps 400 --frame_every 50 "
+            "--svg_every 0 --quiet --continue") == 0, "--continue: %s",
+        err_text);
+  CHECK(!strcmp(read_rel("a/b/r/trajectory.dat", buf), before)
+        && exists("a/b/r/checkpoint.txt"),
+        "--continue of a run without checkpoint: not the same trajectory");
   CHECK(afv("analyze %s/a/b/r --steady-from 4.5") == 2
         && count_lines(err_text) == 1 && strstr(err_text, "--steady-from"),
         "window past the end: %s", err_text);
