@@ -602,6 +602,19 @@ done:
   return ok;
 }
 
+/* "" if the level lies within the finite values of z, else which side
+** they all are on (the map then has no contour, and says why). */
+static const char *level_side(const double *z, int n, double level)
+{
+  int k, above = 0, below = 0;
+  for (k = 0; k < n; k++) {
+    above += z[k] >= level;
+    below += z[k] < level;
+  }
+  return above && below ? "" : above ? " (none: every point above)"
+         : below ? " (none: every point below)" : "";
+}
+
 static int draw_map(const char *dir, const sweep_table *T, const plane *P,
                     int k, int logz, double level, const double *cx,
                     const double *cy, int cn)
@@ -615,8 +628,8 @@ static int draw_map(const char *dir, const sweep_table *T, const plane *P,
   if (!z) return 0;
   plane_values(T, P, k, z);
   memset(&m, 0, sizeof m);
-  snprintf(title, sizeof title, "%s over (P0, v0); contour at %g",
-           params[k].label, level);
+  snprintf(title, sizeof title, "%s over (P0, v0); contour at %g%s",
+           params[k].label, level, level_side(z, P->nx * P->ny, level));
   m.title = title;
   m.xlabel = "P0 (l)";
   m.ylabel = "v0 (l/time)";

@@ -135,7 +135,7 @@ int afv_boundary_fit(int n, const double *p0, const double *vs,
 #define MAP_W 700.0
 #define MAP_H 520.0
 #define MAP_L 70.0     /* margins of the plot area */
-#define MAP_R 130.0
+#define MAP_R 140.0
 #define MAP_T 40.0
 #define MAP_B 55.0
 
@@ -323,7 +323,7 @@ static void map_colorbar(FILE *out, const afv_map *m, const map_frame *f)
             "stroke=\"black\" stroke-width=\"2.5\"/>\n", x - 4, y, x + 22, y);
   }
   fprintf(out, "<text transform=\"translate(%.2f %.2f) rotate(-90)\" "
-          "text-anchor=\"middle\">", x + 75, top + h / 2);
+          "text-anchor=\"middle\">", x + 92, top + h / 2);
   put_escaped(out, m->zlabel);
   fputs("</text>\n", out);
 }
