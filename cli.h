@@ -36,6 +36,10 @@ int cmd_meanfield(int argc, char **argv);
 int cmd_sweep(int argc, char **argv);
 int cmd_collect(int argc, char **argv);
 
+/* argv[0] of the program as started (main.c); afv sweep finds itself by it
+** where /proc/self/exe is not there. */
+extern const char *program_name;
+
 /* ---- cli.c -------------------------------------------------------------- */
 /* Prints "afv: MSG" on stderr and returns EXIT_BAD_INPUT. */
 int bad_input(const char *msg);

@@ -54,9 +54,12 @@ static const command commands[] = {
   {"collect", cmd_collect},
 };
 
+const char *program_name = "afv";
+
 int main(int argc, char **argv)
 {
   size_t c;
+  if (argc > 0 && argv[0]) program_name = argv[0];
   if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0
       || strcmp(argv[1], "help") == 0) {
     fputs(usage_text, argc < 2 ? stderr : stdout);

@@ -328,7 +328,26 @@ static int plain_path(const char *what, const char *p)
   return 0;
 }
 
-/* The absolute path of this afv program (or of --afv), into out. */
+/* argv[0] as a path: itself if it names a folder, else the first
+** executable of that name along PATH.  0 if none. */
+static int program_path(const char *argv0, char *out)
+{
+  char buf[PATH_MAX];
+  const char *dirs = getenv("PATH");
+  if (strchr(argv0, '/')) return realpath(argv0, out) != NULL;
+  while (dirs && *dirs) {
+    size_t m = strcspn(dirs, ":");
+    if (m == 0) snprintf(buf, sizeof buf, "./%s", argv0);  /* "::": cwd */
+    else snprintf(buf, sizeof buf, "%.*s/%s", (int)m, dirs, argv0);
+    if (access(buf, X_OK) == 0 && realpath(buf, out)) return 1;
+    dirs += m + (dirs[m] == ':');
+  }
+  return 0;
+}
+
+/* The absolute path of this afv program (or of --afv), into out: the
+** runners call it.  Linux names the running program in /proc/self/exe;
+** elsewhere argv[0] is resolved. */
 static int afv_program(const char *given, char *out)
 {
   char buf[PATH_MAX];
@@ -341,14 +360,15 @@ static int afv_program(const char *given, char *out)
     return 1;
   }
   m = readlink("/proc/self/exe", buf, sizeof buf - 1);
-  if (m <= 0) {
-    fprintf(stderr, "afv sweep: cannot find the afv program's path: give "
-            "--afv PATH\n");
-    return 0;
+  if (m > 0) {
+    buf[m] = 0;
+    snprintf(out, PATH_MAX, "%s", buf);
+    return 1;
   }
-  buf[m] = 0;
-  snprintf(out, PATH_MAX, "%s", buf);
-  return 1;
+  if (program_path(program_name, out)) return 1;
+  fprintf(stderr, "afv sweep: cannot find the afv program's path: give "
+          "--afv PATH\n");
+  return 0;
 }
 
 /* Job j's command line (no newline). */
