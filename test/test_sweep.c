@@ -416,6 +416,17 @@ static void analyze_window_and_run_continue(void)
   CHECK(!strcmp(read_rel("a/b/r/trajectory.dat", buf), before)
         && exists("a/b/r/checkpoint.txt"),
         "--continue of a run without checkpoint: not the same trajectory");
+  /* an unfinished run (stopped at step 200 of 400: its params.txt says
+  ** 400, its checkpoint 200) is resumed to the same bytes */
+  CHECK(afv("run --out %s/u --N 30 --v0 0 --steps 200 --frame_every 50 "
+            "--checkpoint_every 100 --svg_every 0 --quiet") == 0, "%s",
+        err_text);
+  shell("sed -i 's/^steps  *200$/steps 400/' %s/u/params.txt", base);
+  CHECK(afv("run --out %s/u --N 30 --v0 0 --steps 400 --frame_every 50 "
+            "--svg_every 0 --quiet --continue") == 0, "--continue: %s",
+        err_text);
+  CHECK(!strcmp(read_rel("u/trajectory.dat", buf), before),
+        "--continue of an unfinished run: not the uninterrupted trajectory");
   CHECK(afv("analyze %s/a/b/r --steady-from 4.5") == 2
         && count_lines(err_text) == 1 && strstr(err_text, "--steady-from"),
         "window past the end: %s", err_text);
