@@ -370,44 +370,6 @@ static int write_params(const char *dir, const run_cfg *c, const char *cells)
   return write_params_to(path, c, cells);
 }
 
-/* ---- the keys seen from afv sweep (cli.h) -------------------------------- */
-int run_key_check(const char *name, const char *text, char *err,
-                  size_t errlen)
-{
-  run_cfg cfg;
-  const run_key *K = find_key(name);
-  if (!K) {
-    afv_errorf(err, errlen, "unknown key '%s' (see afv run --help)", name);
-    return 0;
-  }
-  cfg_defaults(&cfg);
-  return set_key(&cfg, K, text, NULL, err, errlen);
-}
-
-int run_config_write(const char *path, int n, const char *const *names,
-                     const char *const *values, char *err, size_t errlen)
-{
-  run_cfg cfg;
-  afv_cells cl;
-  int set[N_RUN_KEYS], k, ok = 1;
-  memset(set, 0, sizeof set);
-  memset(&cl, 0, sizeof cl);
-  cfg_defaults(&cfg);
-  for (k = 0; k < n && ok; k++) {
-    const run_key *K = find_key(names[k]);
-    ok = run_key_check(names[k], values[k], err, errlen)
-         && set_key(&cfg, K, values[k], NULL, err, errlen);
-    if (ok) set[K - run_keys] = -1;
-  }
-  ok = ok && cfg_validate(&cfg, set, &cl, err, errlen);
-  if (ok && path && write_params_to(path, &cfg, cfg.cells) != AFV_OK) {
-    afv_errorf(err, errlen, "%s: cannot write", path);
-    ok = 0;
-  }
-  afv_cells_free(&cl);
-  return ok;
-}
-
 static int write_cells_copy(const char *dir, const afv_cells *cl)
 {
   char path[RUN_PATH_MAX + 32], tmp[RUN_PATH_MAX + 64];
@@ -845,6 +807,66 @@ static int run_computable(const run_state *R, const char *where, char *err,
     return 0;
   }
   return forces_computable(&R->sim, err, errlen);
+}
+
+/* ---- the keys seen from afv sweep (cli.h) -------------------------------- */
+int run_key_check(const char *name, const char *text, char *err,
+                  size_t errlen)
+{
+  run_cfg cfg;
+  const run_key *K = find_key(name);
+  if (!K) {
+    afv_errorf(err, errlen, "unknown key '%s' (see afv run --help)", name);
+    return 0;
+  }
+  cfg_defaults(&cfg);
+  return set_key(&cfg, K, text, NULL, err, errlen);
+}
+
+/* The start of cfg (cells cl, borrowed) built and checked as afv run
+** checks it before it creates anything (run_start, run_computable). */
+static int start_computable(const run_cfg *cfg, const afv_cells *cl,
+                            char *err, size_t errlen)
+{
+  run_state *R = calloc(1, sizeof *R);
+  int ok;
+  if (!R) {
+    afv_errorf(err, errlen, "out of memory");
+    return 0;
+  }
+  R->cfg = *cfg;
+  R->cells = *cl;
+  R->lock_fd = -1;
+  ok = run_start(R, err, errlen) == AFV_OK
+       && run_computable(R, "the start", err, errlen);
+  afv_sim_free(&R->sim);
+  free(R);
+  return ok;
+}
+
+int run_config_write(const char *path, int n, const char *const *names,
+                     const char *const *values, char *err, size_t errlen)
+{
+  run_cfg cfg;
+  afv_cells cl;
+  int set[N_RUN_KEYS], k, ok = 1;
+  memset(set, 0, sizeof set);
+  memset(&cl, 0, sizeof cl);
+  cfg_defaults(&cfg);
+  for (k = 0; k < n && ok; k++) {
+    const run_key *K = find_key(names[k]);
+    ok = run_key_check(names[k], values[k], err, errlen)
+         && set_key(&cfg, K, values[k], NULL, err, errlen);
+    if (ok) set[K - run_keys] = -1;
+  }
+  ok = ok && cfg_validate(&cfg, set, &cl, err, errlen)
+       && (path || start_computable(&cfg, &cl, err, errlen));
+  if (ok && path && write_params_to(path, &cfg, cfg.cells) != AFV_OK) {
+    afv_errorf(err, errlen, "%s: cannot write", path);
+    ok = 0;
+  }
+  afv_cells_free(&cl);
+  return ok;
 }
 
 /* ---- outputs ------------------------------------------------------------ */

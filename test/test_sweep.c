@@ -164,7 +164,7 @@ static void sweep_bad_values(void)
     "--P0 4:5", "--v0 0.1,,0.2", "--v0 abc", "--v0 0.1,2,nan",
     "--N 0", "--N 50,0", "--bogus 1", "--box square", "--steps 1.5",
     "--seeds 0", "--seeds 2 --seed 1,2", "--P0 4 --P0 5", "--lag 0",
-    "--seed -1", "--phi 0,0.5", "--P0",
+    "--seed -1", "--phi 0,0.5", "--P0", "--KA 1,1e300",
   };
   char args[256];
   int k;
