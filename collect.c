@@ -231,7 +231,11 @@ static int make_points(sweep_table *T)
   T->points = calloc((size_t)T->njobs + 1, sizeof *T->points);
   if (!x || !T->points) return free(x), !bad_input("collect: out of memory");
   for (j = 0; j < T->njobs; j++) {
-    for (q = 0; q < T->npoints && !same_point(T, T->points[q].first, j); q++) {}
+    /* afv sweep lists the seeds of a point together: try the last first */
+    q = T->npoints - 1;
+    if (q < 0 || !same_point(T, T->points[q].first, j))
+      for (q = 0; q < T->npoints && !same_point(T, T->points[q].first, j);
+           q++) {}
     if (q == T->npoints) T->points[T->npoints++].first = j;
     T->jobs[j].point = q;
     T->jobs[j].done = read_summary(T, &T->jobs[j]);
