@@ -391,6 +391,48 @@ static void msd_beta_slopes(void)
   }
 }
 
+/* msd_beta is the slope over lags 1% .. 10% of the window, not over all
+** lags: 100 isolated cells in an Ornstein-Uhlenbeck cage of correlation
+** time 300 frames (window 1999 frames), MSD ~ 1 - exp(-t/300), whose
+** log-slope falls from 0.98 at t = 20 to 0.72 at t = 200 and 0.16 at
+** t = 900.  Want: the slope of the exact curve at the same lags. */
+static void msd_beta_window(void)
+{
+  enum { N = 100, F = 2000 };
+  const double tau = 300, a = exp(-1 / tau), s = sqrt(1 - a * a);
+  afv_traj tr;
+  afv_analysis an;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0, want;
+  int f, i, k, m = 0;
+  if (!test_traj_alloc(&tr, N, F, test_periodic_box(1000, 1000))) return;
+  test_rng_seed(11);
+  for (f = 0; f < F; f++) {
+    double *r = tr.r + (size_t)f * 2 * N, *q = r - 2 * N;
+    tr.t[f] = f;
+    for (i = 0; i < N; i++) {
+      double cx = 100.0 * (i % 10) + 50, cy = 100.0 * (i / 10) + 50;
+      r[2*i] = cx + (f ? a * (q[2*i] - cx) + s * test_rng_normal()
+                       : test_rng_normal());
+      r[2*i+1] = cy + (f ? a * (q[2*i+1] - cy) + s * test_rng_normal()
+                         : test_rng_normal());
+    }
+  }
+  CHECK(afv_analyze(&an, &tr, 1.0, 1, 0.1, 0, 10) == AFV_OK, "analyze");
+  for (k = 0; k < an.msd.nlags; k++) {
+    double t = an.msd.dt[k], x, y;
+    if (t < 0.01 * (F - 1) || t > 0.1 * (F - 1)) continue;
+    x = log(t);
+    y = log(1 - exp(-t / tau));
+    sx += x; sy += y; sxx += x * x; sxy += x * y;
+    m++;
+  }
+  want = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+  CHECK(m >= 3 && fabs(an.msd_beta - want) < 0.05, "msd_beta %g, want %g "
+        "(%d lags)", an.msd_beta, want, m);
+  afv_analysis_free(&an);
+  afv_traj_free(&tr);
+}
+
 /* afv run creates the parents of --out; --continue leaves a finished run
 ** alone; afv analyze refuses a window or lag the run does not hold (exit
 ** 2, one line, no summary), writes D_eff nan at v0 = 0 and records the
@@ -461,6 +503,7 @@ void suite_sweep(void)
   RUN(crossing_interpolates);
   RUN(t1_rate_counts_changes);
   RUN(msd_beta_slopes);
+  RUN(msd_beta_window);
   RUN(analyze_window_and_run_continue);
   shell("rm -rf %s", base);
 }
