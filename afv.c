@@ -141,157 +141,158 @@ double afv_cell_energy(const afv_params *p, int i, double A, double P, double L)
 }
 
 /* ---- shape derivatives -------------------------------------------------- */
+/* NEARLY COINCIDENT CENTRES.  The formulas (A), (V1), (V2) above are right
+** but, evaluated as vectors, lose everything for small d: (V1) holds terms
+** s/d and l^2/(d s) that cancel to h/(2s), and the midpoint m of (A) is
+** formed from vertices of size l, so D - m is off by eps l, which (A)
+** divides by d.  At d = 1e-16 l the pair force came out 39% wrong, and
+** with d^2 below the smallest double, 1e159 with the wrong sign.
+** So each slot's derivative is split along u and t:
+**     G_ij = a u + (b / d) t,   a = de_i/dd,   b = de_i/dphi,
+** a for r_j moving away (the bisector moves out by half as much), b for
+** r_j turning about r_i by the angle phi (the bisector line turns about
+** r_i, the cell centre, by phi: x.u = h with u -> u + phi t).  a and b are
+** sums of bounded terms, computed from each vertex's position tau along
+** its edge (afv_piece.tau, from the clipping, relative precision), and
+** b / d is formed once per pair, from both cells' b (gather_forces).
+** Per piece:
+**   edge ell = tau1 - tau0 (A):  a += wA ell / 2,
+**                                b -= wA ell (tau0 + tau1) / 2;
+**   arc end (V1), s the half-chord, the end at tau = -+s:
+**                                a += (wP (l - h) + wL l) / (2 s),
+**                                b += +-(wP (l - h) + wL l)
+**     (+ where the arc arrives, at the edge's start; - where it leaves): the
+**     arc ends turn with the line, along the circle, so L keeps its length
+**     and P changes only through the edge;
+**   triple junction V of edges j (leaving V, V at tau0_j) and k (arriving,
+**     V at tau1_k), c = u_j x u_k, q = u_j.u_k, m = wP (1 - q) / c:
+**                                a_j -= m / 2,  b_j += tau0_j m,
+**                                a_k -= m / 2,  b_k += tau1_k m
+**     (V slides along the other line; m = wP c / (1 + q) where q >= 0,
+**     the same value without the cancellation in 1 - q).
+** For two cells alone the b of both arc ends cancel exactly and b of the
+** edge is 0 exactly (tau0 = -tau1), so the pair force is a u to rounding
+** for any d > 0: the closed form of test_core.c holds from d = 1e-16 l
+** to 2l (test_geometry.c).  With the cap, a uses (V1) as before: the
+** l^2/(d s) term with max(2s, delta) for 2s; (V1) as printed is only
+** ill-conditioned at small d, where the cap changes nothing. */
+
 /* The edge of neighbour slot s, seen from its cell. */
 typedef struct edge {
-  double dx, dy;       /* D = r_j - r_i, of length d */
-  double inv_d;        /* 1 / d: one division per edge serves its terms */
   double ux, uy;       /* u = D / d */
-  double tx, ty;       /* t = R u, counter-clockwise along the edge */
-  double s;            /* half-chord sqrt(l^2 - d^2/4) */
+  double h;            /* d / 2 */
+  double s;            /* half-chord sqrt(l^2 - h^2) */
 } edge;
 
-/* u, d and s come from the edge cache that afv_neighbours fills (geom.c),
+/* u, h and s come from the edge cache that afv_neighbours fills (geom.c),
 ** computed there once per neighbour pair. */
 static edge edge_of(const afv_geom *g, int s)
 {
   const double *e = g->edge + 4 * s;
   edge E;
-  E.dx = g->nbr_d[2*s];
-  E.dy = g->nbr_d[2*s+1];
   E.ux = e[0];
   E.uy = e[1];
-  E.inv_d = 0.5 / e[2]; /* the cache holds h = d/2 (exactly); 0.5/h is
-                        ** 1/d rounded once, the same bits as 1/(2h) */
+  E.h = e[2];
   E.s = e[3];
-  E.tx = -E.uy;
-  E.ty = E.ux;
   return E;
 }
 
-static void add(double *v, double ax, double ay)
+/* (A): the area of the edge piece pc, through a and b of its slot. */
+static void area_terms(const afv_piece *pc, double wA, double *ab)
 {
-  v[0] += ax;
-  v[1] += ay;
+  double c = wA * pc->length;
+  ab[0] += 0.5 * c;
+  ab[1] -= c * (pc->tau + 0.5 * pc->length);   /* tau0 + ell/2 = mid */
 }
 
-/* (A): wA (ell/d) (D - m), m the midpoint of the edge starting at (x, y). */
-static void area_term(const edge *E, const afv_piece *pc, double wA,
-                      double *grad)
+/* (V1): a of one arc end of edge E (the same at both ends); the b terms
+** are +-arc_turn (see above). */
+static double arc_end_radial(const edge *E, double l, double cap, double wP,
+                             double wL)
 {
-  double mx = pc->x + 0.5 * pc->length * E->tx;
-  double my = pc->y + 0.5 * pc->length * E->ty;
-  double c = wA * pc->length * E->inv_d;
-  add(grad, c * (E->dx - mx), c * (E->dy - my));
+  double s = E->s, h = E->h;
+  if (!(s > 0)) return 0;              /* a chord of length 0 makes no edge */
+  if (2 * s >= cap)                    /* exact gradient */
+    return (wP * (l - h) + wL * l) * (0.5 / s);
+  /* capped: (dV/dD)^T w along u with l^2/(d s) -> l^2/(d cap/2), where
+  ** -sigma t.w = (wP (h - l) + wL h) / l and w.u = (wP + wL) s / l at
+  ** either end */
+  return (wP + wL) * s / (2 * l)
+         + (wP * (h - l) + wL * h) / l * (l * l - s * 0.5 * cap)
+           / (2 * h * 0.5 * cap);
 }
 
-/* (V1): adds (dV/dD)^T w for the arc end with side sigma of edge E. */
-static void arc_end_term(const edge *E, double l, double cap, int sigma,
-                         double wx, double wy, double *grad)
+static double arc_turn(const edge *E, double l, double wP, double wL)
 {
-  double s = E->s;
-  double s_div = 2 * s < cap ? 0.5 * cap : s;
-  double tw = E->tx * wx + E->ty * wy;
-  double gx = 0.5 * wx + sigma * (s * E->inv_d) * wy; /* R^T w = (w_y, -w_x) */
-  double gy = 0.5 * wy - sigma * (s * E->inv_d) * wx;
-  if (s_div > 0) {
-    double c = sigma * l * l * E->inv_d / s_div * tw;
-    gx -= c * E->ux;
-    gy -= c * E->uy;
-  }
-  add(grad, gx, gy);
+  return wP * (l - E->h) + wL * l;
 }
 
-/* (V2): adds (dV/dr_j)^T w for the triple junction V of edges Ej and Ek
-** to gj, and (dV/dr_k)^T w to gk: V slides along the other edge, so
-**   (dV/dr_j)^T w = (V - D_j) (t_k.w) / den_j,  den_j = -D_j.t_k
-**                                                     = d_j (u_j x u_k),
-**   (dV/dr_k)^T w = (V - D_k) (t_j.w) / den_k,  den_k = -D_k.t_j
-**                                                     = -d_k (u_j x u_k),
-** with a x b = a_x b_y - a_y b_x: one division, 1 / (u_j x u_k), serves
-** both.  Parallel lines make no junction, so a zero cross product only
-** arises for a degenerate, zero-length vertex. */
-static void junction_terms(const edge *Ej, const edge *Ek, double vx,
-                           double vy, double wx, double wy, double *gj,
-                           double *gk)
+/* (V2): the triple junction of edge E (leaving the vertex, which lies at
+** tau_e along it) and the previous edge K (arriving, at tau_k along it):
+** a and b of both slots (abe, abk). */
+static void junction_terms(const edge *E, const edge *K, double tau_e,
+                           double tau_k, double wP, double *abe, double *abk)
 {
-  double cross = Ej->ux * Ek->uy - Ej->uy * Ek->ux, q, cj, ck;
-  if (cross == 0) return;
-  q = 1 / cross;
-  cj = (Ek->tx * wx + Ek->ty * wy) * q * Ej->inv_d;
-  ck = -(Ej->tx * wx + Ej->ty * wy) * q * Ek->inv_d;
-  add(gj, cj * (vx - Ej->dx), cj * (vy - Ej->dy));
-  add(gk, ck * (vx - Ek->dx), ck * (vy - Ek->dy));
+  double c = E->ux * K->uy - E->uy * K->ux;   /* u_E x u_K */
+  double q = E->ux * K->ux + E->uy * K->uy;   /* u_E . u_K */
+  double m;
+  if (c == 0) return;                 /* parallel lines make no vertex */
+  m = q >= 0 ? wP * c / (1 + q) : wP * (1 - q) / c;
+  abe[0] -= 0.5 * m;
+  abe[1] += tau_e * m;
+  abk[0] -= 0.5 * m;
+  abk[1] += tau_k * m;
 }
 
-/* The tangent of the circle (counter-clockwise) at the point (x, y) on it. */
-static void circle_tangent(double x, double y, double l, double *tx,
-                           double *ty)
-{
-  *tx = -y / l;
-  *ty = x / l;
-}
-
-/* Contributions of the vertex at the start of edge piece pc (edge *E) and,
-** if an arc follows (next_arc), of its end vertex.  The piece before pc is
-** an arc if prev_arc, else the edge *K of slot prev_slot. */
-static void edge_vertex_terms(const edge *E, const afv_piece *pc, int prev_arc,
-                              const edge *K, int prev_slot, int next_arc,
-                              double l, double cap, double wP, double wL,
-                              double *grad)
-{
-  double ax, ay;
-  if (prev_arc) {                             /* arc arrives: sigma = -1 */
-    circle_tangent(pc->x, pc->y, l, &ax, &ay);
-    arc_end_term(E, l, cap, -1, wP * (ax - E->tx) + wL * ax,
-                 wP * (ay - E->ty) + wL * ay, grad + 2 * pc->slot);
-  } else {                                    /* triple junction (i,k,j) */
-    double wx = wP * (K->tx - E->tx), wy = wP * (K->ty - E->ty);
-    junction_terms(E, K, pc->x, pc->y, wx, wy, grad + 2 * pc->slot,
-                   grad + 2 * prev_slot);
-  }
-  if (next_arc) {                             /* arc leaves: sigma = +1 */
-    double vx = pc->x + pc->length * E->tx, vy = pc->y + pc->length * E->ty;
-    circle_tangent(vx, vy, l, &ax, &ay);
-    arc_end_term(E, l, cap, +1, wP * (E->tx - ax) - wL * ax,
-                 wP * (E->ty - ay) - wL * ay, grad + 2 * pc->slot);
-  }
-}
-
-/* One pass over the pieces in boundary order.  The edge of the previous
-** piece is carried along (K) rather than fetched again: the same values,
-** and the same additions to grad in the same order as visiting each edge
-** with its two cyclic neighbours. */
+/* One pass over the pieces in boundary order, accumulating a and b per
+** slot in grad (grad[2s] = a, grad[2s+1] = b).  The edge of the previous
+** piece is carried along (K). */
 void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
                              double wA, double wP, double wL, double *grad)
 {
   const afv_piece *pieces = g->pieces + g->piece_start[i];
-  int np = g->n_pieces[i], k, prev_slot, prev_arc;
+  int np = g->n_pieces[i], k;
+  const afv_piece *prev;
   edge K = {0};     /* read only after an edge; zeroed: gcc -O2 cannot see that */
   if (np == 0) return;
-  prev_slot = pieces[np - 1].slot;            /* the piece before piece 0 */
-  prev_arc = pieces[np - 1].nbr == AFV_ARC;
-  if (!prev_arc) K = edge_of(g, prev_slot);
+  prev = &pieces[np - 1];                     /* the piece before piece 0 */
+  if (prev->nbr != AFV_ARC) K = edge_of(g, prev->slot);
   for (k = 0; k < np; k++) {
     const afv_piece *pc = &pieces[k];
     int next_arc = pieces[k + 1 < np ? k + 1 : 0].nbr == AFV_ARC;
+    double *ab;
     edge E;
     if (pc->nbr == AFV_ARC) {
-      prev_arc = 1;
+      prev = pc;
       continue;
     }
     E = edge_of(g, pc->slot);
-    area_term(&E, pc, wA, grad + 2 * pc->slot);
-    edge_vertex_terms(&E, pc, prev_arc, &K, prev_slot, next_arc, l, cap, wP,
-                      wL, grad);
+    ab = grad + 2 * pc->slot;
+    area_terms(pc, wA, ab);
+    if (prev->nbr == AFV_ARC) {               /* arc arrives at the start */
+      ab[0] += arc_end_radial(&E, l, cap, wP, wL);
+      ab[1] += arc_turn(&E, l, wP, wL);
+    } else {                                  /* triple junction (i,k,j) */
+      junction_terms(&E, &K, pc->tau, prev->tau + prev->length, wP, ab,
+                     grad + 2 * prev->slot);
+    }
+    if (next_arc) {                           /* arc leaves at the end */
+      ab[0] += arc_end_radial(&E, l, cap, wP, wL);
+      ab[1] -= arc_turn(&E, l, wP, wL);
+    }
     K = E;
-    prev_slot = pc->slot;
-    prev_arc = 0;
+    prev = pc;
   }
 }
 
 /* ---- the whole tissue -------------------------------------------------- */
-/* (F): F_j = sum over neighbour slots s of j of (G_js - G_rev(s)).  Each
-** F_j is summed in its own slot order, whatever thread computes it. */
+/* (F): F_j = sum over neighbour slots s of j of (G_js - G_rev(s)).  With
+** G = a u + (b / d) t in each cell's frame (u_rev = -u_s, t_rev = -t_s):
+**     G_js - G_rev(s) = (a_s + a_rev) u_s + ((b_s + b_rev) / d) t_s,
+** the two cells' b added before the division by d (a tiny d makes each
+** b / d large where their sum is not).  d = 2h > 0 even for a subnormal
+** d (geom.c), so b = 0 gives 0.  Each F_j is summed in its own slot
+** order, whatever thread computes it. */
 static void gather_forces(const afv_geom *g, int n, double *f)
 {
   int j;
@@ -302,8 +303,11 @@ static void gather_forces(const afv_geom *g, int n, double *f)
     for (s = g->nbr_start[j]; s < g->nbr_end[j]; s++) {
       int t = g->nbr_rev[s];
       /* the lists are symmetric (geom.c), so every slot has its reverse */
-      fx += g->grad[2*s] - g->grad[2*t];
-      fy += g->grad[2*s+1] - g->grad[2*t+1];
+      const double *e = g->edge + 4 * s;
+      double a = g->grad[2*s] + g->grad[2*t];
+      double bt = (g->grad[2*s+1] + g->grad[2*t+1]) / (e[2] + e[2]);
+      fx += a * e[0] - bt * e[1];
+      fy += a * e[1] + bt * e[0];
     }
     f[2*j] = fx;
     f[2*j+1] = fy;

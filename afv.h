@@ -128,6 +128,13 @@ typedef struct afv_piece {
                   ** (nbr_start[i] <= slot < nbr_end[i]); -1 for an arc */
   double x, y;    /* start vertex, relative to the cell centre */
   double length;  /* edge length or arc length (>= 0) */
+  double tau;     /* for an edge: where its start vertex lies along the
+                  ** bisector, x = h u + tau t (u = D/d, h = d/2, t = u
+                  ** turned by +90 degrees), so that the end is at
+                  ** tau + length; as computed by the clipping, to
+                  ** relative precision even where h is tiny (afv.c needs
+                  ** it there: the forces of nearly coincident cells);
+                  ** 0 for an arc */
 } afv_piece;
 
 /* Private: the grid of a cell list (geom.c). */
@@ -179,8 +186,9 @@ typedef struct afv_geom {
   int     max_cand;     /* most candidates of a cell (sizes the work) */
   double *edge;         /* per slot s: u = D/d (2), d/2, half-chord
                         ** sqrt(l^2 - d^2/4), set by afv_neighbours */
-  double *grad;         /* per neighbour slot s: dE_i/dr_nbr[s] (zeroed by
-                        ** afv_neighbours, summed by afv_compute) */
+  double *grad;         /* per neighbour slot s: dE_i/dr_nbr[s] as
+                        ** (a, b), see afv_cell_shape_gradient (zeroed
+                        ** by afv_neighbours, summed by afv_compute) */
   double *work;         /* clipping work space, one block per thread */
   int     work_stride;  /* doubles per thread block of work */
 } afv_geom;
@@ -231,8 +239,11 @@ int  afv_spatial_order(int n, const double *r, double l, const afv_box *b,
 ** Different cells may be shaped at once by OpenMP threads (at most
 ** omp_get_max_threads() as of afv_geometry_prepare: one work block each). */
 void afv_cell_shape(afv_geom *g, int i, double l);
-/* Adds to grad[s] (for every neighbour slot s of cell i) the vector
-**   wA dA_i/dr_j + wP dP_i/dr_j + wL dL_i/dr_j,   j = nbr[s],
+/* Adds to grad[2s], grad[2s+1] (for every neighbour slot s of cell i)
+** the vector  G = wA dA_i/dr_j + wP dP_i/dr_j + wL dL_i/dr_j  (j = nbr[s])
+** as (a, b) with  G = a u + (b / d) t,  u = D/d (D = nbr_d of s), t = u
+** turned by +90 degrees: a = dG/dd, b the derivative for r_j turning
+** about r_i (see afv.c: both stay bounded as d -> 0, where G does not),
 ** for the shape computed by afv_cell_shape.  cap as in afv_params. */
 void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
                              double wA, double wP, double wL, double *grad);

@@ -278,7 +278,12 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   s->bad_cell = -1;
   s->bad_disp = 0;
   st = afv_compute(&s->geom, n, s->r, &s->par, &s->box, s->f);
-  if (st != AFV_OK) afv_sim_free(s);
+  if (st != AFV_OK) {
+    int bad_i = s->geom.bad_i, bad_j = s->geom.bad_j;  /* the cells named */
+    afv_sim_free(s);
+    s->geom.bad_i = bad_i;
+    s->geom.bad_j = bad_j;
+  }
   return st;
 }
 

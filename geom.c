@@ -33,12 +33,23 @@
 */
 #include "afv.h"
 
+#include <float.h>
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #ifdef _OPENMP
 #include <omp.h>
+#endif
+
+/* A function for a rare case, kept out of line so that the compiler does
+** not hoist its work into the common path that calls it (gcc did: the
+** pass of exact_near cost 18 instructions per cell inline, never taken).
+** An extension of gcc and clang; other compilers inline as they like. */
+#if defined(__GNUC__)
+#define COLD __attribute__((noinline, cold))
+#else
+#define COLD
 #endif
 
 #define PI     3.14159265358979323846
@@ -385,8 +396,10 @@ static int stencil_runs(const afv_geom *g, const grid *G, int bx, int by,
 /* The cells closer than `range` to the cell at bin-order position k, found
 ** in the nr runs of its bin's stencil (stencil_runs), written to out[] (if
 ** not NULL; it has room for exactly `room` of them, the count of the
-** counting pass) in the order of the runs.  Returns their number, or
-** -1 - j if cell j has the same centre.
+** counting pass) in the order of the runs.  Returns their number.  A
+** cell with the same wrapped centre is a candidate like any other:
+** filter_cell decides on the exact displacement whether two centres
+** coincide (wrapping can round two distinct centres onto one).
 ** The loop has no branch on the distance: of the cells scanned 30% are
 ** candidates in the random state (8.7 scanned per cell), in no order a
 ** predictor learns, 22% in the cluster's lattice (27 scanned); with the
@@ -399,7 +412,7 @@ static int scan_cell(const afv_geom *g, const grid *G, int k,
                      int room)
 {
   double xi = g->bin_xy[2*k], yi = g->bin_xy[2*k+1], range2 = range * range;
-  int count = 0, same = -1, scratch, q, m;
+  int count = 0, scratch, q, m;
   int small = G->periodic && (G->nbx < 3 || G->nby < 3);
   for (q = 0; q < nr; q++) {
     double sx = run[q].sx, sy = run[q].sy;
@@ -415,16 +428,15 @@ static int scan_cell(const afv_geom *g, const grid *G, int k,
       d2 = dx * dx + dy * dy;
       if (out) *(count < room ? out + count : &scratch) = g->bin_cell[m];
       count += (d2 < range2) & other;
-      same = same < 0 && d2 == 0 && other ? m : same;   /* the first */
     }
   }
-  return same < 0 ? count : -1 - g->bin_cell[same];
+  return count;
 }
 
 /* Runs scan_cell for every cell, bin by bin: the cells of a bin share its
 ** stencil's runs, and neighbouring cells are visited together, which keeps
 ** the scanned bins in cache.  Counting pass (fill = 0): cand_start[i+1] =
-** count of cell i (or the negative code of a coincidence).  Filling pass:
+** count of cell i.  Filling pass:
 ** the lists, at cand_start[i].  Each cell writes only its own entries, so
 ** the bins may be shared among threads. */
 static void scan_all(afv_geom *g, const grid *G, double range, int fill)
@@ -446,9 +458,9 @@ static void scan_all(afv_geom *g, const grid *G, double range, int fill)
   }
 }
 
-/* After a counting pass that left count[i] = -1 - j where cells i and j
-** coincide: names the pair with the smallest cell number (the same whatever
-** the thread count), or returns AFV_OK. */
+/* After a pass that left count[i] = -1 - j where cells i and j coincide
+** (list_cell): names the pair with the smallest cell number (the same
+** whatever the thread count), or returns AFV_OK. */
 static int find_coincident(afv_geom *g, const int *count, int n)
 {
   int i;
@@ -699,7 +711,6 @@ static int build_candidates(afv_geom *g, int n, const double *r, double l,
   if ((st = fill_bins(g, &G, n, r)) != AFV_OK) return st;
   g->cand_start[0] = 0;
   scan_all(g, &G, range, 0);
-  if ((st = find_coincident(g, g->cand_start + 1, n)) != AFV_OK) return st;
   for (i = 0; i < n; i++) g->cand_start[i + 1] += g->cand_start[i];
   if (afv_grow((void **)&g->cand, &g->cap_cand, g->cand_start[n] + 1,
            sizeof(int)))
@@ -726,6 +737,31 @@ static int lower_half(double dx, double dy)
   return dy < 0 || (dy == 0 && dx < 0);
 }
 
+/* e, the binary exponent of the larger of |x|, |y| (0 for a zero
+** vector): ldexp(x, -e), ldexp(y, -e) is the vector scaled exactly by a
+** power of 2 to a length in [0.5, 1.5). */
+static int unit_exponent(double x, double y)
+{
+  int e = 0;
+  frexp(fmax(fabs(x), fabs(y)), &e);
+  return e;
+}
+
+/* a x b for two displacements whose products underflow (both shorter
+** than ~1e-154 l), where a x b computed as is comes out 0 and would sort
+** two distinct directions as one: the same on both vectors scaled by one
+** power of 2 (which keeps the sign, and a x b = -(b x a) exactly). */
+static double tiny_cross(double ax, double ay, double bx, double by)
+{
+  int k = unit_exponent(fmax(fabs(ax), fabs(bx)), fmax(fabs(ay), fabs(by)));
+  if (k > -450) return 0;           /* not tiny: a x b is 0 indeed */
+  return ldexp(ax, -k) * ldexp(by, -k) - ldexp(ay, -k) * ldexp(bx, -k);
+}
+
+/* Two bisectors of a cell closer than this to parallel (|t_a.u_b|) are
+** clipped with care (clip_near_parallel). */
+#define NEAR_PARALLEL 1e-6
+
 /* 1 if neighbour ja at displacement (ax, ay) comes after jb at (bx, by) in
 ** a cell's list: by the direction of the displacement (counter-clockwise
 ** from +x; compared by half-plane, then by the sign of the cross product,
@@ -740,6 +776,8 @@ static inline int comes_after(double ax, double ay, int ja, double bx,
   int ha = lower_half(ax, ay), hb = lower_half(bx, by);
   if (ha != hb) return ha > hb;
   cross = ax * by - ay * bx;
+  if (cross != 0) return cross < 0;
+  cross = tiny_cross(ax, ay, bx, by);   /* rare */
   if (cross != 0) return cross < 0;
   if (ax * ax + ay * ay != bx * bx + by * by)
     return ax * ax + ay * ay > bx * bx + by * by;
@@ -802,18 +840,65 @@ static void sort_candidates(afv_geom *g, int n, const afv_box *b)
   }
 }
 
+/* Wrapping rounds a centre to a multiple of eps L, so the displacement of
+** two wrapped centres is off by up to ~eps L: nothing next to a distance
+** of l, everything next to one of 1e-16 l.  Below NEAR max(Lx, Ly) it is
+** taken from the unwrapped centres instead (exact_image), whose error is
+** then below eps / NEAR = 2.3e-10 relative.  Never reached in a tissue
+** (cells there are 1e-5 l apart at the very least). */
+#define NEAR 9.5367431640625e-07   /* 2^-20 */
+
+/* The minimum image of r_j - r_i from the unwrapped centres, for each
+** component whose unwrapped difference is already its minimum image (the
+** subtraction of two nearby doubles is exact); the other components keep
+** (*dx, *dy), from the wrapped centres.  Odd under i <-> j, as fold is:
+** the lists stay symmetric.  In open space the wrapped centres are the
+** centres, and (*dx, *dy) is kept. */
+static void exact_image(const double *r, int i, int j, const afv_box *b,
+                        double *dx, double *dy)
+{
+  double ex = r[2*j] - r[2*i], ey = r[2*j+1] - r[2*i+1];
+  if (!b || !b->periodic) return;
+  if (fabs(ex) < 0.5 * b->Lx) *dx = ex;
+  if (fabs(ey) < 0.5 * b->Ly) *dy = ey;
+}
+
+/* The neighbours of cell i (count of them in nbr, their displacements in
+** nbr_d) closer than sqrt(near2) get their displacement from exact_image;
+** returns the first whose displacement is then exactly 0 (the same
+** centre), or -1.  (A pass of its own after filter_cell's loop: inline in
+** the loop, gcc computed exact_image for every candidate, branch-free;
+** and COLD.) */
+static COLD int exact_near(const double *r, int i, const afv_box *b,
+                           double near2, const int *nbr, double *nbr_d,
+                           int count)
+{
+  int k;
+  for (k = 0; k < count; k++) {
+    double *D = nbr_d + 2 * k;
+    if (D[0] * D[0] + D[1] * D[1] >= near2) continue;
+    exact_image(r, i, nbr[k], b, &D[0], &D[1]);
+    if (D[0] == 0 && D[1] == 0) return k;
+  }
+  return -1;
+}
+
 /* The candidates of cell i closer than 2l, written to nbr[] with their
 ** displacements D = r_j - r_i to nbr_d[] and sorted by sort_slots; returns
-** their number, or -1 - j if cell j has the same centre.  Minimum image by
-** fold: the wrapped centres differ by less than a box side.  (The box and
+** their number, or -1 - j if cell j has the same centre (the exact
+** displacement is 0: only then).  Minimum image by fold: the wrapped
+** centres differ by less than a box side.  (The box and
 ** the list end are read into locals: the stores to nbr_d could alias them,
 ** which would force a reload per candidate.) */
-static int filter_cell(const afv_geom *g, int i, double l, const afv_box *b,
-                       int *nbr, double *nbr_d)
+static int filter_cell(const afv_geom *g, int i, const double *r, double l,
+                       const afv_box *b, int *nbr, double *nbr_d)
 {
   double xi = g->rw[2*i], yi = g->rw[2*i+1], range2 = 4 * l * l;
   int periodic = b && b->periodic, count = 0, c, end = g->cand_start[i + 1];
   double Lx = periodic ? b->Lx : 0, Ly = periodic ? b->Ly : 0;
+  double Lmax = Lx > Ly ? Lx : Ly;
+  double near2 = periodic ? NEAR * NEAR * Lmax * Lmax : DBL_MIN;
+  int near = 0;
   for (c = g->cand_start[i]; c < end; c++) {
     int j = g->cand[c];
     double dx = g->rw[2*j] - xi, dy = g->rw[2*j+1] - yi, d2;
@@ -823,14 +908,27 @@ static int filter_cell(const afv_geom *g, int i, double l, const afv_box *b,
     }
     d2 = dx * dx + dy * dy;
     if (d2 >= range2) continue;
-    if (d2 == 0) return -1 - j;
+    near |= d2 < near2;             /* nearly coincident centres */
     nbr[count] = j;
     nbr_d[2*count] = dx;
     nbr_d[2*count+1] = dy;
     count++;
   }
+  if (near) {                       /* rare: see NEAR */
+    int k = exact_near(r, i, b, near2, nbr, nbr_d, count);
+    if (k >= 0) return -1 - nbr[k];
+  }
   sort_slots(nbr, nbr_d, count);
   return count;
+}
+
+/* |(dx, dy)| where dx^2 + dy^2 underflows (below ~1e-154 l): computed on
+** the vector scaled by a power of 2 (exact), then scaled back. */
+static COLD double tiny_length(double dx, double dy)
+{
+  int e = unit_exponent(dx, dy);
+  double x = ldexp(dx, -e), y = ldexp(dy, -e);
+  return ldexp(sqrt(x * x + y * y), e);
 }
 
 /* The edge cache of slot s (g->edge, 4 doubles per slot: u = D/d, h = d/2,
@@ -841,9 +939,17 @@ static int filter_cell(const afv_geom *g, int i, double l, const afv_box *b,
 ** square roots, two divisions) serves the pair. */
 static void fill_edge_pair(afv_geom *g, int s, int t, double l)
 {
-  double dx = g->nbr_d[2*s], dy = g->nbr_d[2*s+1];
-  double d = sqrt(dx * dx + dy * dy), h = 0.5 * d;
+  double dx = g->nbr_d[2*s], dy = g->nbr_d[2*s+1], d2 = dx * dx + dy * dy;
+  double d, h;
   double *e = g->edge + 4 * s, *f = g->edge + 4 * t;
+  if (d2 >= DBL_MIN) {
+    d = sqrt(d2);
+    h = 0.5 * d;
+  } else {                          /* rare: d below ~1e-154 l */
+    d = tiny_length(dx, dy);
+    h = 0.5 * d > 0 ? 0.5 * d : d;  /* h > 0 for the smallest subnormal d
+                                    ** too: keeps b / 2h finite (afv.c) */
+  }
   e[0] = dx / d;
   e[1] = dy / d;
   e[2] = h;                         /* h, not d: clip_chords' inner loop
@@ -886,10 +992,11 @@ static void link_cell(afv_geom *g, int i, double l)
 ** cand_start[i] (room for every candidate), up to nbr_end[i]; the slots
 ** between nbr_end[i] and nbr_start[i+1] are unused: no compaction to pay
 ** for.  Returns 0, or -1 - j if cell j has the same centre as i. */
-static int list_cell(afv_geom *g, int i, double l, const afv_box *b)
+static int list_cell(afv_geom *g, int i, const double *r, double l,
+                     const afv_box *b)
 {
   int c = g->cand_start[i];
-  int count = filter_cell(g, i, l, b, g->nbr + c, g->nbr_d + 2 * c);
+  int count = filter_cell(g, i, r, l, b, g->nbr + c, g->nbr_d + 2 * c);
   g->nbr_start[i] = c;
   g->nbr_end[i] = count < 0 ? count : c + count;
   return count < 0 ? count : 0;
@@ -1021,14 +1128,14 @@ int afv_neighbours(afv_geom *g, int n, const double *r, double l,
     int first = n;                  /* the first cell with a coincidence */
     AFV_PARALLEL_REDUCE(n, reduction(min: first))
     for (i = 0; i < n; i++)
-      if (list_cell(g, i, l, b) < 0 && i < first) first = i;
+      if (list_cell(g, i, r, l, b) < 0 && i < first) first = i;
     if (first < n) return find_coincident(g, g->nbr_end, first + 1);
   }
   AFV_PARALLEL_FOR(n)
   for (i = 0; i < n; i++) link_cell(g, i, l);
 #else
   for (i = 0; i < n; i++) {
-    if (list_cell(g, i, l, b) < 0)   /* the first such cell: as after */
+    if (list_cell(g, i, r, l, b) < 0)   /* the first such cell: as after */
       return find_coincident(g, g->nbr_end, i + 1);   /* a whole pass */
     link_cell(g, i, l);
   }
@@ -1112,15 +1219,65 @@ static void bound_below(segment *S, double rhs, double c)
   }
 }
 
-/* Clips the chords of all slots of cell i, one pass over the pairs a < b:
-** c and u_a.u_b serve both (t_b.u_a = -t_a.u_b exactly, as the products
-** commute), and each slot still meets its bounds in increasing slot order.
-** Writes the parts of positive length to seg[] in slot order (seg must
-** hold one entry per slot); returns their number. */
-static int clip_chords(const afv_geom *g, int i, segment *seg)
+/* A half-plane bound tau c <= rhs on a segment: above, below, or for
+** c = 0 (parallel lines) all or nothing. */
+static void bound(segment *S, double rhs, double c)
 {
-  int s0 = g->nbr_start[i], nn = g->nbr_end[i] - s0, a, b, ns = 0;
+  if (c > 0) bound_above(S, rhs, c);
+  else if (c < 0) bound_below(S, rhs, c);
+  else if (rhs < 0) S->tau1 = S->tau0;   /* a line behind the other */
+}
+
+/* The pair's bounds for nearly parallel lines a and b (slots a < b),
+** |t_a.u_b| below NEAR_PARALLEL and u_a.u_b > 0 (lines on opposite sides
+** of the centre meet far outside the disk, and the plain bounds serve).
+** There h_b - h_a u_a.u_b and t_a.u_b are both small and lose their
+** digits: two nearly coincident neighbours seen from afar gave each line
+** its own junction, wrong by eps l / d, and areas above pi l^2.
+** Multiplied by d_b, the bound on line a is  tau (t_a.e) <= e.D_b / 2
+** with e = D_b - D_a (exact where the two are close, the only case where
+** the junction falls in the disk), and the bound on line b is
+** tau (-t_b.e) <= -e.D_a / 2: both accurate, one junction seen alike
+** from both lines.  The boundary then runs from a to b, so b must turn
+** counter-clockwise from a (sort_slots' order; cyclically, for a pair
+** across the +x axis, where the list wraps: clockwise).  Where the sort's
+** cross product has lost that sign to rounding (directions within
+** ~1e-16), or the lines are exactly parallel (e along u), the pair is
+** taken as parallel: the nearer line kept, the other dropped (one line
+** twice, e = 0, kept once).  The shape is then off by about d l. */
+static void clip_near_parallel(const double *Da, const double *Db,
+                               const double *ea, const double *eb,
+                               segment *Sa, segment *Sb)
+{
+  double ex = Db[0] - Da[0], ey = Db[1] - Da[1];
+  double ra = 0.5 * (ex * Db[0] + ey * Db[1]);
+  double rb = -0.5 * (ex * Da[0] + ey * Da[1]);
+  double ca = ea[0] * ey - ea[1] * ex, cb = eb[1] * ex - eb[0] * ey;
+  int ccw = lower_half(Da[0], Da[1]) == lower_half(Db[0], Db[1])
+            || Da[0] < 0;               /* b should turn ccw from a */
+  if (ccw ? (ca > 0 && cb < 0) : (ca < 0 && cb > 0)) {
+    bound(Sa, ra, ca);
+    bound(Sb, rb, cb);
+  } else if (ra < 0) {                  /* b nearer (or alike, below) */
+    Sa->tau1 = Sa->tau0;
+  } else {
+    Sb->tau1 = Sb->tau0;
+  }
+}
+
+/* Clips the chords of the nn slots from s0 on, one pass over the pairs
+** a < b: c and u_a.u_b serve both (t_b.u_a = -t_a.u_b exactly, as the
+** products commute), and each slot still meets its bounds in increasing
+** slot order.  A pair of nearly parallel lines on one side of the centre
+** (clip_near_parallel) is handled only if `careful`; else the pass stops
+** there and returns 1, and the caller runs it again with care: the common
+** pass then carries no code for the rare case (with it inline, the
+** cluster benchmark's shapes took 11% more instructions). */
+static inline int clip_pairs(const afv_geom *g, int s0, int nn, segment *seg,
+                      int careful)
+{
   const double *edge = g->edge + 4 * s0;
+  int a, b;
   for (a = 0; a < nn; a++) {
     seg[a].slot = s0 + a;
     seg[a].tau0 = -edge[4*a+3];
@@ -1136,18 +1293,33 @@ static int clip_chords(const afv_geom *g, int i, segment *seg)
       double c = uax * eb[1] - uay * eb[0];             /* t_a.u_b */
       double cu = uax * eb[0] + uay * eb[1];            /* u_a.u_b */
       double ra = eb[2] - ha * cu, rb = ha - eb[2] * cu;
-      if (c > 0) {
+      if (c > NEAR_PARALLEL) {
         bound_above(&seg[a], ra, c);
         bound_below(&seg[b], rb, -c);
-      } else if (c < 0) {
+      } else if (c < -NEAR_PARALLEL) {
         bound_below(&seg[a], ra, c);
         bound_above(&seg[b], rb, -c);
-      } else {                         /* parallel: a line behind the other */
-        if (ra < 0) seg[a].tau1 = seg[a].tau0;
-        if (rb < 0) seg[b].tau1 = seg[b].tau0;
+      } else if (cu < 0) {             /* (nearly) opposite lines */
+        bound(&seg[a], ra, c);
+        bound(&seg[b], rb, -c);
+      } else if (!careful) {
+        return 1;
+      } else {                         /* rare: nearly parallel lines */
+        clip_near_parallel(g->nbr_d + 2 * (s0 + a), g->nbr_d + 2 * (s0 + b),
+                           edge + 4 * a, edge + 4 * b, &seg[a], &seg[b]);
       }
     }
   }
+  return 0;
+}
+
+/* The part of each slot's chord in every other slot's half-plane
+** (clip_pairs), written to seg[] in slot order if of positive length
+** (seg must hold one entry per slot); returns their number. */
+static int clip_chords(const afv_geom *g, int i, segment *seg)
+{
+  int s0 = g->nbr_start[i], nn = g->nbr_end[i] - s0, a, ns = 0;
+  if (clip_pairs(g, s0, nn, seg, 0)) clip_pairs(g, s0, nn, seg, 1);
   /* keep parts of positive length (sc = 0, a line that only touches the
   ** circle, and NaN go too) */
   for (a = 0; a < nn; a++)
@@ -1169,13 +1341,14 @@ static void point_on(bisector B, double tau, double *x, double *y)
 ** through a pointer, not g->n_pieces[i], lets the compiler keep the count
 ** in a register: the stores to pieces could alias n_pieces.) */
 static afv_piece *store_piece(const afv_geom *g, afv_piece *pc, int slot,
-                              double x, double y, double length)
+                              double x, double y, double length, double tau)
 {
   pc->slot = slot;
   pc->nbr = slot >= 0 ? g->nbr[slot] : AFV_ARC;
   pc->x = x;
   pc->y = y;
   pc->length = length;
+  pc->tau = tau;
   return pc + 1;
 }
 
@@ -1272,7 +1445,7 @@ static double gap_angle(const afv_geom *g, double ax, double ay,
 
 static void isolated_cell(afv_geom *g, int i, double l)
 {
-  store_piece(g, g->pieces + g->piece_start[i], -1, l, 0, TWO_PI * l);
+  store_piece(g, g->pieces + g->piece_start[i], -1, l, 0, TWO_PI * l, 0);
   g->n_pieces[i] = 1;
   g->area[i] = PI * l * l;
   g->perim[i] = g->arc[i] = TWO_PI * l;
@@ -1292,7 +1465,7 @@ static void assemble_boundary(afv_geom *g, int i, double l, const segment *seg,
     double len = S->tau1 - S->tau0;
     double x, y;
     point_on(B, S->tau0, &x, &y);
-    pc = store_piece(g, pc, S->slot, x, y, len);
+    pc = store_piece(g, pc, S->slot, x, y, len, S->tau0);
     A += 0.5 * B.h * len;
     P += len;
     if (len > AFV_CONTACT_TOL * l) contacts++;
@@ -1301,7 +1474,7 @@ static void assemble_boundary(afv_geom *g, int i, double l, const segment *seg,
       double phi;
       point_on(B, S->tau1, &x, &y);
       phi = gap_angle(g, x, y, next, ns == 1);
-      pc = store_piece(g, pc, -1, x, y, l * phi);
+      pc = store_piece(g, pc, -1, x, y, l * phi, 0);
       A += 0.5 * l * l * phi;
       L += l * phi;
     }

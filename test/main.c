@@ -61,6 +61,7 @@ int main(void)
   suite_runjob();
   suite_reference();
   suite_sweep();
+  suite_geometry();
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;
 }

@@ -84,5 +84,6 @@ void suite_readers(void);
 void suite_runjob(void);
 void suite_reference(void);
 void suite_sweep(void);
+void suite_geometry(void);
 
 #endif
