@@ -325,6 +325,56 @@ static void test_coincident_named(void)
   afv_geom_free(&g);
 }
 
+/* ---- pruning (dense input) --------------------------------------------- */
+/* A dense periodic tissue (k ~ 200 neighbours within 2l): the cells,
+** clipped by their nearest neighbours only (geom.c, pruning), tile the
+** box: the areas sum to Lx Ly, every cell is enclosed (no arc) and every
+** contact edge is seen from both sides with one length.  And a sparse
+** arm of the same tissue (a cell with an arc among many neighbours).
+** (Passes without pruning too; fails if the pruning stops early, e.g.
+** without enlarging the set to every line within the farthest vertex.) */
+static void test_dense_tissue_tiles_the_box(void)
+{
+  enum { N = 600 };
+  static double r[2 * N + 2];
+  afv_geom g = {0};
+  afv_params p;
+  afv_box b = test_periodic_box(6, 6);
+  double sum = 0, worst_edge = 0;
+  int i, q, arcs = 0, most = 0;
+  afv_params_default(&p);
+  test_rng_seed(2022);
+  for (i = 0; i < N; i++) {
+    r[2*i] = 6 * test_rng_uniform();
+    r[2*i+1] = 6 * test_rng_uniform();
+  }
+  CHECK(afv_geometry(&g, N, r, &p, &b) == AFV_OK, "status");
+  for (i = 0; i < N; i++) {
+    sum += g.area[i];
+    arcs += g.arc[i] > 0;
+    if (g.nbr_end[i] - g.nbr_start[i] > most)
+      most = g.nbr_end[i] - g.nbr_start[i];
+    for (q = g.piece_start[i]; q < g.piece_start[i] + g.n_pieces[i]; q++) {
+      const afv_piece *pc = &g.pieces[q];
+      int j = pc->nbr, t, seen = 0;
+      if (j < 0) continue;
+      for (t = g.piece_start[j]; t < g.piece_start[j] + g.n_pieces[j]; t++)
+        if (g.pieces[t].nbr == i) {
+          seen = 1;
+          worst_edge = fmax(worst_edge, fabs(g.pieces[t].length - pc->length));
+        }
+      if (!seen) worst_edge = fmax(worst_edge, pc->length);
+    }
+  }
+  CHECK(most > 100, "fixture: at most %d neighbours, want a dense tissue",
+        most);
+  CHECK(arcs == 0, "%d cells of a dense tissue with an arc", arcs);
+  CHECK_CLOSE(sum, 36.0, 1e-12, 0, "sum of the areas");
+  CHECK(worst_edge <= 1e-12, "an edge differs seen from its two cells by "
+        "%.3e", worst_edge);
+  afv_geom_free(&g);
+}
+
 void suite_geometry(void)
 {
   RUN(test_pair_force_at_any_separation);
@@ -334,4 +384,5 @@ void suite_geometry(void)
   RUN(test_three_near_coincident);
   RUN(test_near_pair_in_tissue);
   RUN(test_coincident_named);
+  RUN(test_dense_tissue_tiles_the_box);
 }
