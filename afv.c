@@ -377,12 +377,144 @@ int afv_compute(afv_geom *g, int n, const double *r, const afv_params *p,
 }
 
 /* ---- finite-difference check ------------------------------------------ */
-static int energy_at(afv_geom *g, int n, const double *r, const afv_params *p,
-                     const afv_box *b, double *E)
+/* The cells near cell c, as a small open-space tissue in coordinates
+** centred on c (cell 0 of it is c): every cell within 4l + 2h, so that
+** every cell within 2l + 2h (the ones whose energy moving c by h can
+** change, `affected`) has all its neighbours in it. */
+typedef struct local_tissue {
+  int m, affected_n;
+  int *cell;             /* cell[k]: the tissue's number of local cell k */
+  double *r;             /* local centres, relative to c */
+  double *KA, *KP, *A0, *P0;   /* per-cell values, if p has them */
+  afv_params p;
+  afv_geom g;
+  int cap;
+  int *around;           /* scratch for afv_cells_around (n) */
+} local_tissue;
+
+static int local_grow(local_tissue *T, int m)
 {
-  int st = afv_geometry(g, n, r, p, b);
+  int k = T->cap;
+  double *q;
+  int *c;
+  if (m <= T->cap) return AFV_OK;
+  while (k < m) k = k ? 2 * k : 64;
+  c = realloc(T->cell, (size_t)k * sizeof(int));
+  if (!c) return AFV_ENOMEM;
+  T->cell = c;
+  q = realloc(T->r, (size_t)k * 6 * sizeof(double));
+  if (!q) return AFV_ENOMEM;
+  T->r = q;
+  T->KA = q + 2 * k;
+  T->KP = q + 3 * k;
+  T->A0 = q + 4 * k;
+  T->P0 = q + 5 * k;
+  T->cap = k;
+  return AFV_OK;
+}
+
+/* Adds cell j at displacement (dx, dy) from c to T if within R. */
+static int local_add(local_tissue *T, const afv_params *p, int j, double dx,
+                     double dy, double R)
+{
+  int k = T->m;
+  if (!(dx * dx + dy * dy < R * R)) return AFV_OK;
+  if (local_grow(T, k + 1)) return AFV_ENOMEM;
+  T->cell[k] = j;
+  T->r[2*k] = dx;
+  T->r[2*k+1] = dy;
+  {
+    cell_targets t = targets_of(p, j);
+    T->KA[k] = t.KA;
+    T->KP[k] = t.KP;
+    T->A0[k] = t.A0;
+    T->P0[k] = t.P0;
+  }
+  T->m++;
+  return AFV_OK;
+}
+
+/* The local tissue around c: c first, then the others within 4l + 2h
+** (found in g's cell list), the affected ones (within 2l + 2h) first. */
+static int local_build(local_tissue *T, const afv_geom *g, const double *r,
+                       const afv_params *p, const afv_box *b, int c, double h)
+{
+  double R = 4 * p->l + 2 * h, Raff = 2 * p->l + 2 * h;
+  int q, pass, st = AFV_OK;
+  int found = afv_cells_around(g, r[2*c], r[2*c+1], R, 0, T->around);
+  T->m = 0;
+  if ((st = local_add(T, p, c, 0, 0, 1)) != AFV_OK) return st;
+  for (pass = 0; pass < 2 && st == AFV_OK; pass++) {   /* affected first */
+    for (q = 0; q < found && st == AFV_OK; q++) {
+      int j = T->around[q];
+      double dx = r[2*j] - r[2*c], dy = r[2*j+1] - r[2*c+1], d2;
+      if (j == c) continue;
+      afv_min_image(b, &dx, &dy);
+      d2 = dx * dx + dy * dy;
+      if ((d2 < Raff * Raff) != (pass == 0)) continue;
+      st = local_add(T, p, j, dx, dy, R);
+    }
+    if (pass == 0) T->affected_n = T->m;
+  }
+  T->p = *p;
+  T->p.KA_i = p->KA_i ? T->KA : NULL;
+  T->p.KP_i = p->KP_i ? T->KP : NULL;
+  T->p.A0_i = p->A0_i ? T->A0 : NULL;
+  T->p.P0_i = p->P0_i ? T->P0 : NULL;
+  return st;
+}
+
+/* The energy of the affected cells of T with its cell 0 at (x, y). */
+static int local_energy(local_tissue *T, double x, double y, double *E)
+{
+  afv_box open = {0, 0, 0};
+  int k, st;
+  T->r[0] = x;
+  T->r[1] = y;
+  st = afv_geometry(&T->g, T->m, T->r, &T->p, &open);
+  *E = 0;
+  for (k = 0; k < T->affected_n && st == AFV_OK; k++)
+    *E += afv_cell_energy(&T->p, k, T->g.area[k], T->g.perim[k], T->g.arc[k]);
+  return st;
+}
+
+/* The whole tissue's energy with coordinate q of r moved by dx (the
+** fallback for a small periodic box). */
+static int global_energy(afv_geom *g, int n, double *rr, const double *r,
+                         const afv_params *p, const afv_box *b, int q,
+                         double dx, double *E)
+{
+  int st;
+  rr[q] = r[q] + dx;
+  st = afv_geometry(g, n, rr, p, b);
+  rr[q] = r[q];
   *E = g->energy;
   return st;
+}
+
+/* rms over cells of |2 KA (A - A0)| l + |2 KP (P - P0)| + |Lambda| */
+static double tension_scale(const afv_geom *g, int n, const afv_params *p)
+{
+  double s = 0;
+  int i;
+  for (i = 0; i < n; i++) {
+    cell_targets t = targets_of(p, i);
+    double T = fabs(2 * t.KA * (g->area[i] - t.A0)) * p->l
+               + fabs(2 * t.KP * (g->perim[i] - t.P0)) + fabs(p->Lambda);
+    s += T * T;
+  }
+  return n > 0 ? sqrt(s / n) : 0;
+}
+
+/* Records the error of component q (fd: the central difference). */
+static void check_record(afv_check_report *rep, int q, double fd, double f)
+{
+  double err = fabs(fd - f);
+  if (!(err <= rep->max_abs) || rep->worst_cell < 0) {  /* NaN counts */
+    rep->max_abs = err;
+    rep->worst_cell = q / 2;
+    rep->worst_comp = q % 2;
+  }
 }
 
 int afv_force_check(int n, const double *r, const afv_params *p,
@@ -390,33 +522,50 @@ int afv_force_check(int n, const double *r, const afv_params *p,
                     afv_check_report *rep)
 {
   afv_geom g;
-  double *rr = malloc((size_t)(2 * n + 1) * sizeof(double));
-  int st = AFV_OK, c;
+  local_tissue T;
+  double *rr = NULL;
+  int st, c, q, local;
   memset(&g, 0, sizeof g);
+  memset(&T, 0, sizeof T);
   memset(rep, 0, sizeof *rep);
   rep->worst_cell = -1;
-  if (!rr) return AFV_ENOMEM;
-  if (n > 0) memcpy(rr, r, (size_t)(2 * n) * sizeof(double));
-  for (c = 0; c < 2 * n; c++)
-    if (fabs(f[c]) > rep->force_scale) rep->force_scale = fabs(f[c]);
-  for (c = 0; c < 2 * n; c++) {
-    double Ep, Em, fd, err;
-    rr[c] = r[c] + h;
-    if ((st = energy_at(&g, n, rr, p, b, &Ep)) != AFV_OK) break;
-    rr[c] = r[c] - h;
-    if ((st = energy_at(&g, n, rr, p, b, &Em)) != AFV_OK) break;
-    rr[c] = r[c];
-    fd = -(Ep - Em) / (2 * h);
-    err = fabs(fd - f[c]);
-    if (!(err <= rep->max_abs) || rep->worst_cell < 0) {  /* NaN counts */
-      rep->max_abs = err;
-      rep->worst_cell = c / 2;
-      rep->worst_comp = c % 2;
+  if ((st = afv_geometry(&g, n, r, p, b)) != AFV_OK) {
+    afv_geom_free(&g);
+    return st;
+  }
+  for (q = 0; q < 2 * n; q++)
+    if (fabs(f[q]) > rep->force_scale) rep->force_scale = fabs(f[q]);
+  rep->tension_scale = tension_scale(&g, n, p);
+  /* the local tissue of 4l + 2h about c must not meet its own images */
+  local = !(b && b->periodic)
+          || fmin(b->Lx, b->Ly) > 4 * (4 * p->l + 2 * h);
+  if (local) T.around = malloc((size_t)(n + 1) * sizeof(int));
+  else rr = malloc((size_t)(2 * n + 1) * sizeof(double));
+  if (local ? !T.around : !rr) st = AFV_ENOMEM;
+  if (rr && n > 0) memcpy(rr, r, (size_t)(2 * n) * sizeof(double));
+  for (c = 0; c < n && st == AFV_OK; c++) {
+    if (local && (st = local_build(&T, &g, r, p, b, c, h)) != AFV_OK) break;
+    for (q = 2 * c; q < 2 * c + 2 && st == AFV_OK; q++) {
+      double Ep, Em, x = q % 2 ? 0 : h, y = q % 2 ? h : 0;
+      if (local) {
+        if ((st = local_energy(&T, x, y, &Ep)) == AFV_OK)
+          st = local_energy(&T, -x, -y, &Em);
+      } else if ((st = global_energy(&g, n, rr, r, p, b, q, h, &Ep))
+                 == AFV_OK) {
+        st = global_energy(&g, n, rr, r, p, b, q, -h, &Em);
+      }
+      if (st == AFV_OK) check_record(rep, q, -(Ep - Em) / (2 * h), f[q]);
     }
   }
   rep->max_rel = rep->force_scale > 0 ? rep->max_abs / rep->force_scale
                                       : rep->max_abs;
+  rep->max_tension_rel = rep->tension_scale > 0
+                         ? rep->max_abs / rep->tension_scale : rep->max_abs;
   afv_geom_free(&g);
+  afv_geom_free(&T.g);
+  free(T.cell);
+  free(T.r);
+  free(T.around);
   free(rr);
   return st;
 }

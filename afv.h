@@ -253,12 +253,24 @@ typedef struct afv_check_report {
   double max_abs;     /* max |F_analytic - F_fd| over all components */
   double force_scale; /* max |F_analytic| over all components */
   double max_rel;     /* max_abs / force_scale (max_abs if the scale is 0) */
+  double tension_scale; /* rms over cells of |2 KA (A - A0)| l
+                      ** + |2 KP (P - P0)| + |Lambda|: the size of one
+                      ** cell's pressure and tension terms, of which every
+                      ** force is a sum; unlike force_scale it does not
+                      ** vanish where forces cancel by symmetry */
+  double max_tension_rel; /* max_abs / tension_scale (max_abs if 0): the
+                      ** criterion of afv check */
   int    worst_cell;  /* where max_abs occurs */
   int    worst_comp;  /* 0 = x, 1 = y */
 } afv_check_report;
 
-/* Central differences of the total energy with step h (a length):
-** compares -dE/dr from E(r +- h) with afv_compute's forces. */
+/* Central differences of the energy with step h (a length): compares
+** -dE/dr from E(r +- h) with afv_compute's forces.  Moving cell c changes
+** only the energies of the cells within 2l + h of it, so each difference
+** is taken of their energies alone, computed on the cells within
+** 4l + 2h of c, in coordinates centred on c: O(N) in all, and exact
+** steps h however large the coordinates (a periodic box narrower than
+** 4 (4l + 2h) takes the whole tissue's energy instead, O(N^2)). */
 int afv_gradient_check(int n, const double *r, const afv_params *p,
                        const afv_box *b, double h, afv_check_report *rep);
 /* The same comparison for forces f supplied by the caller (2n values):

@@ -5,12 +5,15 @@
 ** Each test here failed on the code before its fix (the message of the
 ** commit that adds it says how that was shown).
 */
+#define _POSIX_C_SOURCE 200809L  /* mkstemp, for the afv check run */
 #include "test.h"
 
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #define PI 3.14159265358979323846
 
@@ -375,6 +378,112 @@ static void test_dense_tissue_tiles_the_box(void)
   afv_geom_free(&g);
 }
 
+/* ---- afv check's criterion and cost ------------------------------------ */
+/* The size of one cell's pressure and tension terms (rms over cells), as
+** afv_check_report.tension_scale: computed here from the shapes. */
+static double tension_scale_of(const afv_geom *g, int n, const afv_params *p)
+{
+  double s = 0;
+  int i;
+  for (i = 0; i < n; i++) {
+    double T = fabs(2 * p->KA * (g->area[i] - p->A0)) * p->l
+               + fabs(2 * p->KP * (g->perim[i] - p->P0)) + fabs(p->Lambda);
+    s += T * T;
+  }
+  return sqrt(s / n);
+}
+
+/* Where forces vanish by symmetry (a perfect periodic lattice) or the
+** coordinates are large (a jittered tissue at 1e8), central differences
+** still agree with the forces to 1e-6 of the tension scale.  (Before: the
+** lattice's error was 1e6 times its force scale of 1e-14, and at 1e8 the
+** step h = 1e-6 l was rounded to a multiple of 1.5e-8: errors of order 1.) */
+static void test_check_lattice_and_large_coordinates(void)
+{
+  static double r[2 * 144], f[2 * 144];
+  afv_geom g = {0};
+  afv_params p;
+  afv_check_report rep;
+  afv_box bo = test_open_box(), bl;
+  double T;
+  int i;
+  afv_params_default(&p);
+  bl = test_tri_lattice(10, 10, 1.8, 0.3, 0.4, r);
+  CHECK(afv_compute(&g, 100, r, &p, &bl, f) == AFV_OK, "status");
+  T = tension_scale_of(&g, 100, &p);
+  CHECK(afv_gradient_check(100, r, &p, &bl, 1e-6, &rep) == AFV_OK, "status");
+  CHECK(rep.max_abs <= 1e-6 * T, "lattice: differences off by %.3e, tension "
+        "scale %.3e (force scale %.3e)", rep.max_abs, T, rep.force_scale);
+  CHECK(rep.force_scale < 1e-10 * T, "fixture: the lattice's forces should "
+        "vanish, got %.3e", rep.force_scale);
+  test_rng_seed(8);
+  for (i = 0; i < 144; i++) {
+    r[2*i] = 1e8 + 1.5 * (i % 12 + 0.5 * (i / 12 % 2)) + 0.1 * test_rng_normal();
+    r[2*i+1] = -1e8 + 1.3 * (i / 12) + 0.1 * test_rng_normal();
+  }
+  CHECK(afv_compute(&g, 144, r, &p, &bo, f) == AFV_OK, "status");
+  T = tension_scale_of(&g, 144, &p);
+  CHECK(afv_gradient_check(144, r, &p, &bo, 1e-6, &rep) == AFV_OK, "status");
+  CHECK(rep.max_abs <= 1e-6 * T, "coordinates at 1e8: differences off by "
+        "%.3e, tension scale %.3e", rep.max_abs, T);
+  afv_geom_free(&g);
+}
+
+/* The report's tension scale is the rms of the cells' terms, and the
+** criterion is the error over it; a force nudged by 1e-4 of it at one
+** cell of a large tissue (the local differences) is found there. */
+static void test_check_report_scale(void)
+{
+  enum { M = 40 };
+  static double r[2 * M * M], f[2 * M * M];
+  afv_geom g = {0};
+  afv_params p;
+  afv_check_report rep;
+  afv_box b = test_tri_lattice(M, M, 1.6, 0.1, 0.2, r);
+  double T;
+  int i;
+  afv_params_default(&p);
+  test_rng_seed(9);
+  for (i = 0; i < M * M; i++) {
+    r[2*i] += 0.05 * test_rng_normal();
+    r[2*i+1] += 0.05 * test_rng_normal();
+  }
+  CHECK(afv_compute(&g, M * M, r, &p, &b, f) == AFV_OK, "status");
+  T = tension_scale_of(&g, M * M, &p);
+  f[2 * 777 + 1] += 1e-4 * T;
+  CHECK(afv_force_check(M * M, r, &p, &b, 1e-6, f, &rep) == AFV_OK, "status");
+  CHECK_CLOSE(rep.tension_scale, T, 1e-12, 0, "tension scale");
+  CHECK_CLOSE(rep.max_tension_rel, rep.max_abs / T, 1e-12, 0, "criterion");
+  CHECK(rep.worst_cell == 777 && rep.worst_comp == 1 && rep.max_abs > 0.9e-4
+        * T, "nudged force found at cell %d comp %d, error %.3e", rep.worst_cell,
+        rep.worst_comp, rep.max_abs);
+  afv_geom_free(&g);
+}
+
+/* afv check on the perfect lattice: PASS, exit status 0 (before: FAIL,
+** an error of 2.8e6 times the force scale of 1e-14). */
+static void test_cli_check_lattice_passes(void)
+{
+  char path[] = "/tmp/afv_geometry_XXXXXX", cmd[256];
+  double r[200];
+  afv_box b = test_tri_lattice(10, 10, 1.8, 0.3, 0.4, r);
+  FILE *fp;
+  int fd = mkstemp(path), i, st;
+  CHECK(fd >= 0, "mkstemp");
+  if (fd < 0) return;
+  fp = fdopen(fd, "w");
+  for (i = 0; i < 100 && fp; i++)
+    fprintf(fp, "%.17g %.17g\n", r[2*i], r[2*i+1]);
+  if (fp) fclose(fp);
+  snprintf(cmd, sizeof cmd, "./afv check %s --box %.17g,%.17g >/dev/null "
+           "2>&1", path, b.Lx, b.Ly);
+  st = system(cmd);
+  CHECK(st != -1 && WIFEXITED(st) && WEXITSTATUS(st) == 0, "afv check on a "
+        "perfect lattice: exit status %d", st != -1 && WIFEXITED(st)
+        ? WEXITSTATUS(st) : -1);
+  remove(path);
+}
+
 void suite_geometry(void)
 {
   RUN(test_pair_force_at_any_separation);
@@ -385,4 +494,7 @@ void suite_geometry(void)
   RUN(test_near_pair_in_tissue);
   RUN(test_coincident_named);
   RUN(test_dense_tissue_tiles_the_box);
+  RUN(test_check_lattice_and_large_coordinates);
+  RUN(test_check_report_scale);
+  RUN(test_cli_check_lattice_passes);
 }
