@@ -1344,7 +1344,12 @@ static void bound(segment *S, double rhs, double c)
 ** cross product has lost that sign to rounding (directions within
 ** ~1e-16), or the lines are exactly parallel (e along u), the pair is
 ** taken as parallel: the nearer line kept, the other dropped (one line
-** twice, e = 0, kept once).  The shape is then off by about d l. */
+** twice, e = 0, kept once).  The shape is then off by about d l.  So are
+** two neighbours in nearly one direction but not close to each other
+** (|e| >= NEAR_PARALLEL_GAP |D_a|): their lines meet 1e6 l away or more,
+** and the nearer line hides the other (the e-form's signs were noise
+** there: a fuzzer case, test_geometry.c). */
+#define NEAR_PARALLEL_GAP 1e-3
 static void clip_near_parallel(const double *Da, const double *Db,
                                const double *ea, const double *eb,
                                segment *Sa, segment *Sb)
@@ -1355,7 +1360,9 @@ static void clip_near_parallel(const double *Da, const double *Db,
   double ca = ea[0] * ey - ea[1] * ex, cb = eb[1] * ex - eb[0] * ey;
   int ccw = lower_half(Da[0], Da[1]) == lower_half(Db[0], Db[1])
             || Da[0] < 0;               /* b should turn ccw from a */
-  if (ccw ? (ca > 0 && cb < 0) : (ca < 0 && cb > 0)) {
+  int close = fmax(fabs(ex), fabs(ey))
+              < NEAR_PARALLEL_GAP * fmax(fabs(Da[0]), fabs(Da[1]));
+  if (close && (ccw ? (ca > 0 && cb < 0) : (ca < 0 && cb > 0))) {
     bound(Sa, ra, ca);
     bound(Sb, rb, cb);
   } else if (ra < 0) {                  /* b nearer (or alike, below) */

@@ -328,6 +328,55 @@ static void test_coincident_named(void)
   afv_geom_free(&g);
 }
 
+/* ---- cases the fuzzer found (fuzz/fuzz_geometry.c) ----------------------
+** Each: positions and box as the harness built them, and the property
+** that failed. */
+typedef struct fuzz_case {
+  int n, periodic;
+  double Lx, Ly, P0;
+  double r[2 * 12];
+} fuzz_case;
+
+static const fuzz_case fuzz_cases[] = {
+  /* cell 2 1e-192 from cell 0, cell 3 nearly detaching from cell 2 in
+  ** the same direction seen from 0: two nearly parallel bisectors far
+  ** apart, whose junction the careful clipping placed at tau = 6e-176
+  ** (area of cell 0: 1.5 pi) */
+  {5, 1, 7.9058823529411768, 8, 4.0117647058823529,
+   {0, 0, 3.5500000000000003, 3, -4.0385976869928105e-192,
+    -5.7343681186333753e-192, -1.1514758046639575, -1.6349700206358944,
+    -1.1111404660351616, 1.6629392245990411}},
+};
+
+static void test_fuzz_cases(void)
+{
+  afv_geom g = {0};
+  int k, i;
+  for (k = 0; k < (int)(sizeof fuzz_cases / sizeof fuzz_cases[0]); k++) {
+    const fuzz_case *C = &fuzz_cases[k];
+    afv_box b = C->periodic ? test_periodic_box(C->Lx, C->Ly)
+                            : test_open_box();
+    afv_params p;
+    double f[2 * 12], sx = 0, sy = 0, fs = 0;
+    afv_params_default(&p);
+    p.P0 = C->P0;
+    CHECK(afv_compute(&g, C->n, C->r, &p, &b, f) == AFV_OK, "case %d", k);
+    for (i = 0; i < C->n; i++) {
+      CHECK(g.area[i] >= 0 && g.area[i] <= PI * (1 + 1e-12)
+            && g.perim[i] <= 2 * PI * (1 + 1e-12), "case %d cell %d: area "
+            "%.17g, perimeter %.17g", k, i, g.area[i], g.perim[i]);
+      CHECK(isfinite(f[2*i]) && isfinite(f[2*i+1]), "case %d cell %d: "
+            "force %g, %g", k, i, f[2*i], f[2*i+1]);
+      sx += f[2*i];
+      sy += f[2*i+1];
+      fs = fmax(fs, fmax(fabs(f[2*i]), fabs(f[2*i+1])));
+    }
+    CHECK(fabs(sx) + fabs(sy) <= 1e-12 * C->n * fs, "case %d: total force "
+          "%g, %g", k, sx, sy);
+  }
+  afv_geom_free(&g);
+}
+
 /* ---- pruning (dense input) --------------------------------------------- */
 /* A dense periodic tissue (k ~ 200 neighbours within 2l): the cells,
 ** clipped by their nearest neighbours only (geom.c, pruning), tile the
@@ -493,6 +542,7 @@ void suite_geometry(void)
   RUN(test_three_near_coincident);
   RUN(test_near_pair_in_tissue);
   RUN(test_coincident_named);
+  RUN(test_fuzz_cases);
   RUN(test_dense_tissue_tiles_the_box);
   RUN(test_check_lattice_and_large_coordinates);
   RUN(test_check_report_scale);
