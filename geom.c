@@ -752,17 +752,16 @@ static int unit_exponent(double x, double y)
   return e;
 }
 
-/* a x b for two displacements whose products underflow (both shorter
-** than ~1e-154 l), where a x b computed as is comes out 0 and would sort
-** two distinct directions as one: the same on both vectors scaled by one
-** power of 2 (which keeps the sign, and a x b = -(b x a) exactly). */
+/* a x b where a x b computed as is came out 0: two displacements whose
+** products underflow (below ~1e-154 l, or one tiny and the other not
+** large enough) would sort two distinct directions as one.  Each vector
+** scaled by a power of 2 to length ~1 keeps the sign, and scaling is
+** exact, so where nothing underflowed this is a x b times a power of 2,
+** 0 again; and b x a = -(a x b) exactly, as before. */
 static double tiny_cross(double ax, double ay, double bx, double by)
 {
-  int k;
-  if (fabs(ax) + fabs(ay) + fabs(bx) + fabs(by) > 1e-140)
-    return 0;                       /* not tiny: a x b is 0 indeed */
-  k = unit_exponent(fmax(fabs(ax), fabs(bx)), fmax(fabs(ay), fabs(by)));
-  return ldexp(ax, -k) * ldexp(by, -k) - ldexp(ay, -k) * ldexp(bx, -k);
+  int ka = unit_exponent(ax, ay), kb = unit_exponent(bx, by);
+  return ldexp(ax, -ka) * ldexp(by, -kb) - ldexp(ay, -ka) * ldexp(bx, -kb);
 }
 
 /* Two bisectors of a cell closer than this to parallel (|t_a.u_b|) are
@@ -1319,13 +1318,21 @@ static void bound_below(segment *S, double rhs, double c)
   }
 }
 
+/* Empties a segment for good: bounds only shrink it, and tau0 - tau1 = 2
+** is far from the rounding of a sliver (keep_parts). */
+static void drop(segment *S)
+{
+  S->tau0 = 1;
+  S->tau1 = -1;
+}
+
 /* A half-plane bound tau c <= rhs on a segment: above, below, or for
 ** c = 0 (parallel lines) all or nothing. */
 static void bound(segment *S, double rhs, double c)
 {
   if (c > 0) bound_above(S, rhs, c);
   else if (c < 0) bound_below(S, rhs, c);
-  else if (rhs < 0) S->tau1 = S->tau0;   /* a line behind the other */
+  else if (rhs < 0) drop(S);             /* a line behind the other */
 }
 
 /* The pair's bounds for nearly parallel lines a and b (slots a < b),
@@ -1366,9 +1373,9 @@ static void clip_near_parallel(const double *Da, const double *Db,
     bound(Sa, ra, ca);
     bound(Sb, rb, cb);
   } else if (ra < 0) {                  /* b nearer (or alike, below) */
-    Sa->tau1 = Sa->tau0;
+    drop(Sa);
   } else {
-    Sb->tau1 = Sb->tau0;
+    drop(Sb);
   }
 }
 
@@ -1420,17 +1427,57 @@ static inline int clip_pairs(const double *edge, const double *D, int s0,
   return 0;
 }
 
+/* A part bounded at both ends by other lines may come out of zero or,
+** by rounding, negative length where in truth it is a sliver: the edge
+** of a line crossing a cell narrower than eps l (between two nearly
+** opposite bisectors, three nearly coincident centres in a row).
+** Dropped, it left the two nearly opposite edges to meet in a junction
+** that cannot exist, with a derivative ~ 1 / (u_a x u_b): forces of
+** 1e223 and then inf (a fuzzer case, test_geometry.c).  So such a part
+** is kept, of length 0, where the kept parts before and after it are
+** nearly opposite; elsewhere (a 4-fold vertex of a lattice) it goes as
+** before.  sliver_kept decides for part a, the parts before it already
+** compacted into seg[0..ns) and those after it untouched; e gives the
+** edge cache of a part (at 4 (slot - slot0)). */
+static COLD int sliver_kept(segment *seg, int ns, int a, int nn,
+                            const double *e, int slot0)
+{
+  const segment *p = ns > 0 ? &seg[ns - 1] : NULL, *q = NULL;
+  const double *up, *uq;
+  int b;
+  for (b = a + 1; b < nn && !q; b++)          /* the next kept part */
+    if (seg[b].tau0 < seg[b].tau1) q = &seg[b];
+  for (b = nn - 1; b > a && !p; b--)          /* none before: the last */
+    if (seg[b].tau0 < seg[b].tau1) p = &seg[b];
+  if (!q && ns > 0) q = &seg[0];              /* none after: the first */
+  if (!p || !q || p == q || p->end_on_circle || q->start_on_circle)
+    return 0;                       /* no junction between them */
+  up = e + 4 * (p->slot - slot0);
+  uq = e + 4 * (q->slot - slot0);
+  if (!(up[0] * uq[0] + up[1] * uq[1] < 0
+        && fabs(up[0] * uq[1] - up[1] * uq[0]) < NEAR_PARALLEL))
+    return 0;
+  seg[a].tau1 = seg[a].tau0;
+  return 1;
+}
+
 /* Keeps the parts of positive length, in order, at the front of seg[]
-** (sc = 0, a line that only touches the circle, and NaN go too); returns
-** their number. */
-static int keep_parts(segment *seg, int nn)
+** (sc = 0, a line that only touches the circle, and NaN go too), and
+** slivers (sliver_kept); returns their number. */
+static inline int keep_parts(segment *seg, int nn, const double *e,
+                             int slot0)
 {
   int a, ns = 0;
-  for (a = 0; a < nn; a++)
-    if (seg[a].tau0 < seg[a].tau1) {
-      if (ns < a) seg[ns] = seg[a];   /* copies only after a dropped one */
-      ns++;
-    }
+  for (a = 0; a < nn; a++) {
+    double t0 = seg[a].tau0, t1 = seg[a].tau1;
+    if (!(t0 < t1)
+        && !(t0 - t1 <= 8 * DBL_EPSILON * (fabs(t0) + fabs(t1))
+             && !seg[a].start_on_circle && !seg[a].end_on_circle
+             && sliver_kept(seg, ns, a, nn, e, slot0)))
+      continue;
+    if (ns < a) seg[ns] = seg[a];   /* copies only after a dropped one */
+    ns++;
+  }
   return ns;
 }
 
@@ -1514,7 +1561,7 @@ static int clip_nearest(const afv_geom *g, int s0, int nn, int m,
   if (clip_pairs(w->edge, w->D, 0, m, seg, 0))
     clip_pairs(w->edge, w->D, 0, m, seg, 1);
   for (q = 0; q < m; q++) seg[q].slot = q;      /* index into use[] */
-  ns = keep_parts(seg, m);
+  ns = keep_parts(seg, m, w->edge, 0);
   return ns;
 }
 
@@ -1562,7 +1609,7 @@ static int clip_chords(const afv_geom *g, int i, double l, segment *seg)
   }
   if (clip_pairs(edge, D, s0, nn, seg, 0))
     clip_pairs(edge, D, s0, nn, seg, 1);
-  return keep_parts(seg, nn);
+  return keep_parts(seg, nn, edge, s0);
 }
 
 /* The point at parameter tau on the line of B (cell frame). */
@@ -1673,6 +1720,8 @@ static double gap_angle(const afv_geom *g, double ax, double ay,
   ** two polar angles, and as accurate */
   phi = afv_angle(ax * by - ay * bx, ax * bx + ay * by);
   if (phi >= TWO_PI) phi -= TWO_PI;
+  if (phi < 0) phi = 0;   /* afv_angle's absolute error: an angle of ~0
+                          ** came out as -3e-17 (a fuzzer case: area < 0) */
   if (single && phi == 0) phi = TWO_PI;
   if (!single && phi > TWO_PI - ANGLE_TOL) phi = 0;
   return phi;

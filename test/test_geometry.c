@@ -332,7 +332,7 @@ static void test_coincident_named(void)
 ** Each: positions and box as the harness built them, and the property
 ** that failed. */
 typedef struct fuzz_case {
-  int n, periodic;
+  int n, periodic, smooth;     /* smooth: the gradient check applies */
   double Lx, Ly, P0;
   double r[2 * 12];
 } fuzz_case;
@@ -342,10 +342,57 @@ static const fuzz_case fuzz_cases[] = {
   ** the same direction seen from 0: two nearly parallel bisectors far
   ** apart, whose junction the careful clipping placed at tau = 6e-176
   ** (area of cell 0: 1.5 pi) */
-  {5, 1, 7.9058823529411768, 8, 4.0117647058823529,
+  {5, 1, 0, 7.9058823529411768, 8, 4.0117647058823529,
    {0, 0, 3.5500000000000003, 3, -4.0385976869928105e-192,
     -5.7343681186333753e-192, -1.1514758046639575, -1.6349700206358944,
     -1.1111404660351616, 1.6629392245990411}},
+  /* cells 0, 4 1e-289 apart, 1 and 3 1.6e-55 to their right: cell 4 a
+  ** strip 1e-55 wide, whose edge with cell 5 (across it) came out of
+  ** negative length and was dropped; its two sides, nearly opposite, met
+  ** in a junction that cannot exist: forces 1e223, then inf and NaN */
+  {9, 1, 0, 4, 4, 5.3529411764705888,
+   {0, 0, 1.6313261169996311e-55, 0, 5.9500000000000002, 1.4722431864335457,
+    1.6313261169996311e-55, -6.5502533347436615e-278,
+    1.0261342003245941e-289, 0, 3.5500000000000003, 3.0000000000255,
+    3.5500000000000003, 3.0000000000231002, 3.5500000000000003, 3,
+    3.5500000000000003, 3.0000000000003002}},
+  /* cell 5 with cells 6 and 3 on either side in a row and cell 2 behind
+  ** 3: the sliver rule kept cell 2's dropped line, between edges that an
+  ** arc separates; E jumped by 0.05 as cell 2 moved 1e-7 (the gradient
+  ** check: 2e4 times the tension scale) */
+  {12, 1, 1, 4.9411764705882355, 4.0156862745098039, 3.7058823529411766,
+   {5.0999999999999996, 0, 1.81640625, 0.117279052734375, 4.6500000000000004,
+    3, 4.5, 3, 4.5, 4.5, 3.5500000000000003, 3.0000000000255,
+    2.4500000000000002, 3, 4.7109375, 0, 0, 0, 5.0999999999999996,
+    2.9444863728670914, 0.046875, 5.76654052734375, 0.23529052734375,
+    0.234375}},
+  /* seven cells within 3e-154 l, five of them in a row 1e-277 l long:
+  ** segments emptied by the parallel rule were taken for slivers (their
+  ** bounds +-inf), kept with length inf - inf: area NaN */
+  {9, 1, 0, 4, 4, 5.3529411764705888,
+   {0, 0, 2.1593291401274815e-277, -6.5502533347436615e-278, 5.7410888671875,
+    5.7410888671875, 4.318658280254963e-277, -1.3100506669487323e-277,
+    9.8194920616491867e-290, -2.9787103516099075e-290,
+    -2.9609002151120734e-154, -3.6519220990881296e-155,
+    4.3186582802559886e-277, -1.3100506669487576e-277, 3.5500000000000003, 3,
+    2.1593291401284635e-277, -6.5502533347466402e-278}},
+  /* a sliver cell (4) whose arc of angle ~0 came out as -3e-17 from
+  ** afv_angle: area -2.8e-17 */
+  {10, 1, 0, 4, 4, 5.3529411764705888,
+   {0, 0, 2.1593291401274815e-277, -6.5502533347436615e-278, 5.7410888671875,
+    5.722686767578125, 4.318658280254963e-277, -1.3100506669487323e-277,
+    9.8194920616491867e-290, -2.9787103516099075e-290,
+    -1.2648888948269645e-57, -1.5600916519690644e-58,
+    4.3186582802540465e-277, -1.3100506669482708e-277, 5.99908447265625,
+    0.9375, 2.8548748333279735e-154, -8.6601681280410554e-155,
+    1.981984733407139, 0.097368666243470126}},
+  /* neighbours 1e-277 and 1e-55 away at 8 degrees: their cross product
+  ** underflowed to 0, the sort took them for one direction and ordered
+  ** them by distance, the wrong way round: perimeter 6.2866 > 2 pi */
+  {6, 1, 0, 4.0156862745098039, 4.0627450980392155, 5.3529411764705888,
+   {0, 0, 2.1593291401274815e-277, -6.5502533347436615e-278,
+    1.913880671457455, -0.58056935450681291, 1.4747013433603078e-55,
+    -6.974817903690373e-56, 3.3999999999999999, 0, 0.25, 3}},
 };
 
 static void test_fuzz_cases(void)
@@ -373,6 +420,12 @@ static void test_fuzz_cases(void)
     }
     CHECK(fabs(sx) + fabs(sy) <= 1e-12 * C->n * fs, "case %d: total force "
           "%g, %g", k, sx, sy);
+    if (C->smooth) {
+      afv_check_report rep;
+      CHECK(afv_gradient_check(C->n, C->r, &p, &b, 1e-6, &rep) == AFV_OK
+            && rep.max_tension_rel <= 1e-5, "case %d: gradient check %.3e "
+            "of the tension scale", k, rep.max_tension_rel);
+    }
   }
   afv_geom_free(&g);
 }
