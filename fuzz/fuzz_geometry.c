@@ -9,7 +9,8 @@
 ** four bytes, placed by one of six generators -- anywhere in a 6 l square
 ** (16-bit coordinates), on a triangular or square lattice site, on a
 ** collinear row, nearly coincident with an earlier cell (1e-6 l down to
-** 2^-960 l away, or exactly on it), or nearly detaching from one (2l
+** 2^-540 = 3.6e-163 l away, d^2 subnormal, or exactly on it), or nearly
+** detaching from one (2l
 ** less 2^-k l) -- in open space or a periodic box (4l to 8l, a byte),
 ** with P0 from a byte.  Properties (a failed one aborts, which libFuzzer
 ** reports with its input):
@@ -24,6 +25,10 @@
 **     4-fold one, where the energy has a kink: a T1), afv_gradient_check
 **     within 1e-5 of the tension scale.
 ** Every input that failed becomes a regression test (test_geometry.c).
+** (Below 2^-540 the exact forces themselves can exceed DBL_MAX: a cell
+** 1e-289 l from another, closed by two bisectors 1e-124 rad from
+** opposite, has a vertex moving 1e124 times as fast as its neighbour,
+** over d = 1e-289: 1e382.  Not a property to check.)
 */
 #include "afv.h"
 
@@ -98,7 +103,7 @@ static int place(reader *R, double *r, int k)
     r[2*k+1] = 3.0 + (c & 1 ? 1e-13 * b : 0);
     return 1;
   case 4: {                                   /* nearly coincident */
-    double d = c == 0 ? 0 : ldexp(1.0, -(int)(20 + c * 940 / 255));
+    double d = c == 0 ? 0 : ldexp(1.0, -(int)(20 + c * 520 / 255));
     if (k == 0) break;
     r[2*k] = r[2*j] + d * cos(ang);
     r[2*k+1] = r[2*j+1] + d * sin(ang);
