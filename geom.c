@@ -897,6 +897,17 @@ static void sort_candidates(afv_geom *g, int n, const afv_box *b)
 ** (cells there are 1e-5 l apart at the very least). */
 #define NEAR 9.5367431640625e-07   /* 2^-20 */
 
+/* Below this d^2 a displacement is taken from the unwrapped centres (NEAR
+** max(Lx, Ly) in a periodic box); in open space, below the smallest
+** normal double, where d^2 may be 0 for centres that differ. */
+static double near_limit2(const afv_box *b)
+{
+  double L;
+  if (!b || !b->periodic) return DBL_MIN;
+  L = b->Lx > b->Ly ? b->Lx : b->Ly;
+  return NEAR * NEAR * L * L;
+}
+
 /* The minimum image of r_j - r_i from the unwrapped centres, for each
 ** component whose unwrapped difference is already its minimum image (the
 ** subtraction of two nearby doubles is exact); the other components keep
@@ -945,8 +956,7 @@ static int filter_cell(const afv_geom *g, int i, const double *r, double l,
   double xi = g->rw[2*i], yi = g->rw[2*i+1], range2 = 4 * l * l;
   int periodic = b && b->periodic, count = 0, c, end = g->cand_start[i + 1];
   double Lx = periodic ? b->Lx : 0, Ly = periodic ? b->Ly : 0;
-  double Lmax = Lx > Ly ? Lx : Ly;
-  double near2 = periodic ? NEAR * NEAR * Lmax * Lmax : DBL_MIN;
+  double near2 = near_limit2(b);
   int near = 0;
   for (c = g->cand_start[i]; c < end; c++) {
     int j = g->cand[c];
@@ -1133,10 +1143,11 @@ static int reserve_pieces(afv_geom *g, int n)
 /* Cell i's neighbours, written to nbr[] and nbr_d[] unless nbr is NULL;
 ** returns how many, or -1 - j for the first cell j at i's centre (cells
 ** at one centre share a bin, in increasing order: j is the smallest). */
-static int plain_list(const afv_geom *g, int i, double l, const afv_box *b,
-                      int *nbr, double *nbr_d)
+static int plain_list(const afv_geom *g, int i, const double *r, double l,
+                      const afv_box *b, int *nbr, double *nbr_d)
 {
   bin_window w = window_around(g, g->rw[2*i], g->rw[2*i+1], 2 * l, 0);
+  double near2 = near_limit2(b);
   int q, k, count = 0;
   for (q = 0; q < w.nx * w.ny; q++) {
     int bin = window_bin(g, &w, q);
@@ -1147,7 +1158,10 @@ static int plain_list(const afv_geom *g, int i, double l, const afv_box *b,
       afv_min_image(b, &dx, &dy);
       d2 = dx * dx + dy * dy;
       if (j == i || !(d2 < 4 * l * l)) continue;
-      if (d2 == 0) return -1 - j;
+      if (d2 < near2) {             /* nearly coincident: as filter_cell */
+        exact_image(r, i, j, b, &dx, &dy);
+        if (dx == 0 && dy == 0) return -1 - j;
+      }
       if (nbr) {
         nbr[count] = j;
         nbr_d[2*count] = dx;
@@ -1176,7 +1190,7 @@ static int plain_neighbours(afv_geom *g, int n, const double *r, double l,
   wrap_all(g, n, r, b);
   g->cand_start[0] = 0;
   for (i = 0; i < n; i++) {
-    int count = plain_list(g, i, l, b, NULL, NULL);
+    int count = plain_list(g, i, r, l, b, NULL, NULL);
     if (count < 0) {                 /* the first cell i with a twin j > i */
       g->bad_i = i;
       g->bad_j = -1 - count;
@@ -1189,7 +1203,8 @@ static int plain_neighbours(afv_geom *g, int n, const double *r, double l,
   for (i = 0; i < n; i++) {
     int s0 = g->cand_start[i];
     g->nbr_start[i] = s0;
-    g->nbr_end[i] = s0 + plain_list(g, i, l, b, g->nbr + s0, g->nbr_d + 2*s0);
+    g->nbr_end[i] = s0 + plain_list(g, i, r, l, b, g->nbr + s0,
+                                    g->nbr_d + 2 * s0);
     sort_slots(g->nbr + s0, g->nbr_d + 2 * s0, g->nbr_end[i] - s0);
     link_cell(g, i, l);
   }
