@@ -267,18 +267,3 @@ void test_config_free(test_config *c)
   c->r = NULL;
 }
 
-/* A trajectory of nframes frames of n cells in box b, zeroed (free with
-** afv_traj_free); 0 (and a failed CHECK) if out of memory. */
-int test_traj_alloc(afv_traj *tr, int n, int nframes, afv_box b)
-{
-  memset(tr, 0, sizeof *tr);
-  tr->n = n;
-  tr->nframes = nframes;
-  tr->box = b;
-  tr->step = calloc((size_t)nframes, sizeof *tr->step);
-  tr->t = calloc((size_t)nframes, sizeof(double));
-  tr->r = calloc((size_t)nframes * 2 * n, sizeof(double));
-  tr->theta = calloc((size_t)nframes * n, sizeof(double));
-  CHECK(tr->step && tr->t && tr->r && tr->theta, "out of memory");
-  return tr->step && tr->t && tr->r && tr->theta;
-}
