@@ -60,6 +60,7 @@ int main(void)
   suite_readers();
   suite_runjob();
   suite_reference();
+  suite_protocol();
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;
 }
