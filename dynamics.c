@@ -1028,10 +1028,6 @@ static int window_shows_kink(const afv_sim *s, afv_relax_report *rep,
            && fabs(rep->drop) <= AFV_RELAX_KINK_DROP
            && rep->max_force <= AFV_RELAX_KINK_FORCE;
   }
-  if (getenv("AFV_RELAX_TRACE"))
-    fprintf(stderr, "win %ld E %.10g drift %.3e drop %.3e maxF %.3e\n",
-            rep->iterations, W->E_sum / K, rep->drift, rep->drop,
-            rep->max_force);
   t = W->r_sum_prev;                   /* this window becomes the previous */
   W->r_sum_prev = W->r_sum;
   W->r_sum = t;

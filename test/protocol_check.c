@@ -22,12 +22,13 @@
 ** as afv run: afv_sim_step); the run FAILS unless every step is taken
 ** (exit status as afv run's: 0 done, 3 a refused step, 2 another error).
 **
-** One line per (P0, v0, seed) (v0 "-" for a seed only relaxed):
+** One line per (P0, v0, seed) (v0 "-" for a seed only relaxed, printed
+** when relaxed; the runs follow, see worker()):
 **   P0 v0 seed relax_steps max_F stop mean_area area_vs_lattice exit
 **   extra_pieces halvings wall (relaxation + run, s) [FAIL: why]
 ** and last `protocol: R runs, F failed` (R counts relaxations and runs).
-** --jobs J: J worker processes share the (P0, seed) pairs (lines then
-** come in the order they finish).  Wall times are on a shared machine.
+** --jobs J: J worker processes share the P0 values (lines then come in
+** the order they finish).  Wall times are on a shared machine.
 */
 #define _POSIX_C_SOURCE 200809L
 #include "afv.h"
@@ -139,56 +140,70 @@ static int exit_status(int st)
   return 2;
 }
 
-/* Everything for one (P0, seed); returns the failures. */
-static int check_pair(const plan *P, double P0, int seed, double area_lat)
-{
-  afv_sim relaxed, s;
+/* A relaxed start kept for the runs (seeds 1 .. M). */
+typedef struct relaxed {
+  afv_sim s;
   afv_relax_report rep;
-  double t0 = wall(), area, t_relax;
+  double area, area_lat, wall;
+  int ok;
+} relaxed;
+
+/* Relaxes the authors' start of (P0, seed) into R; prints the line of a
+** seed that is only relaxed (or whose relaxation failed); returns the
+** failures (0 or 1). */
+static int relax_pair(const plan *P, double P0, int seed, double area_lat,
+                      relaxed *R)
+{
+  double t0 = wall();
   const char *why;
-  int st, k, failed = 0;
-  memset(&relaxed, 0, sizeof relaxed);
-  memset(&s, 0, sizeof s);
-  st = relax(P, P0, (unsigned long long)seed, 0, &relaxed, &rep);
-  t_relax = wall() - t0;
-  area = st == AFV_OK ? mean_area(&relaxed) : NAN;
-  why = relax_failure(st, &rep, area, area_lat);
-  failed += why[0] != 0;
+  int st;
+  memset(R, 0, sizeof *R);
+  st = relax(P, P0, (unsigned long long)seed, 0, &R->s, &R->rep);
+  R->wall = wall() - t0;
+  R->area = st == AFV_OK ? mean_area(&R->s) : NAN;
+  R->area_lat = area_lat;
+  R->ok = st == AFV_OK;
+  why = relax_failure(st, &R->rep, R->area, area_lat);
   if (seed > P->seeds_run || why[0]) {
     printf("P0 %-4g v0 -    seed %d relax %6ld max_F %.3e %-11s area %.4f "
            "(%+.1f%%) exit - pieces %lld halvings %lld wall %.1f s%s%s\n",
-           P0, seed, rep.iterations, rep.max_force, stop_reason(&rep), area,
-           100 * (area / area_lat - 1), rep.substeps, rep.halvings, t_relax,
-           why[0] ? "  FAIL: " : "", why);
+           P0, seed, R->rep.iterations, R->rep.max_force,
+           stop_reason(&R->rep), R->area, 100 * (R->area / area_lat - 1),
+           R->rep.substeps, R->rep.halvings, R->wall, why[0] ? "  FAIL: " : "",
+           why);
     fflush(stdout);
   }
-  for (k = 0; k < P->nv0 && seed <= P->seeds_run; k++) {
-    long long i, pieces, halvings;
-    double t1 = wall();
-    int code;
-    st = afv_sim_init(&s, relaxed.n, relaxed.r, relaxed.theta, &relaxed.par,
-                      &relaxed.box, &relaxed.dyn);
-    s.dyn.v0 = P->v0[k];
-    for (i = 0; i < P->steps && st == AFV_OK; i++) st = afv_sim_step(&s);
-    code = exit_status(st);
-    pieces = s.substeps;
-    halvings = s.halvings;
-    printf("P0 %-4g v0 %-4g seed %d relax %6ld max_F %.3e %-11s area %.4f "
-           "(%+.1f%%) exit %d pieces %lld halvings %lld wall %.1f+%.1f s",
-           P0, P->v0[k], seed, rep.iterations, rep.max_force,
-           stop_reason(&rep), area, 100 * (area / area_lat - 1), code, pieces,
-           halvings, t_relax, wall() - t1);
-    if (code != 0)
-      printf("  FAIL: step %lld: %s, cell %d would move %g l in %g",
-             s.step + 1, afv_strerror(st), s.bad_cell, s.bad_disp,
-             s.bad_time);
-    printf("\n");
-    fflush(stdout);
-    failed += code != 0;
-    afv_sim_free(&s);
-  }
-  afv_sim_free(&relaxed);
-  return failed;
+  return why[0] != 0;
+}
+
+/* Runs the relaxed start R at v0 for P->steps steps; prints its line;
+** returns the failures (0 or 1). */
+static int run_pair(const plan *P, double P0, int seed, double v0,
+                    const relaxed *R)
+{
+  afv_sim s;
+  long long i;
+  double t0 = wall();
+  int st = AFV_ENOMEM, code;
+  memset(&s, 0, sizeof s);
+  if (R->ok)
+    st = afv_sim_init(&s, R->s.n, R->s.r, R->s.theta, &R->s.par, &R->s.box,
+                      &R->s.dyn);
+  s.dyn.v0 = v0;
+  for (i = 0; i < P->steps && st == AFV_OK; i++) st = afv_sim_step(&s);
+  code = exit_status(st);
+  printf("P0 %-4g v0 %-4g seed %d relax %6ld max_F %.3e %-11s area %.4f "
+         "(%+.1f%%) exit %d pieces %lld halvings %lld wall %.1f+%.1f s",
+         P0, v0, seed, R->rep.iterations, R->rep.max_force,
+         stop_reason(&R->rep), R->area, 100 * (R->area / R->area_lat - 1),
+         code, s.substeps, s.halvings, R->wall, wall() - t0);
+  if (code != 0)
+    printf("  FAIL: step %lld: %s, cell %d would move %g l in %g", s.step + 1,
+           afv_strerror(st), s.bad_cell, s.bad_disp, s.bad_time);
+  printf("\n");
+  fflush(stdout);
+  afv_sim_free(&s);
+  return code != 0;
 }
 
 /* The lattice reference of every P0: its relaxed mean area. */
@@ -212,15 +227,29 @@ static void lattice_areas(const plan *P, double *area_lat)
   fflush(stdout);
 }
 
-/* Worker w of J: the pairs (seed, P0 k) numbered q with q % J == w,
-** seed by seed (so a partial output spans the whole range of P0). */
+/* Worker w of J takes the P0 with k % J == w: first it relaxes them for
+** every seed (item 2), then runs them seed by seed, the largest v0 first,
+** so that a partial output covers the whole range of P0 and the v0 that
+** stress the sub-steps most. */
 static int worker(const plan *P, const double *area_lat, int w)
 {
-  int k, seed, q = 0, failed = 0;
+  relaxed *R = calloc((size_t)(P->nP0 * P->seeds_run) + 1, sizeof *R);
+  int k, seed, q, failed = 0;
+  if (!R) return 1;
   for (seed = 1; seed <= P->seeds_relax; seed++)
-    for (k = 0; k < P->nP0; k++, q++)
-      if (q % P->jobs == w)
-        failed += check_pair(P, P->P0[k], seed, area_lat[k]);
+    for (k = w; k < P->nP0; k += P->jobs) {
+      relaxed tmp, *dst = seed <= P->seeds_run
+                          ? &R[(seed - 1) * P->nP0 + k] : &tmp;
+      failed += relax_pair(P, P->P0[k], seed, area_lat[k], dst);
+      if (dst == &tmp) afv_sim_free(&tmp.s);
+    }
+  for (seed = 1; seed <= P->seeds_run; seed++)
+    for (q = P->nv0 - 1; q >= 0; q--)
+      for (k = w; k < P->nP0; k += P->jobs)
+        failed += run_pair(P, P->P0[k], seed, P->v0[q],
+                           &R[(seed - 1) * P->nP0 + k]);
+  for (k = 0; k < P->nP0 * P->seeds_run; k++) afv_sim_free(&R[k].s);
+  free(R);
   return failed;
 }
 
