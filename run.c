@@ -20,8 +20,9 @@
 #include <unistd.h>
 
 /* ---- afv run: the simulation job --------------------------------------- */
-/* The job (paper, Sec. Model): build the start (cluster or random), relax it
-** at v0 = 0 to max |F| <= relax_tol, then integrate the active dynamics for
+/* The job (paper, Sec. Model): build the start (init), relax it at v0 = 0
+** (afv_relax: to max |F| <= relax_tol, a kink of E, or relax_max_steps,
+** reported with its figures), then integrate the active dynamics for
 ** `steps` steps, writing samples, frames, snapshots and checkpoints.  Every
 ** parameter lives in one table (run_keys), which gives the defaults, the
 ** config-file and command-line parsing, --help and params.txt. */
@@ -82,9 +83,11 @@ static const run_key run_keys[] = {
      "polarity"),
   RK("dt", K_REAL, dt, "0.01", "time", "time step (Euler-Maruyama)"),
   RK("max_move", K_REAL, max_move, "0.05", "l", "sub-step threshold: a "
-     "step in which the force would move some cell farther is integrated "
-     "in halves (at most 20), which tames the exact force's divergence at "
-     "contact breaking; 0 = plain Euler steps"),
+     "cell that the force would move farther in a step moves in pieces of "
+     "at most this length (at most 64), which tames the exact force's "
+     "divergence at contact breaking; a step that would still move a cell "
+     "more than l/2 is taken in halves (down to dt/256); 0 = plain Euler "
+     "steps, and such a step is refused"),
   RK("steps", K_INT, steps, "10000", "steps", "active steps of the whole "
      "run (main knob)"),
   RK("seed", K_SEED, seed, "1", "-", "random seed (0 .. 2^64-1): noise, "
