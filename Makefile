@@ -163,10 +163,6 @@ twins: test/twins_fast test/twins_ref
 	./test/twins_ref > test/twins_ref.out
 	./test/twins_fast --compare test/twins_fast.out test/twins_ref.out
 
-clean:
-	rm -f *.o libafv.a afv test/run_tests test/bench .build-flags
-	rm -f test/twins_fast test/twins_ref test/twins_fast.out test/twins_ref.out
-	rm -rf fuzz/build
 # Evidence for the paper's protocol (test/protocol_check.c): the authors'
 # random start relaxed and run at every P0 and v0 of the paper's range.
 # PROTOCOL_ARGS may shrink it (e.g. --N 100 --steps 2000).
@@ -180,3 +176,5 @@ protocol-check: test/protocol_check
 
 clean:
 	rm -f *.o libafv.a afv test/run_tests test/bench test/protocol_check .build-flags
+	rm -f test/twins_fast test/twins_ref test/twins_fast.out test/twins_ref.out
+	rm -rf fuzz/build

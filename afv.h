@@ -460,7 +460,10 @@ double afv_sim_max_force(const afv_sim *s);
 ** the overdamped flow dr_i/dt = mu F_i (v0 = 0, angles unchanged) by steps
 ** of dyn.dt, with afv_sim_step's sub-steps and halves.  Stops when
 ** max_i |F_i| <= tol (converged), at a kink of E shown by the criterion
-** below (at_kink), or after max_iter steps (neither: not reached).
+** below (at_kink), at a step it cannot take (refused), or after max_iter
+** steps (none of these flags: not reached).  Status AFV_OK in all these
+** cases; an error only for a force that is not finite (AFV_EUNSTABLE) or
+** as afv_compute.
 ** Kink criterion (dynamics.c, KINKS), at the end of a window of
 ** AFV_RELAX_WINDOW steps: every cell's mean force over the window (its
 ** displacement / (window time mu)) is at most AFV_RELAX_KINK_DRIFT and at
@@ -486,6 +489,10 @@ typedef struct afv_relax_report {
   long long halvings;  /* steps taken again in halves */
   int    converged;    /* 1 if max_force <= tol */
   int    at_kink;      /* 1 if stopped at a kink by the criterion above */
+  int    refused;      /* 1 if stopped because a step of dt would move a
+                       ** cell more than l/2 even in dt / 2^AFV_MAX_HALVINGS
+                       ** (afv_sim's bad_cell, bad_disp, bad_time say
+                       ** which; forces too large for dt) */
 } afv_relax_report;
 /* Optional observer, called after every step (may be NULL). */
 typedef void (*afv_relax_monitor)(void *ctx, long iter, double energy,

@@ -1055,7 +1055,17 @@ int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
   s->dyn.v0 = 0;                   /* zero temperature: no self-propulsion */
   s->dyn.v0_i = NULL;
   while (!(rep->max_force <= tol) && rep->iterations < max_iter) {
-    if ((st = flow_step(s, s->dyn.dt)) != AFV_OK) break;
+    if ((st = flow_step(s, s->dyn.dt)) != AFV_OK) {
+      /* a finite move beyond l/2 even in the smallest half: forces too
+      ** large for dt, which no relaxation by steps of dt can follow; the
+      ** caller hears it (refused, afv_sim's bad_*) and goes on, as when
+      ** max_iter is reached.  A force that is not finite is an error. */
+      if (st == AFV_EUNSTABLE && isfinite(s->bad_disp)) {
+        rep->refused = 1;
+        st = AFV_OK;
+      }
+      break;
+    }
     rep->iterations++;
     rep->max_force = afv_sim_max_force(s);
     add_positions(s, W.r_sum);

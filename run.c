@@ -1089,6 +1089,13 @@ static void log_relax(run_state *R, const afv_relax_report *rep)
             "%.3g (bound %g); relax_tol %g not reached\n", AFV_RELAX_WINDOW,
             rep->drift, AFV_RELAX_KINK_DRIFT, rep->drop, AFV_RELAX_KINK_DROP,
             rep->max_force, AFV_RELAX_KINK_FORCE, R->cfg.relax_tol);
+  else if (rep->refused)
+    run_log(R, "relaxation: stopped at step %ld, which it cannot take: cell "
+            "%d would move %g l (> %g l) even in a time %g (forces too large "
+            "for dt = %g: check KA, KP, Lambda); relax_tol %g NOT reached, "
+            "the run goes on from here\n", rep->iterations + 1,
+            R->sim.bad_cell, R->sim.bad_disp, AFV_MAX_STEP_DISP,
+            R->sim.bad_time, R->sim.dyn.dt, R->cfg.relax_tol);
   else
     run_log(R, "relaxation: NOT reached within relax_max_steps %lld: max "
             "|F| %.3e > relax_tol %g, no kink shown (last window: mean "
@@ -1111,11 +1118,6 @@ static int relax_start(run_state *R)
   st = afv_relax(&R->sim, R->cfg.relax_tol, (long)R->cfg.relax_max_steps,
                  &rep, monitor_relax, R);
   if (R->progress) fprintf(stderr, "\r%70s\r", "");
-  if (st == AFV_EUNSTABLE)
-    run_log(R, "relaxation: step %ld refused: cell %d would move %g l in a "
-            "time %g (forces too large for any time step: check KA, KP, "
-            "Lambda)\n", rep.iterations + 1, R->sim.bad_cell,
-            R->sim.bad_disp, R->sim.bad_time);
   if (st != AFV_OK) return st;
   log_relax(R, &rep);
   return AFV_OK;

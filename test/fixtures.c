@@ -265,6 +265,8 @@ void test_config_free(test_config *c)
 {
   free(c->r);
   c->r = NULL;
+}
+
 int test_pair_sim(afv_sim *s, double x, double y, double KA, double dt,
                   double max_move)
 {

@@ -116,7 +116,8 @@ static int relax(const plan *P, double P0, unsigned long long seed,
 
 static const char *stop_reason(const afv_relax_report *rep)
 {
-  return rep->converged ? "converged" : rep->at_kink ? "kink" : "not-reached";
+  return rep->converged ? "converged" : rep->at_kink ? "kink"
+         : rep->refused ? "refused" : "not-reached";
 }
 
 /* Why the relaxation failed ("" if it did not). */
@@ -124,6 +125,7 @@ static const char *relax_failure(int st, const afv_relax_report *rep,
                                  double area, double area_lat)
 {
   if (st != AFV_OK) return "relaxation error";
+  if (rep->refused) return "relaxation refused a step";
   if (!rep->converged && !rep->at_kink) return "relaxation not reached";
   if (rep->at_kink && !(rep->max_force <= AFV_RELAX_KINK_FORCE))
     return "kink claimed with a large force";

@@ -236,8 +236,8 @@ static void test_run_starts(void)
 }
 
 /* The log says why the relaxation stopped, with figures: at a kink (P0 6),
-** converged (P0 4), and not reached (a limit of 50 steps: the run goes on,
-** exit 0). */
+** converged (P0 4), not reached (a limit of 50 steps) and at a step it
+** cannot take (KA 1e100); in the last two the run goes on. */
 static void test_run_relaxation_reports(void)
 {
   char *log, *e;
@@ -259,6 +259,14 @@ static void test_run_relaxation_reports(void)
   CHECK(strstr(e, "NOT reached within relax_max_steps 50"), "stderr: %s", e);
   free(log);
   free(e);
+  /* forces no step of dt can follow: the relaxation stops and says so,
+  ** the run goes on (0 steps: exit 0) */
+  CHECK(afv_run("stiff", "--N 30 --KA 1e100 --steps 0 --quiet") == 0,
+        "KA 1e100, 0 steps: exit status");
+  log = text_of("stiff/log.txt");
+  CHECK(strstr(log, "which it cannot take") && strstr(log, "the run goes "
+        "on"), "log: %s", log);
+  free(log);
 }
 
 void suite_protocol(void)
