@@ -8,6 +8,7 @@
 #   make fuzz       every libFuzzer harness fuzz/fuzz_*.c for FUZZ_SECONDS s
 #                   (default 60; clang; make -j2 fuzz runs two at a time)
 #   make twins      the two modes side by side (test/twins.c, doc/reference.md)
+#   make protocol-check  the paper's protocol at N = 400 (~1 hour, 2 cores)
 #   make clean
 #
 # CC and CFLAGS may be overridden (make CC=clang, make CC=tcc).
@@ -37,7 +38,7 @@ LIB_SRC  = geom.c afv.c dynamics.c analysis.c svg.c io.c phase.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
-.PHONY: all test run bench bench-quick bench-compare fuzz twins clean FORCE
+.PHONY: all test run bench bench-quick bench-compare fuzz twins protocol-check clean FORCE
 
 all: afv libafv.a
 
@@ -162,7 +163,18 @@ twins: test/twins_fast test/twins_ref
 	./test/twins_ref > test/twins_ref.out
 	./test/twins_fast --compare test/twins_fast.out test/twins_ref.out
 
+# Evidence for the paper's protocol (test/protocol_check.c): the authors'
+# random start relaxed and run at every P0 and v0 of the paper's range.
+# PROTOCOL_ARGS may shrink it (e.g. --N 100 --steps 2000).
+PROTOCOL_ARGS = --jobs 2
+
+test/protocol_check: test/protocol_check.c libafv.a afv.h .build-flags
+	$(CC) $(CFLAGS) -I. -o $@ test/protocol_check.c libafv.a $(LDLIBS)
+
+protocol-check: test/protocol_check
+	./test/protocol_check $(PROTOCOL_ARGS)
+
 clean:
-	rm -f *.o libafv.a afv test/run_tests test/bench .build-flags
+	rm -f *.o libafv.a afv test/run_tests test/bench test/protocol_check .build-flags
 	rm -f test/twins_fast test/twins_ref test/twins_fast.out test/twins_ref.out
 	rm -rf fuzz/build

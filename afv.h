@@ -364,7 +364,12 @@ void afv_traj_free(afv_traj *tr);
 ** but the last moves the fastest cell by max_move l, so 64 pieces cover
 ** 3 l of force-driven motion, more than the l/2 a step may move at all. */
 #define AFV_MAX_SUBSTEPS 64
-#define AFV_EUNSTABLE    8  /* NaN/Inf force or a step > l/2: see afv_sim.bad_cell */
+/* A step (dt) whose moves would still carry a cell farther than
+** AFV_MAX_STEP_DISP l is taken again in halves, and those in halves, down
+** to dt / 2^AFV_MAX_HALVINGS (dynamics.c, HALVES; with max_move > 0). */
+#define AFV_MAX_HALVINGS 8
+#define AFV_EUNSTABLE    8  /* NaN/Inf force, v0 dt > l/2, or a move > l/2 even
+                            ** in dt / 2^AFV_MAX_HALVINGS: afv_sim.bad_cell */
 
 typedef struct afv_dyn {
   double mu;          /* mobility (inverse friction), > 0 */
@@ -425,10 +430,17 @@ typedef struct afv_sim {
   long long  substeps;  /* extra sub-step pieces so far, summed over the
                        ** groups of fast cells (= extra force evaluations
                        ** of their regions; dynamics.c, GROUPS) */
+  long long  halvings; /* steps (or parts of steps) taken again in two
+                       ** halves so far (dynamics.c, HALVES) */
   int        bad_cell; /* on AFV_EUNSTABLE: the offending cell, else -1 */
   double     bad_disp; /* on AFV_EUNSTABLE: its step length / l (NaN or
                        ** inf if the force was not finite) */
-  double    *r_start;  /* private: r at the start of the step (2n) */
+  double     bad_time; /* on AFV_EUNSTABLE: the time over which it would
+                       ** have moved so far (dt, or the smallest half) */
+  double    *r_start;  /* private: r at the start of the step, or of its
+                       ** part being taken (2n) */
+  double    *r_step;   /* private: r at the start of a step taken in
+                       ** halves (2n) */
   double    *move_len; /* private: per-cell squared move lengths (n) */
   double    *pol;      /* private: v0_i n_i during a step (2n) */
   int       *fast;     /* private, sub-steps: the fast cells (n) */
@@ -457,32 +469,55 @@ int  afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
 ** than max_move l, the position update is done in pieces (sub-steps).
 ** Allocation-free once its buffers have grown (the geometry's, and those
 ** of the sub-steps, which grow with the largest groups and regions met
-** so far).  AFV_EUNSTABLE (state unchanged) if a force is not finite, if
-** v0 dt alone exceeds AFV_MAX_STEP_DISP l, or if some cell's whole move in
-** the step does. */
+** so far).  A step in which some cell's whole move would exceed
+** AFV_MAX_STEP_DISP l is taken in halves (max_move > 0; dynamics.c,
+** HALVES).  AFV_EUNSTABLE (state unchanged) if a force is not finite, if
+** v0 dt alone exceeds AFV_MAX_STEP_DISP l, or if some cell's move exceeds
+** it even in dt / 2^AFV_MAX_HALVINGS (or in dt, with max_move = 0). */
 int  afv_sim_step(afv_sim *s);
 void afv_sim_free(afv_sim *s);
 /* Largest |F_i| over the cells (0 if n = 0). */
 double afv_sim_max_force(const afv_sim *s);
 
-/* Relaxation at zero activity (v0 = 0, no noise) by FIRE (Bitzek et al.,
-** PRL 97, 170201, 2006) with one guard: a step that raises the energy (by
-** more than its rounding, slack below) is undone and FIRE restarts with
-** half the time step, so the energy never increases.  Stops when
-** max_i |F_i| <= tol, after max_iter steps, or when E stalls (stalled). */
-#define AFV_RELAX_SLACK 1e-13  /* rounding of E, relative to sum_i |e_i| */
+/* Relaxation at zero activity (paper: "relax ... at zero temperature"):
+** the overdamped flow dr_i/dt = mu F_i (v0 = 0, angles unchanged) by steps
+** of dyn.dt, with afv_sim_step's sub-steps and halves.  Stops when
+** max_i |F_i| <= tol (converged), at a kink of E shown by the criterion
+** below (at_kink), at a step it cannot take (refused), or after max_iter
+** steps (none of these flags: not reached).  Status AFV_OK in all these
+** cases; an error only for a force that is not finite (AFV_EUNSTABLE) or
+** as afv_compute.
+** Kink criterion (dynamics.c, KINKS), at the end of a window of
+** AFV_RELAX_WINDOW steps: every cell's mean force over the window (its
+** displacement / (window time mu)) is at most AFV_RELAX_KINK_DRIFT and at
+** most AFV_RELAX_KINK_CHATTER max_i |F_i| (the forces cancel over the
+** window: cells chatter across a kink), the window's mean energy changed
+** by at most AFV_RELAX_KINK_DROP sum_i |e_i| since the previous window,
+** and max_i |F_i| <= AFV_RELAX_KINK_FORCE. */
+#define AFV_RELAX_WINDOW      1000
+#define AFV_RELAX_KINK_DRIFT  1e-3   /* force units (KA l^3) */
+#define AFV_RELAX_KINK_CHATTER 0.1
+#define AFV_RELAX_KINK_DROP   1e-4
+#define AFV_RELAX_KINK_FORCE  5.0    /* force units (KA l^3) */
 typedef struct afv_relax_report {
-  long   iterations;   /* accepted + rejected steps taken */
-  long   rejected;     /* steps undone because the energy rose */
+  long   iterations;   /* flow steps taken */
+  double time;         /* iterations dt */
   double max_force;    /* max_i |F_i| at the end */
   double energy0;      /* energy before */
   double energy;       /* energy after */
-  double slack;        /* allowed rise per step: AFV_RELAX_SLACK sum|e_i| */
+  double drift;        /* at the last full window (NaN before the second):
+                       ** max_i |displacement_i| / (window time mu) */
+  double drop;         /* and its drop of the mean energy / sum_i |e_i| */
+  long long substeps;  /* extra sub-step pieces taken */
+  long long halvings;  /* steps taken again in halves */
   int    converged;    /* 1 if max_force <= tol */
-  int    stalled;      /* 1 if stopped because E no longer decreased (a
-                       ** minimum on a kink of E: see dynamics.c) */
+  int    at_kink;      /* 1 if stopped at a kink by the criterion above */
+  int    refused;      /* 1 if stopped because a step of dt would move a
+                       ** cell more than l/2 even in dt / 2^AFV_MAX_HALVINGS
+                       ** (afv_sim's bad_cell, bad_disp, bad_time say
+                       ** which; forces too large for dt) */
 } afv_relax_report;
-/* Optional observer, called after every accepted step (may be NULL). */
+/* Optional observer, called after every step (may be NULL). */
 typedef void (*afv_relax_monitor)(void *ctx, long iter, double energy,
                                   double max_force);
 /* Moves s->r (step, t and theta unchanged); s->f and s->geom end at the
@@ -499,6 +534,12 @@ int  afv_init_cluster(int n, double a, const afv_box *b, double *r);
 /* Uniform random centres in [0, Lx) x [0, Ly) (open space: in a square of
 ** side side centred on the origin), from the streams of seed. */
 void afv_init_random(int n, unsigned long long seed, const afv_box *b,
+                     double side, double *r);
+/* The authors' start (afv run's init cluster, with side 0.3 L): centres
+** uniform at random in a square of side `side` centred in the periodic
+** box (on the origin in open space), from the streams of seed (open
+** space: the same centres as afv_init_random). */
+void afv_init_square(int n, unsigned long long seed, const afv_box *b,
                      double side, double *r);
 /* Uniform random angles in [0, 2 pi) from the streams of seed. */
 void afv_init_angles(int n, unsigned long long seed, double *theta);

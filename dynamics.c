@@ -240,8 +240,8 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   afv_sim_free(s);
   if (n < 0 || dyn_check(d, n) != AFV_OK) return AFV_EINVAL;
   /* r, f, r_start, pol (2n each), theta, move_len (n each), six optional
-  ** per-cell arrays (n each) */
-  s->own = malloc((size_t)(16 * n + 1) * sizeof(double));
+  ** per-cell arrays (n each), r_step (2n) */
+  s->own = malloc((size_t)(18 * n + 1) * sizeof(double));
   /* fast cells, region, in_region, around (n each) */
   s->iown = calloc((size_t)(4 * n + 1), sizeof(int));
   if (!s->own || !s->iown) {
@@ -259,6 +259,7 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   s->r_start = s->own + 5 * n;
   s->move_len = s->own + 7 * n;
   s->pol = s->own + 8 * n;
+  s->r_step = s->own + 16 * n;
   next = s->own + 10 * n;
   memcpy(s->r, r, (size_t)(2 * n) * sizeof(double));
   if (theta) memcpy(s->theta, theta, (size_t)n * sizeof(double));
@@ -275,6 +276,8 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   s->step = 0;
   s->t = 0;
   s->substeps = 0;
+  s->halvings = 0;
+  s->bad_time = 0;
   s->bad_cell = -1;
   s->bad_disp = 0;
   st = afv_compute(&s->geom, n, s->r, &s->par, &s->box, s->f);
@@ -420,13 +423,13 @@ static void move_cells(afv_sim *s, const int *list, int m, double h)
 ** then moved, and the refused step restores r_start).  Squares order the
 ** cells as the lengths do, and save a hypot per cell (a square that
 ** overflows to inf still counts as fast). */
-static double euler_all(afv_sim *s, double split)
+static double euler_all(afv_sim *s, double split, double dt)
 {
   /* locals, not s->...: the stores through r could alias the struct */
   double *r = s->r, *r_start = s->r_start, *pol = s->pol, *m = s->move_len;
   const double *f = s->f, *theta = s->theta, *v0_i = s->dyn.v0_i;
   double split2 = split > 0 ? split * split : INFINITY, most = 0;
-  double dt = s->dyn.dt, hmu = dt * s->dyn.mu, v0 = s->dyn.v0;
+  double hmu = dt * s->dyn.mu, v0 = s->dyn.v0;
   int i, n = s->n, nan = 0;
   AFV_PARALLEL_REDUCE(n, reduction(max: most) reduction(|: nan))
   for (i = 0; i < n; i++) {
@@ -675,10 +678,10 @@ static double fastest(const afv_sim *s, const int *fast, int nf, double h,
 /* Moves group G's fast cells over the time dt in pieces (the other cells
 ** have moved), with the work space W; sets G's status and pieces. */
 static void fast_pieces(afv_sim *s, afv_group *G, afv_group_work *W,
-                        double split)
+                        double split, double dt)
 {
   const int *fast = s->group_cells + G->start + G->nr;
-  double left = s->dyn.dt;
+  double left = dt;
   int piece, cell;
   G->pieces = 0;
   G->status = AFV_OK;
@@ -720,7 +723,8 @@ static int is_large(const afv_group *G)
 ** small groups at once on OpenMP threads.  The groups are independent, so
 ** the order changes no bit; any error reported is that of the first group
 ** (in the order of find_groups) that failed. */
-static int move_fast_cells(afv_sim *s, int nf, double split, double moved)
+static int move_fast_cells(afv_sim *s, int nf, double split, double moved,
+                           double dt)
 {
   int g, st, small = 0;
   if ((st = find_groups(s, nf, moved)) != AFV_OK
@@ -729,12 +733,12 @@ static int move_fast_cells(afv_sim *s, int nf, double split, double moved)
   for (g = 0; g < s->n_groups; g++) small += !is_large(&s->groups[g]);
   for (g = 0; g < s->n_groups; g++)
     if (is_large(&s->groups[g]) || small == 1)
-      fast_pieces(s, &s->groups[g], own_work(s), split);
+      fast_pieces(s, &s->groups[g], own_work(s), split, dt);
   if (small > 1) {
     AFV_PARALLEL_TASKS
     for (g = 0; g < s->n_groups; g++)
       if (!is_large(&s->groups[g]))
-        fast_pieces(s, &s->groups[g], own_work(s), split);
+        fast_pieces(s, &s->groups[g], own_work(s), split, dt);
   }
   for (g = 0; g < s->n_groups; g++) {
     const afv_group *G = &s->groups[g];
@@ -746,10 +750,11 @@ static int move_fast_cells(afv_sim *s, int nf, double split, double moved)
   return AFV_OK;
 }
 
-/* The moves of a step (v0_max = max |v0_i|, from too_fast). */
-static int advance(afv_sim *s, double v0_max)
+/* The moves of a time dt (the step's, or a part of it: HALVES), v0_max =
+** max |v0_i| (from too_fast). */
+static int advance(afv_sim *s, double v0_max, double dt)
 {
-  double split = s->dyn.max_move * s->par.l, most = euler_all(s, split);
+  double split = s->dyn.max_move * s->par.l, most = euler_all(s, split, dt);
   double limit = AFV_MAX_STEP_DISP * s->par.l;
   int nf = 0, st;
   s->n_groups = 0;
@@ -757,17 +762,65 @@ static int advance(afv_sim *s, double v0_max)
     return unstable(s, first_at(s->move_len, s->n, most), most);
   if (split > 0 && most > split * split) nf = list_fast(s, split);
   if (nf > 0
-      && (st = move_fast_cells(s, nf, split, split + v0_max * s->dyn.dt))
+      && (st = move_fast_cells(s, nf, split, split + v0_max * dt, dt))
          != AFV_OK)
     return st;
   /* Without fast cells every move is at most split + |v0_i| dt: when that
   ** cannot exceed the limit, the scan of all the moves is skipped. */
-  if (nf > 0 || !(split > 0 && split + v0_max * s->dyn.dt <= limit)) {
+  if (nf > 0 || !(split > 0 && split + v0_max * dt <= limit)) {
     double far2 = farthest_from_start(s), far = sqrt(far2);
     if (!(far <= limit))
       return unstable(s, first_at(s->move_len, s->n, far2), far);
   }
   return afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
+}
+
+/* Puts every cell back at r0 and recomputes the forces there. */
+static void back_to(afv_sim *s, const double *r0)
+{
+  size_t bytes = (size_t)(2 * s->n) * sizeof(double);
+  if (memcmp(r0, s->r, bytes) != 0) {
+    memcpy(s->r, r0, bytes);
+    afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
+  }
+}
+
+/* HALVES.  A time dt whose moves carry some cell farther than
+** AFV_MAX_STEP_DISP l (sub-steps included) is not refused when sub-steps
+** are on (max_move > 0): it is taken again from its start as two halves,
+** each of which may be halved in turn, down to dt / 2^AFV_MAX_HALVINGS.
+** Such a move is physics, not a fault: a cell pushed by a force of 50 or
+** more for a whole step (two centres that start nearly on top of each
+** other in a random start, or a cell leaving a kink of E while its
+** neighbours rearrange) travels that far in dt = 0.01, and the halves
+** follow it, where a single step left the range in which Euler's method
+** and the sub-steps' regions (REGION_RADIUS) are valid.  Each half keeps
+** the rule (no cell moves more than l/2 in it), so everything the
+** sub-steps rely on holds inside it.  The polarity and the noise are
+** unchanged: the noise is drawn once, after the whole step.  The bound
+** keeps a step's cost finite: at most 2^AFV_MAX_HALVINGS parts, each with
+** at most AFV_MAX_SUBSTEPS pieces.  A force that moves a cell l/2 in
+** dt / 2^AFV_MAX_HALVINGS (|F| above 0.5 * 256 / 0.01 = 12800 for a whole
+** part, at the paper's dt) is refused: it means a parameter far too stiff
+** for dt (KA = 1e5, say), not a contact about to break (whose pieces pull
+** it back within max_move l).  Without sub-steps (max_move = 0, plain
+** Euler) the step is refused as before.  The first refused part saves the
+** step's start in r_step (r_start then moves on with the parts), so a
+** refused step still leaves the state as it was. */
+static int advance_in_halves(afv_sim *s, double v0_max, double dt, int depth)
+{
+  int st = advance(s, v0_max, dt);
+  s->bad_time = dt;
+  if (st != AFV_EUNSTABLE || !isfinite(s->bad_disp)
+      || s->dyn.max_move <= 0 || depth >= AFV_MAX_HALVINGS)
+    return st;
+  if (depth == 0)
+    memcpy(s->r_step, s->r_start, (size_t)(2 * s->n) * sizeof(double));
+  back_to(s, s->r_start);
+  s->halvings++;
+  if ((st = advance_in_halves(s, v0_max, dt / 2, depth + 1)) != AFV_OK)
+    return st;
+  return advance_in_halves(s, v0_max, dt / 2, depth + 1);
 }
 
 /* Self-propulsion alone moves cell i by v0_i dt in a step, sub-steps or
@@ -835,18 +888,16 @@ static void rotate_plain(afv_sim *s, unsigned long long seed,
 int afv_sim_step(afv_sim *s)
 {
   unsigned long long seed = s->dyn.seed, step = (unsigned long long)s->step;
-  long long substeps = s->substeps;
-  size_t bytes = (size_t)(2 * s->n) * sizeof(double);
+  long long substeps = s->substeps, halvings = s->halvings;
   double v0_max;
   int i, pairs, st;
+  s->bad_time = s->dyn.dt;
   if ((st = too_fast(s, &v0_max)) != AFV_OK) return st;
-  if ((st = advance(s, v0_max)) != AFV_OK) {
+  if ((st = advance_in_halves(s, v0_max, s->dyn.dt, 0)) != AFV_OK) {
     /* a refused step leaves the state as it was, sub-steps included */
+    back_to(s, s->halvings > halvings ? s->r_step : s->r_start);
     s->substeps = substeps;
-    if (memcmp(s->r_start, s->r, bytes) != 0) {
-      memcpy(s->r, s->r_start, bytes);
-      afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
-    }
+    s->halvings = halvings;
     return st;
   }
   if (AFV_REFERENCE_MODE) {
@@ -863,88 +914,51 @@ int afv_sim_step(afv_sim *s)
   return AFV_OK;
 }
 
-/* ---- relaxation (FIRE with an energy guard) ----------------------------- */
-/* FIRE constants as recommended by Bitzek et al. (2006). */
-#define FIRE_NMIN     5     /* downhill steps before the time step may grow */
-#define FIRE_FINC     1.1   /* time step growth factor */
-#define FIRE_FDEC     0.5   /* time step cut on uphill motion or rejection */
-#define FIRE_ALPHA0   0.1   /* initial velocity mixing */
-#define FIRE_FALPHA   0.99  /* mixing decay */
-/* Our scales (unit mass, forces ~ KA l^3): the start and largest time steps,
-** and the largest move per step, which keeps FIRE within the range where
-** the neighbour structure changes little in one step. */
-#define FIRE_DT0      0.02
-#define FIRE_DTMAX    0.2
-#define FIRE_MAX_MOVE 0.1   /* in units of l */
-/* This many rejections in a row means no step lowers E in floating point:
-** the minimum is reached to rounding, whatever the tolerance says. */
-#define FIRE_MAX_REJECT 60
-/* Stall: E fell by less than FIRE_STALL_DROP sum_i |e_i| over the last
-** FIRE_STALL_WINDOW steps.  This happens when the minimum lies on a kink of
-** E, where the force is discontinuous and does not vanish: E has a kink
-** wherever a triple junction crosses a cell's circle (a gap opens), and
-** above P0* ~ 5.7 the relaxed tissue sits exactly there. */
-#define FIRE_STALL_WINDOW 1000
-#define FIRE_STALL_DROP   1e-12
-/* E sums N terms e_i, each good to ~1e-16 relative: near the minimum a
-** step lowers E by h |F|^2, below that rounding, and comparing computed
-** energies there is comparing noise.  So "E rose" means: by more than
-** AFV_RELAX_SLACK * sum_i |e_i| (about 500 ulps of the energy scale). */
-
-typedef struct fire {
-  double *v, *r_old, *f_old;  /* velocity; state before the trial step */
-  double h, alpha;            /* time step and mixing */
-  int npos;                   /* downhill steps in a row */
-} fire;
-
-static void fire_restart(fire *F, int n)
-{
-  memset(F->v, 0, (size_t)(2 * n) * sizeof(double));
-  F->h *= FIRE_FDEC;
-  F->alpha = FIRE_ALPHA0;
-  F->npos = 0;
-}
-
-static double dot2n(const double *a, const double *b, int n)
-{
-  double s = 0;
-  int k;
-  for (k = 0; k < 2 * n; k++) s += a[k] * b[k];
-  return s;
-}
-
-/* The FIRE velocity update: mixing towards F when going downhill. */
-static void fire_velocity(fire *F, const double *f, int n)
-{
-  double P = dot2n(f, F->v, n), vn, fn;
-  int k;
-  if (P <= 0) {
-    fire_restart(F, n);
-  } else {
-    vn = sqrt(dot2n(F->v, F->v, n));
-    fn = sqrt(dot2n(f, f, n));
-    for (k = 0; k < 2 * n; k++)
-      F->v[k] = (1 - F->alpha) * F->v[k] + F->alpha * vn * f[k] / fn;
-    if (++F->npos > FIRE_NMIN) {
-      F->h = F->h * FIRE_FINC < FIRE_DTMAX ? F->h * FIRE_FINC : FIRE_DTMAX;
-      F->alpha *= FIRE_FALPHA;
-    }
-  }
-  for (k = 0; k < 2 * n; k++) F->v[k] += F->h * f[k];
-}
-
-/* Moves r by h v, scaled down so that no cell moves more than the cap. */
-static void fire_move(fire *F, double *r, int n, double l)
-{
-  double m2 = 0, scale = 1, cap = FIRE_MAX_MOVE * l;
-  int i, k;
-  for (i = 0; i < n; i++) {
-    double q = F->v[2*i] * F->v[2*i] + F->v[2*i+1] * F->v[2*i+1];
-    if (q > m2) m2 = q;
-  }
-  if (F->h * sqrt(m2) > cap) scale = cap / (F->h * sqrt(m2));
-  for (k = 0; k < 2 * n; k++) r[k] += scale * F->h * F->v[k];
-}
+/* ---- relaxation (overdamped flow at v0 = 0) ----------------------------- */
+/* RELAXATION.  The paper relaxes its start "at zero temperature" before it
+** switches v0 on: the equation of motion with v0 = 0, dr_i/dt = mu F_i,
+** by Euler steps of dt (the authors' code: 30 time units of them).  That
+** is what afv_relax does, step after step, with the sub-steps and halves
+** of afv_sim_step (the same code, polarity and noise off), until
+**   max_i |F_i| <= tol                                   (converged), or
+**   a kink of E is reached (at_kink, below), or max_iter steps.
+** Why this and not a global minimiser: every cell moves by its own force,
+** so a cell sitting at a kink of E (where the force jumps and does not
+** vanish) only chatters across it, by about dt mu |F| ~ 0.01 l, while
+** every other cell goes on relaxing.  The FIRE minimiser used before
+** accepted or undid a trial move of the whole tissue by the change of the
+** total energy; near one kink every trial move raised E, so it undid the
+** moves of all cells and stopped with max |F| of 84 to 1035 and the
+** tissue nowhere near relaxed (the authors' random start at N = 400,
+** phi = 0.5, P0 = 4 to 8: mean area 0.75 where the relaxed tissue has
+** 1.8).  The flow is slower near a smooth minimum than FIRE (linear
+** convergence), but from that start it reaches max |F| <= 1e-6 in about
+** 10^4 steps at P0 = 4 and 8.8 (measured), far below the default limit.
+**
+** KINKS.  E has a kink wherever a triple junction crosses a cell's circle
+** (a gap opens or closes), and above P0* ~ 5.7 relaxed tissues sit on
+** such kinks: the flow then ends chattering, max |F| stays at the one-sided
+** force (about 2 at P0 = 6, measured) and never reaches tol.  What shows
+** a genuine kink, measured over windows of AFV_RELAX_WINDOW steps:
+**   drift: every cell's mean force over the window, its displacement
+**     over the window / (window time mu), is at most AFV_RELAX_KINK_DRIFT
+**     (a chattering cell goes back and forth; a cell still sliding down a
+**     slope, however slowly, drifts);
+**   chatter: that drift is at most AFV_RELAX_KINK_CHATTER max_i |F_i|: the
+**     forces cancel over the window, as across a kink (measured at
+**     P0 = 6: drift 5e-5 against max |F| 2).  Near a smooth minimum the
+**     force decays steadily, so the window's mean force is larger than
+**     the force at its end, not a tenth of it: that convergence goes on
+**     to tol (at P0 = 4 the drift fell below 1e-3 while max |F| was still
+**     2e-4, a few thousand steps before max |F| <= 1e-6);
+**   drop: the window's mean energy fell by at most AFV_RELAX_KINK_DROP
+**     sum_i |e_i| since the previous window;
+**   force: max_i |F_i| <= AFV_RELAX_KINK_FORCE (the one-sided forces of a
+**     kink are of order 1; a larger force is not a kink but a tissue still
+**     moving, or a contact about to break).
+** All three must hold at the end of a window.  Otherwise the flow goes
+** on, up to max_iter steps: then neither flag is set, and the report
+** holds the figures. */
 
 /* sum_i |e_i|: the scale of the rounding error of E. */
 static double energy_scale(const afv_sim *s)
@@ -958,58 +972,124 @@ static double energy_scale(const afv_sim *s)
   return sum;
 }
 
+/* Adds every cell's position to sum (2n). */
+static void add_positions(const afv_sim *s, double *sum)
+{
+  int k;
+  for (k = 0; k < 2 * s->n; k++) sum[k] += s->r[k];
+}
+
+/* max_i |a_i - b_i| / m, a and b sums of m positions (unwrapped, so a
+** plain difference): the largest move of a cell's mean position. */
+static double largest_mean_move(int n, const double *a, const double *b,
+                                long m)
+{
+  double most = 0;
+  int i;
+  for (i = 0; i < n; i++) {
+    double d = hypot(a[2*i] - b[2*i], a[2*i+1] - b[2*i+1]) / (double)m;
+    if (!(d <= most)) most = d;
+  }
+  return most;
+}
+
+/* One step of the flow, or a refusal with the state unchanged (as
+** afv_sim_step, whose moves it shares). */
+static int flow_step(afv_sim *s, double dt)
+{
+  long long substeps = s->substeps, halvings = s->halvings;
+  int st;
+  s->bad_time = dt;
+  if ((st = advance_in_halves(s, 0, dt, 0)) != AFV_OK) {
+    back_to(s, s->halvings > halvings ? s->r_step : s->r_start);
+    s->substeps = substeps;
+    s->halvings = halvings;
+  }
+  return st;
+}
+
+/* The relaxation's running sums over the present and the previous window:
+** positions (2n each) and energy. */
+typedef struct window {
+  double *r_sum, *r_sum_prev;
+  double E_sum, E_sum_prev;
+  int full;            /* complete windows so far */
+} window;
+
+/* The end of a window: sets rep's drift and drop (from the window's mean
+** positions and energy against the previous window's, which cancels the
+** chatter at kinks); 1 if they and max |F| show a kink. */
+static int window_shows_kink(const afv_sim *s, afv_relax_report *rep,
+                             window *W, double scale)
+{
+  long K = AFV_RELAX_WINDOW;
+  double time = (double)K * s->dyn.dt * s->dyn.mu, *t;
+  int kink = 0;
+  if (W->full++ > 0) {
+    rep->drift = largest_mean_move(s->n, W->r_sum, W->r_sum_prev, K) / time;
+    rep->drop = (W->E_sum_prev - W->E_sum) / (double)K / scale;
+    kink = rep->drift <= AFV_RELAX_KINK_DRIFT
+           && rep->drift <= AFV_RELAX_KINK_CHATTER * rep->max_force
+           && fabs(rep->drop) <= AFV_RELAX_KINK_DROP
+           && rep->max_force <= AFV_RELAX_KINK_FORCE;
+  }
+  t = W->r_sum_prev;                   /* this window becomes the previous */
+  W->r_sum_prev = W->r_sum;
+  W->r_sum = t;
+  memset(W->r_sum, 0, (size_t)(2 * s->n) * sizeof(double));
+  W->E_sum_prev = W->E_sum;
+  W->E_sum = 0;
+  return kink;
+}
+
 int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
               afv_relax_monitor mon, void *ctx)
 {
-  size_t bytes = (size_t)(2 * s->n + 1) * sizeof(double);
-  fire F;
-  int n = s->n, st = AFV_OK, reject_run = 0;
-  double E, E_window, scale;
+  afv_dyn saved = s->dyn;
+  long long substeps = s->substeps, halvings = s->halvings;
+  window W;
+  int st = AFV_OK;
   memset(rep, 0, sizeof *rep);
-  F.v = calloc(1, bytes);
-  F.r_old = malloc(bytes);
-  F.f_old = malloc(bytes);
-  F.h = FIRE_DT0;
-  F.alpha = FIRE_ALPHA0;
-  F.npos = 0;
-  E = E_window = rep->energy0 = s->geom.energy;
-  scale = energy_scale(s);
-  rep->slack = AFV_RELAX_SLACK * scale;
-  if (!F.v || !F.r_old || !F.f_old) st = AFV_ENOMEM;
-  while (st == AFV_OK && afv_sim_max_force(s) > tol
-         && rep->iterations < max_iter && !rep->stalled) {
-    fire_velocity(&F, s->f, n);
-    memcpy(F.r_old, s->r, bytes - sizeof(double));
-    memcpy(F.f_old, s->f, bytes - sizeof(double));
-    fire_move(&F, s->r, n, s->par.l);
-    rep->iterations++;
-    st = afv_compute(&s->geom, n, s->r, &s->par, &s->box, s->f);
-    if (st == AFV_OK && s->geom.energy <= E + rep->slack) {
-      E = s->geom.energy;
-      reject_run = 0;
-      if (mon) mon(ctx, rep->iterations, E, afv_sim_max_force(s));
-    } else if (st == AFV_OK || st == AFV_ECOINCIDENT) {
-      memcpy(s->r, F.r_old, bytes - sizeof(double));  /* undo */
-      memcpy(s->f, F.f_old, bytes - sizeof(double));
-      rep->rejected++;
-      reject_run++;
-      fire_restart(&F, n);
-      st = AFV_OK;
+  memset(&W, 0, sizeof W);
+  rep->energy0 = rep->energy = s->geom.energy;
+  rep->max_force = afv_sim_max_force(s);
+  rep->drift = rep->drop = NAN;
+  W.r_sum = calloc((size_t)(4 * s->n + 1), sizeof(double));
+  if (!W.r_sum) return AFV_ENOMEM;
+  W.r_sum_prev = W.r_sum + 2 * s->n;
+  s->dyn.v0 = 0;                   /* zero temperature: no self-propulsion */
+  s->dyn.v0_i = NULL;
+  while (!(rep->max_force <= tol) && rep->iterations < max_iter) {
+    if ((st = flow_step(s, s->dyn.dt)) != AFV_OK) {
+      /* a finite move beyond l/2 even in the smallest half: forces too
+      ** large for dt, which no relaxation by steps of dt can follow; the
+      ** caller hears it (refused, afv_sim's bad_*) and goes on, as when
+      ** max_iter is reached.  A force that is not finite is an error. */
+      if (st == AFV_EUNSTABLE && isfinite(s->bad_disp)) {
+        rep->refused = 1;
+        st = AFV_OK;
+      }
+      break;
     }
-    if (reject_run >= FIRE_MAX_REJECT) rep->stalled = 1;
-    if (rep->iterations % FIRE_STALL_WINDOW == 0) {
-      if (E_window - E <= FIRE_STALL_DROP * scale) rep->stalled = 1;
-      E_window = E;
+    rep->iterations++;
+    rep->max_force = afv_sim_max_force(s);
+    add_positions(s, W.r_sum);
+    W.E_sum += s->geom.energy;
+    if (mon) mon(ctx, rep->iterations, s->geom.energy, rep->max_force);
+    if (rep->iterations % AFV_RELAX_WINDOW == 0
+        && window_shows_kink(s, rep, &W, energy_scale(s))
+        && !(rep->max_force <= tol)) {
+      rep->at_kink = 1;
+      break;
     }
   }
-  /* restore the invariant: geometry and forces at the final r */
-  if (st == AFV_OK) st = afv_compute(&s->geom, n, s->r, &s->par, &s->box, s->f);
+  s->dyn = saved;
   rep->energy = s->geom.energy;
-  rep->max_force = afv_sim_max_force(s);
   rep->converged = rep->max_force <= tol;
-  free(F.v);
-  free(F.r_old);
-  free(F.f_old);
+  rep->time = (double)rep->iterations * s->dyn.dt;
+  rep->substeps = s->substeps - substeps;
+  rep->halvings = s->halvings - halvings;
+  free(W.r_sum < W.r_sum_prev ? W.r_sum : W.r_sum_prev);
   return st;
 }
 
@@ -1073,21 +1153,41 @@ int afv_init_cluster(int n, double a, const afv_box *b, double *r)
   return AFV_OK;
 }
 
-void afv_init_random(int n, unsigned long long seed, const afv_box *b,
-                     double side, double *r)
+/* Centres uniform in the square of side `side` centred on (cx, cy). */
+static void uniform_square(int n, unsigned long long seed, double cx,
+                           double cy, double side, double *r)
 {
   int i;
   for (i = 0; i < n; i++) {
     double u[2];
     afv_rng_uniform2(seed, (uint32_t)i, 0, AFV_RNG_INIT_POS, u);
-    if (b && b->periodic) {          /* 1 - u lies in [0, 1) */
-      r[2*i] = b->Lx * (1 - u[0]);
-      r[2*i+1] = b->Ly * (1 - u[1]);
-    } else {
-      r[2*i] = side * (0.5 - u[0]);
-      r[2*i+1] = side * (0.5 - u[1]);
-    }
+    r[2*i] = cx + side * (0.5 - u[0]);
+    r[2*i+1] = cy + side * (0.5 - u[1]);
   }
+}
+
+void afv_init_random(int n, unsigned long long seed, const afv_box *b,
+                     double side, double *r)
+{
+  int i;
+  if (!(b && b->periodic)) {
+    uniform_square(n, seed, 0, 0, side, r);
+    return;
+  }
+  for (i = 0; i < n; i++) {
+    double u[2];
+    afv_rng_uniform2(seed, (uint32_t)i, 0, AFV_RNG_INIT_POS, u);
+    r[2*i] = b->Lx * (1 - u[0]);          /* 1 - u lies in [0, 1) */
+    r[2*i+1] = b->Ly * (1 - u[1]);
+  }
+}
+
+void afv_init_square(int n, unsigned long long seed, const afv_box *b,
+                     double side, double *r)
+{
+  int periodic = b && b->periodic;
+  uniform_square(n, seed, periodic ? 0.5 * b->Lx : 0,
+                 periodic ? 0.5 * b->Ly : 0, side, r);
 }
 
 void afv_init_angles(int n, unsigned long long seed, double *theta)

@@ -20,8 +20,9 @@
 #include <unistd.h>
 
 /* ---- afv run: the simulation job --------------------------------------- */
-/* The job (paper, Sec. Model): build the start (cluster or random), relax it
-** at v0 = 0 to max |F| <= relax_tol, then integrate the active dynamics for
+/* The job (paper, Sec. Model): build the start (init), relax it at v0 = 0
+** (afv_relax: to max |F| <= relax_tol, a kink of E, or relax_max_steps,
+** reported with its figures), then integrate the active dynamics for
 ** `steps` steps, writing samples, frames, snapshots and checkpoints.  Every
 ** parameter lives in one table (run_keys), which gives the defaults, the
 ** config-file and command-line parsing, --help and params.txt. */
@@ -34,8 +35,8 @@ typedef struct run_cfg {
   double mu, v0, Dr, dt, max_move;             /* dynamics (afv_dyn) */
   long long steps;        /* active steps in the whole run */
   unsigned long long seed;/* noise and random starts */
-  char init[16];          /* "cluster", "random" or "file" */
-  double spacing;         /* cluster lattice spacing, in l */
+  char init[16];          /* "cluster", "lattice", "random" or "file" */
+  double spacing;         /* lattice start: lattice spacing, in l */
   double relax_tol;       /* relaxation force tolerance */
   long long relax_max_steps;   /* relaxation step limit (0: no relaxation) */
   long long sample_every, frame_every, checkpoint_every, svg_every;
@@ -82,22 +83,32 @@ static const run_key run_keys[] = {
      "polarity"),
   RK("dt", K_REAL, dt, "0.01", "time", "time step (Euler-Maruyama)"),
   RK("max_move", K_REAL, max_move, "0.05", "l", "sub-step threshold: a "
-     "step in which the force would move some cell farther is integrated "
-     "in halves (at most 20), which tames the exact force's divergence at "
-     "contact breaking; 0 = plain Euler steps"),
+     "cell that the force would move farther in a step moves in pieces of "
+     "at most this length (at most 64), which tames the exact force's "
+     "divergence at contact breaking; a step that would still move a cell "
+     "more than l/2 is taken in halves (down to dt/256); 0 = plain Euler "
+     "steps, and such a step is refused"),
   RK("steps", K_INT, steps, "10000", "steps", "active steps of the whole "
      "run (main knob)"),
   RK("seed", K_SEED, seed, "1", "-", "random seed (0 .. 2^64-1): noise, "
      "random start, initial angles"),
-  RK("init", K_WORD, init, "cluster", "cluster|random|file", "start: "
-     "compact cluster in the middle, uniform random, or the x y of the "
-     "cells file"),
+  RK("init", K_WORD, init, "cluster", "cluster|lattice|random|file",
+     "start: cluster = the authors' protocol, the N centres uniform at "
+     "random (from seed) in a square of side 0.3 L centred in the box, "
+     "then relaxed: a disordered tissue, as the paper's results are about; "
+     "lattice = the N sites of a triangular lattice (spacing) nearest to "
+     "the centre, which relaxes to a crystal that may never rearrange "
+     "(for tests and comparisons); random = uniform over the whole box; "
+     "file = the x y of the cells file"),
   RK("spacing", K_REAL, spacing, "1.8", "l", "lattice spacing of the "
-     "cluster start"),
+     "lattice start"),
   RK("relax_tol", K_REAL, relax_tol, "1e-6", "force", "relaxation at v0 = "
-     "0 stops when max_i |F_i| <= relax_tol"),
+     "0 (overdamped steps of dt) stops when max_i |F_i| <= relax_tol, or "
+     "at a kink of E (every cell's mean force over 1000 steps <= 1e-3, "
+     "mean energy change <= 1e-4 of sum |e_i|, max |F| <= 5)"),
   RK("relax_max_steps", K_INT, relax_max_steps, "100000", "steps",
-     "relaxation step limit (0: no relaxation)"),
+     "relaxation step limit (0: no relaxation; reaching it is reported, "
+     "and the run goes on)"),
   RK("sample_every", K_INT, sample_every, "100", "steps", "observables.csv "
      "row every so many steps (0: none)"),
   RK("frame_every", K_INT, frame_every, "1000", "steps", "trajectory frame "
@@ -495,6 +506,11 @@ static double nearest_to_first(int n, const double *r, const afv_box *b)
   return best;
 }
 
+/* The authors' start (their published code; paper, Sec. Model: "one large
+** connected cluster"): the centres uniform at random in a square of side
+** AUTHORS_SQUARE L centred in the box, L = sqrt(N pi l^2 / phi). */
+#define AUTHORS_SQUARE 0.3
+
 /* Builds the start (positions and angles) and the simulation at it. */
 static int run_start(run_state *R, char *err, size_t errlen)
 {
@@ -507,7 +523,9 @@ static int run_start(run_state *R, char *err, size_t errlen)
   afv_dyn d;
   cfg_model(c, &R->cells, &p, &b, &d);
   if (!r || !th) st = AFV_ENOMEM;
-  else if (strcmp(c->init, "cluster") == 0) {
+  else if (strcmp(c->init, "cluster") == 0)
+    afv_init_square(n, c->seed, &b, AUTHORS_SQUARE * box_side(c), r);
+  else if (strcmp(c->init, "lattice") == 0) {
     st = afv_init_cluster(n, c->spacing * c->l, &b, r);
     R->start_spacing = n > 1 ? nearest_to_first(n, r, &b) / c->l : 0;
   }
@@ -1113,6 +1131,42 @@ static void monitor_relax(void *ctx, long iter, double E, double fmax)
   fflush(stderr);
 }
 
+/* Where the relaxation stopped and why, with its figures (the kink
+** criterion: afv.h, afv_relax). */
+static void log_relax(run_state *R, const afv_relax_report *rep)
+{
+  run_log(R, "relaxation at v0 = 0 (overdamped steps of dt = %g): %ld "
+          "steps (t = %.6g, %lld extra sub-steps, %lld halved), energy "
+          "%.10g -> %.10g, max |F| %.3e\n", R->sim.dyn.dt, rep->iterations,
+          rep->time, rep->substeps, rep->halvings, rep->energy0, rep->energy,
+          rep->max_force);
+  if (rep->converged)
+    run_log(R, "relaxation: converged, max |F| %.3e <= relax_tol %g\n",
+            rep->max_force, R->cfg.relax_tol);
+  else if (rep->at_kink)
+    run_log(R, "relaxation: stopped at a kink of E (a triple junction on a "
+            "cell's circle, where the force jumps and does not vanish): "
+            "over the last %d steps every cell's mean force <= %.2e (bound "
+            "%g), mean energy change %.2e of sum |e_i| (bound %g), max |F| "
+            "%.3g (bound %g); relax_tol %g not reached\n", AFV_RELAX_WINDOW,
+            rep->drift, AFV_RELAX_KINK_DRIFT, rep->drop, AFV_RELAX_KINK_DROP,
+            rep->max_force, AFV_RELAX_KINK_FORCE, R->cfg.relax_tol);
+  else if (rep->refused)
+    run_log(R, "relaxation: stopped at step %ld, which it cannot take: cell "
+            "%d would move %g l (> %g l) even in a time %g (forces too large "
+            "for dt = %g: check KA, KP, Lambda); relax_tol %g NOT reached, "
+            "the run goes on from here\n", rep->iterations + 1,
+            R->sim.bad_cell, R->sim.bad_disp, AFV_MAX_STEP_DISP,
+            R->sim.bad_time, R->sim.dyn.dt, R->cfg.relax_tol);
+  else
+    run_log(R, "relaxation: NOT reached within relax_max_steps %lld: max "
+            "|F| %.3e > relax_tol %g, no kink shown (last window: mean "
+            "force %.2e, bound %g; energy change %.2e, bound %g); the run "
+            "goes on from here\n", R->cfg.relax_max_steps, rep->max_force,
+            R->cfg.relax_tol, rep->drift, AFV_RELAX_KINK_DRIFT, rep->drop,
+            AFV_RELAX_KINK_DROP);
+}
+
 static int relax_start(run_state *R)
 {
   afv_relax_report rep;
@@ -1127,13 +1181,7 @@ static int relax_start(run_state *R)
                  &rep, monitor_relax, R);
   if (R->progress) fprintf(stderr, "\r%70s\r", "");
   if (st != AFV_OK) return st;
-  run_log(R, "relaxation at v0 = 0: %ld steps (%ld undone), energy %.10g -> "
-          "%.10g, max |F| %.6e (tolerance %g)%s\n", rep.iterations,
-          rep.rejected, rep.energy0, rep.energy, rep.max_force,
-          R->cfg.relax_tol, rep.converged ? ""
-          : rep.stalled ? "; stopped: the energy no longer decreases (a "
-            "minimum on a kink of E, e.g. a triple junction on a cell's "
-            "circle, as above P0* ~ 5.7)" : "; NOT REACHED");
+  log_relax(R, &rep);
   return AFV_OK;
 }
 
@@ -1155,6 +1203,20 @@ static int report_nonfinite(run_state *R)
   return EXIT_UNSTABLE;
 }
 
+/* What a refused step means (afv_sim_step, AFV_EUNSTABLE). */
+static const char *unstable_reason(const afv_sim *s, double max_move)
+{
+  if (!isfinite(s->bad_disp)) return "its force is not finite";
+  if (max_move <= 0)
+    return "the time step is too large for plain Euler steps (max_move 0; "
+           "max_move 0.05 takes such steps in pieces)";
+  if (s->bad_time < s->dyn.dt)
+    return "the forces are too large for any time step, even in the "
+           "smallest half of dt (check KA, KP, Lambda, P0)";
+  return "self-propulsion alone, v0 dt, exceeds that: the time step is too "
+         "large";
+}
+
 /* Integrates to cfg.steps.  Returns an exit status. */
 static int run_loop(run_state *R)
 {
@@ -1171,15 +1233,11 @@ static int run_loop(run_state *R)
   if (st == AFV_EUNSTABLE) {
     int i = s->bad_cell;
     fprintf(stderr, "%safv run: step %lld (t = %g): cell %d would move %g l "
-            "(> %g l)%s: the time step dt = %g is too large%s; last good "
-            "checkpoint: %s/checkpoint.txt (step %lld)\n",
+            "(> %g l) in a time %g: %s; last good checkpoint: "
+            "%s/checkpoint.txt (step %lld)\n",
             R->progress ? "\n" : "", s->step + 1, s->t, i, s->bad_disp,
-            AFV_MAX_STEP_DISP,
-            isfinite(s->bad_disp) ? "" : " (its force is not finite)",
-            s->dyn.dt, R->cfg.max_move > 0 ? "" : " (or two cells are "
-            "losing contact, where the exact force diverges: try max_move "
-            "0.05 or cap 0.1)",
-            R->dir, R->ckpt_step);
+            AFV_MAX_STEP_DISP, s->bad_time,
+            unstable_reason(s, R->cfg.max_move), R->dir, R->ckpt_step);
     if (R->log) fprintf(R->log, "stopped: unstable step %lld, cell %d\n",
                         s->step + 1, i);
     return EXIT_UNSTABLE;
@@ -1222,9 +1280,11 @@ static const char *run_usage =
   "       afv run [--config FILE] [--KEY VALUE ...] --out DIR --continue\n"
   "       afv run --resume DIR [--steps MORE] [--quiet]\n"
   "\n"
-  "Simulates the active finite Voronoi model (paper protocol): a compact\n"
-  "cluster (or random start) relaxed at v0 = 0 until max |F| <= relax_tol,\n"
-  "then dr/dt = mu F + v0 n, dth = sqrt(2 Dr dt) xi (Euler-Maruyama).\n"
+  "Simulates the active finite Voronoi model (paper protocol): the start\n"
+  "(init; default: the authors' random cluster) relaxed at v0 = 0 until\n"
+  "max |F| <= relax_tol or a kink of E, then dr/dt = mu F + v0 n,\n"
+  "dth = sqrt(2 Dr dt) xi (Euler-Maruyama; steps with large forces are\n"
+  "taken in pieces and halves, never refused for their size).\n"
   "FILE holds 'KEY VALUE' lines ('#' comments); --KEY VALUE overrides it.\n"
   "Relative paths in FILE are relative to FILE's directory.  DIR gets\n"
   "params.txt (every key; --config DIR/params.txt repeats the run),\n"
@@ -1241,8 +1301,9 @@ static const char *run_usage =
   "that stopped before its first checkpoint), a resumed one if DIR holds\n"
   "an unfinished run, nothing if it is finished.  Missing parent folders\n"
   "of DIR are created.\n"
-  "Exit status: 0 done, 2 bad input or an I/O error, 3 unstable step (dt\n"
-  "too large) or a state that is not finite (never written).\n"
+  "Exit status: 0 done, 2 bad input or an I/O error, 3 unstable step (a\n"
+  "force not finite, v0 dt > l/2, or forces too large even for dt/256) or\n"
+  "a state that is not finite (never written).\n"
   "\n"
   "keys (default, unit, meaning):\n";
 

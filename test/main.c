@@ -62,6 +62,7 @@ int main(void)
   suite_reference();
   suite_sweep();
   suite_geometry();
+  suite_protocol();
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;
 }

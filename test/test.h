@@ -72,6 +72,11 @@ typedef struct test_config {
 } test_config;
 int  test_config_make(int k, test_config *c);
 void test_config_free(test_config *c);
+/* Two cells in open space, at (0, 0) and (x, y), the paper's parameters
+** but KA, no rotational noise, time step dt and sub-step threshold
+** max_move: afv_sim_init's status. */
+int test_pair_sim(afv_sim *s, double x, double y, double KA, double dt,
+                  double max_move);
 
 /* Test suites, one per source file. */
 void suite_core(void);
@@ -85,5 +90,6 @@ void suite_runjob(void);
 void suite_reference(void);
 void suite_sweep(void);
 void suite_geometry(void);
+void suite_protocol(void);
 
 #endif
