@@ -184,8 +184,8 @@ typedef struct edge {
   double s;            /* half-chord sqrt(l^2 - h^2) */
 } edge;
 
-/* u, h and s come from the edge cache that afv_neighbours fills (geom.c),
-** computed there once per neighbour pair. */
+/* u, h and s come from the edge cache that afv_neighbours fills
+** (neighbours.c), computed there once per neighbour pair. */
 static edge edge_of(const afv_geom *g, int s)
 {
   const double *e = g->edge + 4 * s;
@@ -291,7 +291,7 @@ void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
 **     G_js - G_rev(s) = (a_s + a_rev) u_s + ((b_s + b_rev) / d) t_s,
 ** the two cells' b added before the division by d (a tiny d makes each
 ** b / d large where their sum is not).  d = 2h > 0 even for a subnormal
-** d (geom.c), so b = 0 gives 0.  Each F_j is summed in its own slot
+** d (neighbours.c), so b = 0 gives 0.  Each F_j is summed in its own slot
 ** order, whatever thread computes it. */
 static void gather_forces(const afv_geom *g, int n, double *f)
 {
@@ -302,7 +302,7 @@ static void gather_forces(const afv_geom *g, int n, double *f)
     int s;
     for (s = g->nbr_start[j]; s < g->nbr_end[j]; s++) {
       int t = g->nbr_rev[s];
-      /* the lists are symmetric (geom.c), so every slot has its reverse */
+      /* the lists are symmetric (neighbours.c): every slot has its reverse */
       const double *e = g->edge + 4 * s;
       double a = g->grad[2*s] + g->grad[2*t];
       double bt = (g->grad[2*s+1] + g->grad[2*t+1]) / (e[2] + e[2]);

@@ -55,12 +55,12 @@ const char *afv_strerror(int status);   /* one-line description of a status */
 
 /* ---- OpenMP build (make OPENMP=1) -------------------------------------- */
 /* A per-cell loop over fewer than AFV_PARALLEL_MIN cells runs on the
-** calling thread alone (see geom.c): starting and joining a team costs
-** more than such a loop.  The bits do not depend on it. */
+** calling thread alone (see afv_internal.h): starting and joining a team
+** costs more than such a loop.  The bits do not depend on it. */
 #define AFV_PARALLEL_MIN 256
 
-/* The library's per-cell loops are marked with these (geom.c says why any
-** thread count gives the same bits); `size` is the loop's length in cells
+/* The library's per-cell loops are marked with these (afv_internal.h says
+** why any thread count gives the same bits); `size` is the loop's length in cells
 ** (in bins for the cell list's bin loop).  Empty without OpenMP. */
 #ifdef _OPENMP
 #define AFV_PRAGMA(text) _Pragma(#text)
@@ -137,7 +137,7 @@ typedef struct afv_piece {
                   ** 0 for an arc */
 } afv_piece;
 
-/* Private: the grid of a cell list (geom.c). */
+/* Private: the grid of a cell list (neighbours.c). */
 typedef struct afv_grid {
   int nbx, nby;     /* bins along x and y (>= 1) */
   int periodic;     /* 1: the bins tile the periodic box */
@@ -170,7 +170,7 @@ typedef struct afv_geom {
   int     cap_cells, cap_nbr, cap_pieces, cap_bins, cap_work;
   int    *bin_start, *bin_cell;
   double *bin_xy;       /* centres in bin order (wrapped if periodic) */
-  int    *cand_start;   /* Verlet candidates of cell i (see geom.c):     */
+  int    *cand_start;   /* Verlet candidates of cell i (neighbours.c):     */
   int    *cand;         /*   cand[cand_start[i] .. cand_start[i+1]-1]    */
   double *cand_r0;      /* centres when the candidates were built */
   double *rw;           /* centres as the lists see them (wrapped) */
@@ -215,7 +215,7 @@ int  afv_geometry_prepare(afv_geom *g, int n, const double *r, double l,
                           const afv_box *b);
 /* Fills g's neighbour lists: every centre closer than 2l, sorted by
 ** direction (counter-clockwise from +x), filtered from candidates that a
-** cell list refreshes only when cells have moved (geom.c, Verlet skin);
+** cell list refreshes only when cells have moved (neighbours.c, Verlet skin);
 ** in the reference build, found in a cell list built at every call. */
 int  afv_neighbours(afv_geom *g, int n, const double *r, double l,
                     const afv_box *b);
@@ -388,8 +388,8 @@ typedef struct afv_dyn {
 /* Paper defaults: mu 1, v0 0, Dr 0.1, dt 0.01, seed 1; max_move 0.05. */
 void afv_dyn_default(afv_dyn *d);
 
-/* Private (geom.c; dynamics.c uses it too): makes room for `need`
-** elements of `elem` bytes in *ptr, whose capacity *cap grows by
+/* Private (neighbours.c; geom.c and dynamics.c use it too): makes room
+** for `need` elements of `elem` bytes in *ptr, whose capacity *cap grows by
 ** doubling.  AFV_OK or AFV_ENOMEM (then *ptr and *cap are unchanged). */
 int afv_grow(void **ptr, int *cap, int need, size_t elem);
 

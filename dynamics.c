@@ -44,8 +44,8 @@
 
 #define TWO_PI 6.28318530717958647692
 
-/* OpenMP (make OPENMP=1, see geom.c): the per-cell loops of a step touch
-** only their own cell, the noise is drawn per (cell, step), and the only
+/* OpenMP (make OPENMP=1, see afv_internal.h): the per-cell loops of a step
+** touch only their own cell, the noise is drawn per (cell, step), and the only
 ** reductions are a maximum and an or, so every thread count gives the same
 ** bits.  The macros are in afv.h; empty in the plain C99 build. */
 

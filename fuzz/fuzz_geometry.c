@@ -2,7 +2,7 @@
 ** fuzz_geometry.c -- libFuzzer harness for the geometry and the forces.
 **
 **   clang -g -O1 -fsanitize=fuzzer,address,undefined -I. \
-**     fuzz/fuzz_geometry.c geom.c afv.c -lm -o fuzz_geometry
+**     fuzz/fuzz_geometry.c neighbours.c geom.c afv.c -lm -o fuzz_geometry
 **   ./fuzz_geometry fuzz/corpus/geometry -max_total_time=60
 **
 ** The input is read as a small recipe of 1 to 12 cells: each cell from

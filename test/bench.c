@@ -79,7 +79,7 @@
 ** 12000), so repeats sized by N (2000 steps at N = 400, 20 at 40000, as in
 ** an earlier version) compared an old small state with a young large one.
 ** 20 steps also hold one to three rebuilds of the neighbour candidates
-** (geom.c: one every 16.7 steps at N = 400, 12.5 at 40000, 10 at 400000,
+** (neighbours.c: one every 16.7 steps at N = 400, 12.5 at 40000, 10 at 400000,
 ** each costing about half a step): with 4 or 5 steps a repeat held
 ** a rebuild or none (at N = 40000 one with a rebuild took up to 1.8x one
 ** without). */

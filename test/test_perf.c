@@ -445,7 +445,7 @@ static double max_diff(const double *a, const double *b, int n, int *nbits)
   return worst;
 }
 
-/* The Verlet candidates (geom.c) are only a shortcut: a geometry whose
+/* The Verlet candidates (neighbours.c) are only a shortcut: a geometry whose
 ** candidates were built at earlier positions gives the same bits as a fresh
 ** one, both while they are reused (moves below half the skin) and after a
 ** rebuild (larger moves), in a dense periodic tissue where many pairs are
@@ -504,7 +504,7 @@ done:
 }
 
 /* Kept candidates with a few cells moved beyond the skin ("movers",
-** geom.c): the same bits as a fresh evaluation, and the rebuild is skipped
+** neighbours.c): the same bits as a fresh evaluation, and the rebuild is skipped
 ** when the movers' pairs are all candidates.  Two kinds of trial from a
 ** random tissue: one cell moved 0.2 l (beyond SKIN l / 2 = 0.15 l) in a
 ** random direction; and two cells 2.4 l apart (not a candidate pair,
@@ -514,7 +514,7 @@ done:
 ** 1.4 l; and two cells alone in a corridor of a sparse lattice, 8 l apart,
 ** brought to 1.9 l.  (Taking every mover's pairs as covered makes this
 ** fail, and so does a cell-list search that does not widen by the moves
-** since the rebuild (geom.c, cand_moved), which misses a mover's pair
+** since the rebuild (neighbours.c, cand_moved), which misses a mover's pair
 ** with another mover: the corridor.) */
 static int movers_trial(const double *r0, int n, const afv_params *p,
                         const afv_box *b, int a, double ax, double ay, int c,
@@ -707,7 +707,7 @@ done:
 }
 
 /* The same search when one cell has moved farther than the skin allows (a
-** mover, geom.c: MOVERS) and the candidates still hold: the search must
+** mover, neighbours.c: MOVERS) and the candidates still hold: the search must
 ** widen by that cell's move.  For each query point p, every cell moves
 ** 0.14 l towards p, then the cell nearest to 0.45 l beyond R moves another
 ** 0.5 l, to just inside R; the lists are refreshed; the query must list

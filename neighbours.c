@@ -1,0 +1,1236 @@
+/*
+** neighbours.c -- which centres can cut a cell: the neighbour search.
+**
+** Only centres closer than 2l can cut cell i's disk (the bisector of a
+** pair at distance d lies d/2 from r_i, and d/2 >= l misses the open
+** disk): that is our "radius of security".  afv_neighbours lists, for
+** every cell, exactly those (minimum image in a periodic box), with their
+** displacements D = r_j - r_i, sorted by direction (counter-clockwise from
+** +x; the clipping in geom.c relies on this order), links each pair's two
+** slots (nbr_rev) and fills each pair's edge cache (u = D/d, h = d/2,
+** half-chord sqrt(l^2 - h^2)) once for both cells.  A cell's list sits at
+** nbr[nbr_start[i] .. nbr_end[i] - 1]; the slots up to nbr_start[i+1]
+** are unused room, so a loop stops at nbr_end[i].
+**
+** Read first, the reference search (make REFERENCE=1, doc/reference.md):
+** plain_neighbours -> plain_list: a cell list with bins of side >= 2l
+** built at every call, every cell closer than 2l in the bins around,
+** then sort_slots and link_cell.
+** The fast search (the default) finds the same lists:
+**   - a cell list ("cell list": grid_periodic / grid_open, fill_bins) of
+**     reach (2 + SKIN) l, scanned without a branch on the distance
+**     (scan_cell), gives every cell its Verlet candidates ("Verlet
+**     candidates"), rebuilt only when cells have moved farther than
+**     SKIN l / 2, or a few "MOVERS" have a pair that is not a candidate;
+**   - at every call each cell's candidates are filtered by the exact
+**     distance and sorted (filter_cell), written in place ("neighbour
+**     lists"), and the pairs linked.
+** Cost: O(N) time and memory; long candidate lists (dense input) are
+** merge-sorted and reverse slots found by binary search.  About 1.1 kB
+** per cell at N = 400000.
+** afv_cells_around reads the cell list for the sub-steps (dynamics.c) and
+** afv_force_check; afv_spatial_order numbers cells in its order.  The
+** buffers of an afv_geom are grown here too (afv_grow, grow_cells).
+** Every per-cell loop may run on OpenMP threads with the same result bits
+** (afv_internal.h).
+*/
+#include "afv.h"
+#include "afv_internal.h"
+
+#include <float.h>
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+/* At most BINS_PER_CELL bins per cell (plus BINS_SLACK for tiny N): a
+** sparse periodic box or spread-out open points get wider bins, so that
+** memory stays O(N) however large the box or far apart the points. */
+#define BINS_PER_CELL 2
+#define BINS_SLACK    16
+
+/* ---- buffers ----------------------------------------------------------- */
+int afv_grow(void **ptr, int *cap, int need, size_t elem)
+{
+  void *q;
+  int newcap;
+  if (need <= *cap) return AFV_OK;
+  if (need > INT_MAX / 2) return AFV_ENOMEM;   /* doubling would overflow */
+  newcap = *cap > 0 ? *cap : 16;
+  while (newcap < need) newcap *= 2;
+  q = realloc(*ptr, (size_t)newcap * elem);
+  if (!q) return AFV_ENOMEM;
+  *ptr = q;
+  *cap = newcap;
+  return AFV_OK;
+}
+
+static int grow_cells(afv_geom *g, int n)
+{
+  int cap = g->cap_cells, c;
+  if (n + 1 <= cap) return AFV_OK;
+  c = cap;
+  if (afv_grow((void **)&g->area, &c, n + 1, sizeof(double))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->perim, &c, n + 1, sizeof(double))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->arc, &c, n + 1, sizeof(double))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->contacts, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->piece_start, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->n_pieces, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->nbr_start, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->nbr_end, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->bin_cell, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->bin_xy, &c, n + 1, 2 * sizeof(double)))
+    return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->cand_r0, &c, n + 1, 2 * sizeof(double)))
+    return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->rw, &c, n + 1, 2 * sizeof(double))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->cand_start, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->is_mover, &c, n + 1, 1)) return AFV_ENOMEM;
+  g->cap_cells = c;
+  return AFV_OK;
+}
+
+/* Neighbour slot arrays: nbr and nbr_rev (ints), nbr_d and grad (pairs),
+** edge (quadruples). */
+static int grow_nbr(afv_geom *g, int need)
+{
+  int cap = g->cap_nbr, c;
+  if (need <= cap) return AFV_OK;
+  c = cap;
+  if (afv_grow((void **)&g->nbr, &c, need, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->nbr_rev, &c, need, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->nbr_d, &c, need, 2 * sizeof(double))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->grad, &c, need, 2 * sizeof(double))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->edge, &c, need, 4 * sizeof(double))) return AFV_ENOMEM;
+  g->cap_nbr = c;
+  return AFV_OK;
+}
+
+void afv_geom_free(afv_geom *g)
+{
+  free(g->area); free(g->perim); free(g->arc); free(g->contacts);
+  free(g->piece_start); free(g->n_pieces); free(g->pieces);
+  free(g->nbr_start); free(g->nbr_end); free(g->nbr); free(g->nbr_d);
+  free(g->nbr_rev);
+  free(g->bin_start); free(g->bin_cell); free(g->bin_xy); free(g->edge);
+  free(g->cand_start); free(g->cand); free(g->cand_r0); free(g->rw);
+  free(g->grad); free(g->work); free(g->is_mover);
+  memset(g, 0, sizeof *g);
+}
+
+/* ---- boundary conditions ----------------------------------------------- */
+void afv_min_image(const afv_box *b, double *dx, double *dy)
+{
+  if (!b || !b->periodic) return;
+  /* round() is symmetric (half away from zero), so the image of -D is -D':
+  ** neighbour lists come out exactly symmetric. */
+  *dx -= b->Lx * round(*dx / b->Lx);
+  *dy -= b->Ly * round(*dy / b->Ly);
+}
+
+static double wrap1(double x, double L)
+{
+  double w;
+  if (x >= 0 && x < L) return x;   /* nearly always: no floor, no division
+                                   ** (and x just below L stays x, where
+                                   ** x / L rounds to 1 and w was -tiny) */
+  w = x - L * floor(x / L);
+  return w >= L ? 0.0 : w;   /* x = -tiny gives w = L after rounding */
+}
+
+void afv_wrap(const afv_box *b, double *x, double *y)
+{
+  if (!b || !b->periodic) return;
+  *x = wrap1(*x, b->Lx);
+  *y = wrap1(*y, b->Ly);
+}
+
+/* ---- cell list --------------------------------------------------------- */
+/* The grid of bins.  Bins have sides >= 2 half_range, the argument of
+** grid_periodic / grid_open (the candidates pass half their search range
+** (2 + SKIN) l there), so a scan of the 3 x 3 bins around a cell finds
+** every cell within that range. */
+typedef afv_grid grid;   /* afv.h: nbx, nby, periodic, x0, y0, wx, wy, Lx, Ly */
+
+/* Bins of side >= 2 half_range dividing the box evenly, at most
+** BINS_PER_CELL per cell (+ BINS_SLACK): a sparse box gets fewer, wider
+** bins, so memory stays O(N) whatever the box size.  Counted in double
+** until they are known to fit an int. */
+static void grid_periodic(grid *G, const afv_box *b, double half_range,
+                          int n)
+{
+  double fx = floor(b->Lx / (2 * half_range));
+  double fy = floor(b->Ly / (2 * half_range));
+  double most = (double)BINS_PER_CELL * n + BINS_SLACK;
+  if (fx < 1) fx = 1;
+  if (fy < 1) fy = 1;
+  while (fx * fy > most) {
+    fx = fx > 1 ? floor(fx / 2) : 1;
+    fy = fy > 1 ? floor(fy / 2) : 1;
+  }
+  G->periodic = 1;
+  G->nbx = (int)fx;
+  G->nby = (int)fy;
+  G->x0 = G->y0 = 0;
+  G->wx = b->Lx / G->nbx;
+  G->wy = b->Ly / G->nby;
+  G->Lx = b->Lx;
+  G->Ly = b->Ly;
+}
+
+static void grid_open(grid *G, int n, const double *r, double half_range)
+{
+  double xmin = r[0], xmax = r[0], ymin = r[1], ymax = r[1], w = 2 * half_range;
+  double hx, hy;
+  int i;
+  for (i = 1; i < n; i++) {
+    if (r[2*i] < xmin) xmin = r[2*i];
+    if (r[2*i] > xmax) xmax = r[2*i];
+    if (r[2*i+1] < ymin) ymin = r[2*i+1];
+    if (r[2*i+1] > ymax) ymax = r[2*i+1];
+  }
+  /* half spans: xmax - xmin itself overflows for coordinates near
+  ** +-DBL_MAX; and w must stay finite (inf / inf in bin_of is NaN) */
+  hx = 0.5 * xmax - 0.5 * xmin;
+  hy = 0.5 * ymax - 0.5 * ymin;
+  /* widen the bins until there are at most BINS_PER_CELL per cell */
+  while ((2 * (hx / w) + 1) * (2 * (hy / w) + 1)
+         > (double)BINS_PER_CELL * n + BINS_SLACK && isfinite(4 * w))
+    w *= 2;
+  G->periodic = 0;
+  G->x0 = xmin;
+  G->y0 = ymin;
+  G->wx = G->wy = w;
+  G->nbx = (int)floor(2 * (hx / w)) + 1;
+  G->nby = (int)floor(2 * (hy / w)) + 1;
+  G->Lx = G->Ly = 0;
+}
+
+/* The position of cell i as the cell list sees it: wrapped into the box
+** when periodic, so that the displacement of two such positions is less
+** than a box side in each component (see fold). */
+static void list_position(const grid *G, const double *r, int i, double *x,
+                          double *y)
+{
+  *x = r[2*i];
+  *y = r[2*i+1];
+  if (G->periodic) {
+    *x = wrap1(*x, G->Lx);
+    *y = wrap1(*y, G->Ly);
+  }
+}
+
+static int bin_of(const grid *G, double x, double y)
+{
+  /* clamp before the conversion to int: x - x0 overflows to inf for
+  ** coordinates near +-DBL_MAX, and (int)inf is undefined */
+  double fx = floor((x - G->x0) / G->wx), fy = floor((y - G->y0) / G->wy);
+  int bx = !(fx > 0) ? 0 : fx >= G->nbx ? G->nbx - 1 : (int)fx;
+  int by = !(fy > 0) ? 0 : fy >= G->nby ? G->nby - 1 : (int)fy;
+  return by * G->nbx + bx;
+}
+
+/* Counting sort of the cells into bins: bin b holds
+** bin_cell[bin_start[b] .. bin_start[b+1]-1], in increasing cell order, and
+** bin_xy holds their list positions in the same order, so that a bin scan
+** reads consecutive memory. */
+static int fill_bins(afv_geom *g, const grid *G, int n, const double *r)
+{
+  int nb = G->nbx * G->nby, i, b;
+  double x, y;
+  if (afv_grow((void **)&g->bin_start, &g->cap_bins, nb + 1, sizeof(int)))
+    return AFV_ENOMEM;
+  memset(g->bin_start, 0, (size_t)(nb + 1) * sizeof(int));
+  for (i = 0; i < n; i++) {
+    list_position(G, r, i, &x, &y);
+    g->bin_start[bin_of(G, x, y) + 1]++;
+  }
+  for (b = 0; b < nb; b++) g->bin_start[b + 1] += g->bin_start[b];
+  for (i = 0; i < n; i++) {
+    int k;
+    list_position(G, r, i, &x, &y);
+    k = g->bin_start[bin_of(G, x, y)]++;
+    g->bin_cell[k] = i;
+    g->bin_xy[2*k] = x;
+    g->bin_xy[2*k+1] = y;
+  }
+  for (b = nb; b > 0; b--) g->bin_start[b] = g->bin_start[b - 1];
+  g->bin_start[0] = 0;
+  return AFV_OK;
+}
+
+/* Minimum image of a component dx of the displacement of two wrapped
+** positions (|dx| < L): one fold suffices, and replaces the division and
+** round() of afv_min_image in the innermost loop.  It is exactly odd
+** (fold(-dx) = -fold(dx)), so neighbour lists stay symmetric. */
+static double fold(double dx, double L)
+{
+  if (dx > 0.5 * L) return dx - L;
+  if (dx < -0.5 * L) return dx + L;
+  return dx;
+}
+
+/* The bin offsets to visit along one axis of nb bins: -1..1, except that
+** with fewer than 3 periodic bins -1 and +1 are the same bin (or bin 0). */
+static void stencil(int nb, int periodic, int *lo, int *hi)
+{
+  *lo = -1;
+  *hi = 1;
+  if (periodic && nb < 3) {
+    *lo = 0;
+    *hi = nb - 1;
+  }
+}
+
+/* Bin coordinate c (one off the grid at most) on an axis of nb bins:
+** wrapped if periodic, -1 if it lies outside an open grid.  *shift is the
+** displacement of the image of that bin next to the cell's own bin: with
+** 3 or more periodic bins, the image of a cell within 2l lies in the bin
+** column (row) c unwrapped, so r_j + shift - r_i is its minimum image
+** (the same sum fold would form).  *shift = 0 when there is nothing to do
+** or when fold must decide (fewer than 3 bins). */
+static int bin_coord(int c, int nb, int periodic, double L, double *shift)
+{
+  *shift = 0;
+  if (c >= 0 && c < nb) return c;
+  if (!periodic) return -1;
+  if (nb >= 3) *shift = c < 0 ? -L : L;
+  return c < 0 ? c + nb : c - nb;
+}
+
+/* A run of consecutive positions in bin order, bin_xy[first .. end-1],
+** and the shift (sx, sy) that carries their cells next to the scanning
+** cell's bin (bin_coord). */
+typedef struct bin_run {
+  int first, end;
+  double sx, sy;
+} bin_run;
+
+/* The 3 x 3 bins around bin (bx, by) as runs, in the order a scan visits
+** them (rows, then columns): bins side by side in a row with the same
+** shift are consecutive in bin order and make one run, so an interior bin
+** has three runs, one per row, not nine bins.  Returns how many (<= 9);
+** fewer bins at the edges of an open grid, or with fewer than 3 periodic
+** bins along an axis (stencil). */
+static int stencil_runs(const afv_geom *g, const grid *G, int bx, int by,
+                        bin_run *run)
+{
+  int xlo, xhi, ylo, yhi, ox, oy, nr = 0, last = -2;
+  stencil(G->nbx, G->periodic, &xlo, &xhi);
+  stencil(G->nby, G->periodic, &ylo, &yhi);
+  for (oy = ylo; oy <= yhi; oy++) {
+    double sy, sx;
+    int cy = bin_coord(by + oy, G->nby, G->periodic, G->Ly, &sy);
+    if (cy < 0) continue;
+    for (ox = xlo; ox <= xhi; ox++) {
+      int cx = bin_coord(bx + ox, G->nbx, G->periodic, G->Lx, &sx), bin;
+      if (cx < 0) continue;
+      bin = cy * G->nbx + cx;
+      if (bin == last + 1 && run[nr - 1].sx == sx && run[nr - 1].sy == sy) {
+        run[nr - 1].end = g->bin_start[bin + 1];   /* extends the run */
+      } else {
+        run[nr].first = g->bin_start[bin];
+        run[nr].end = g->bin_start[bin + 1];
+        run[nr].sx = sx;
+        run[nr].sy = sy;
+        nr++;
+      }
+      last = bin;
+    }
+  }
+  return nr;
+}
+
+/* The cells closer than `range` to the cell at bin-order position k, found
+** in the nr runs of its bin's stencil (stencil_runs), written to out[] (if
+** not NULL; it has room for exactly `room` of them, the count of the
+** counting pass) in the order of the runs.  Returns their number.  A
+** cell with the same wrapped centre is a candidate like any other:
+** filter_cell decides on the exact displacement whether two centres
+** coincide (wrapping can round two distinct centres onto one).
+** The loop has no branch on the distance: of the cells scanned 30% are
+** candidates in the random state (8.7 scanned per cell), in no order a
+** predictor learns, 22% in the cluster's lattice (27 scanned); with the
+** branch a scanned cell cost 8 ns in the first, 2 ns in the second
+** (N = 40000, the counting pass timed).  Every cell scanned is stored at
+** the next free place, which the next candidate overwrites if it was
+** none; once the list is full the stores go to a scratch word instead. */
+static int scan_cell(const afv_geom *g, const grid *G, int k,
+                     const bin_run *run, int nr, double range, int *out,
+                     int room)
+{
+  double xi = g->bin_xy[2*k], yi = g->bin_xy[2*k+1], range2 = range * range;
+  int count = 0, scratch, q, m;
+  int small = G->periodic && (G->nbx < 3 || G->nby < 3);
+  for (q = 0; q < nr; q++) {
+    double sx = run[q].sx, sy = run[q].sy;
+    int end = run[q].end;
+    for (m = run[q].first; m < end; m++) {
+      double dx = g->bin_xy[2*m] - xi + sx, dy = g->bin_xy[2*m+1] - yi + sy;
+      double d2;
+      int other = m != k;
+      if (small) {
+        dx = fold(dx, G->Lx);
+        dy = fold(dy, G->Ly);
+      }
+      d2 = dx * dx + dy * dy;
+      if (out) *(count < room ? out + count : &scratch) = g->bin_cell[m];
+      count += (d2 < range2) & other;
+    }
+  }
+  return count;
+}
+
+/* Runs scan_cell for every cell, bin by bin: the cells of a bin share its
+** stencil's runs, and neighbouring cells are visited together, which keeps
+** the scanned bins in cache.  Counting pass (fill = 0): cand_start[i+1] =
+** count of cell i.  Filling pass:
+** the lists, at cand_start[i].  Each cell writes only its own entries, so
+** the bins may be shared among threads. */
+static void scan_all(afv_geom *g, const grid *G, double range, int fill)
+{
+  int nb = G->nbx * G->nby, b;
+  AFV_PARALLEL_FOR(nb)
+  for (b = 0; b < nb; b++) {
+    bin_run run[9];
+    int k, nr;
+    if (g->bin_start[b] == g->bin_start[b + 1]) continue;
+    nr = stencil_runs(g, G, b % G->nbx, b / G->nbx, run);
+    for (k = g->bin_start[b]; k < g->bin_start[b + 1]; k++) {
+      int i = g->bin_cell[k];
+      int *out = fill ? g->cand + g->cand_start[i] : NULL;
+      int room = fill ? g->cand_start[i + 1] - g->cand_start[i] : 0;
+      int c = scan_cell(g, G, k, run, nr, range, out, room);
+      if (!fill) g->cand_start[i + 1] = c;
+    }
+  }
+}
+
+/* After a pass that left count[i] = -1 - j where cells i and j coincide
+** (list_cell): names the pair with the smallest cell number (the same
+** whatever the thread count), or returns AFV_OK. */
+static int find_coincident(afv_geom *g, const int *count, int n)
+{
+  int i;
+  for (i = 0; i < n; i++)
+    if (count[i] < 0) {
+      int j = -1 - count[i];
+      g->bad_i = i < j ? i : j;
+      g->bad_j = i < j ? j : i;
+      return AFV_ECOINCIDENT;
+    }
+  return AFV_OK;
+}
+
+/* ---- Verlet candidates ------------------------------------------------- */
+
+/* The cell list is not searched at every call: the candidate list of cell
+** i holds every cell that was closer than (2 + SKIN) l when it was built,
+** and it stays valid while no cell has moved more than SKIN l / 2 since
+** (a pair then approaches by less than SKIN l, so none closer than 2l can
+** be missing).  Each call filters the candidates by the exact distance and
+** sorts them by direction, so the neighbour lists are a function of the
+** positions alone: the same bits whether or not the candidates were rebuilt
+** (a resumed run repeats an uninterrupted one).
+** A few cells that have moved farther do not force a rebuild (MOVERS,
+** below).  SKIN = 0.3 l: (2.3/2)^2 = 1.3x the pairs of a 2l search;
+** rebuilt in the random benchmark state (v0 = 1, dt = 0.01) every 16.7
+** steps at N = 400, 14.3 at 4000, 12.5 at 40000 and 10 at 400000 (steps
+** 20 - 120 after relaxing; at N = 400 47 in steps 2000 - 12000),
+** and every 1100 in the relaxed cluster (v0 = 0.1) (test/bench.c).  0.2
+** and 0.5 cost more instructions per step over the two (measured, before
+** MOVERS). */
+#define SKIN 0.3
+
+static int same_box(const afv_box *a, const afv_box *b)
+{
+  if (!b || !b->periodic) return !a->periodic;
+  return a->periodic && a->Lx == b->Lx && a->Ly == b->Ly;
+}
+
+/* The centre of cell i as the lists see it: wrapped into the box. */
+static void wrap_all(afv_geom *g, int n, const double *r, const afv_box *b)
+{
+  int i;
+  AFV_PARALLEL_FOR(n)
+  for (i = 0; i < 2 * n; i += 2) {
+    g->rw[i] = r[i];
+    g->rw[i+1] = r[i+1];
+    afv_wrap(b, &g->rw[i], &g->rw[i+1]);
+  }
+}
+
+/* D = r_j - r_i from the wrapped centres, minimum image by fold (the
+** wrapped centres differ by less than a box side). */
+static void displacement(const afv_geom *g, int i, int j, const afv_box *b,
+                         double *dx, double *dy)
+{
+  *dx = g->rw[2*j] - g->rw[2*i];
+  *dy = g->rw[2*j+1] - g->rw[2*i+1];
+  if (b && b->periodic) {
+    *dx = fold(*dx, b->Lx);
+    *dy = fold(*dy, b->Ly);
+  }
+}
+
+/* The bins along one axis (nb bins of side w from x0) that come within Q of
+** the coordinate x (wrapped into the box if periodic): *count of them from
+** *first on, to be wrapped mod nb if periodic (each bin once). */
+static void bin_range(double x, double Q, double x0, double w, int nb,
+                      int periodic, int *first, int *count)
+{
+  double lo = floor((x - Q - x0) / w), hi = floor((x + Q - x0) / w);
+  if (periodic) {
+    *first = (int)fmax(lo, -nb);    /* fmax: no int overflow for a huge Q */
+    *count = hi - lo + 1 >= nb ? nb : (int)(hi - lo) + 1;
+    *first = ((*first % nb) + nb) % nb;
+    return;
+  }
+  lo = fmin(fmax(lo, 0), nb - 1);   /* cells beyond the grid sit in its */
+  hi = fmin(fmax(hi, 0), nb - 1);   /* edge bins (bin_of clamps them) */
+  *first = (int)lo;
+  *count = (int)(hi - lo) + 1;
+}
+
+/* The bins of the rebuild's cell list that may hold a cell now within R of
+** (x, y): nx by ny bins from (fx, fy) on (wrapped mod the grid if
+** periodic).  A cell now within R was binned within Q of (x, y): since the
+** rebuild it moved at most cand_moved up to the last afv_neighbours
+** (candidates_valid), then at most `moved`; 1e-9 l covers rounding. */
+typedef struct bin_window {
+  int fx, nx, fy, ny;
+} bin_window;
+
+static bin_window window_around(const afv_geom *g, double x, double y,
+                                double R, double moved)
+{
+  const grid *G = &g->cand_grid;
+  double Q = R + g->cand_moved + moved + 1e-9 * g->cand_l;
+  bin_window w;
+  if (G->periodic) {
+    x = wrap1(x, G->Lx);
+    y = wrap1(y, G->Ly);
+  }
+  bin_range(x, Q, G->x0, G->wx, G->nbx, G->periodic, &w.fx, &w.nx);
+  bin_range(y, Q, G->y0, G->wy, G->nby, G->periodic, &w.fy, &w.ny);
+  return w;
+}
+
+/* Bin q (0 <= q < nx ny) of the window, row by row. */
+static int window_bin(const afv_geom *g, const bin_window *w, int q)
+{
+  const grid *G = &g->cand_grid;
+  int bx = (w->fx + q % w->nx) % G->nbx, by = (w->fy + q / w->nx) % G->nby;
+  return by * G->nbx + bx;
+}
+
+int afv_cells_around(const afv_geom *g, double x, double y, double R,
+                     double moved, int *out)
+{
+  bin_window w = window_around(g, x, y, R, moved);
+  int q, k, m = 0;
+  for (q = 0; q < w.nx * w.ny; q++) {
+    int bin = window_bin(g, &w, q);
+    for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++)
+      out[m++] = g->bin_cell[k];
+  }
+  return m;
+}
+
+/* MOVERS.  A cell that has moved more than SKIN l / 2 since the rebuild
+** (a "mover": typically a fast cell taking sub-steps) does not by itself
+** invalidate the candidates; a pair closer than 2l that is not a candidate
+** pair does.  A pair of two other cells is a candidate pair (each moved at
+** most SKIN l / 2, so it approached by at most SKIN l), so while the
+** movers are few the pairs that involve them are checked one by one: each
+** mover's cells within 2l, movers included, are found in the cell list of
+** the rebuild (window_around, which widens its search by the largest move
+** since the rebuild, g->cand_moved).  Without this, one fast cell
+** anywhere forced a rebuild of the whole tissue: at N = 40000 in the
+** random benchmark state every 3.9 steps.  Both the marking of the movers
+** and their checks are parallel loops (a serial scan here took about 7%
+** of the first thread's time in a 2-thread step; random, N = 40000,
+** perf).  The checks cost O(movers), so
+** MOVERS_MAX is a fixed fraction of the cells and the rebuilds come as
+** often at every N.  (An earlier version tested the movers' pairs among
+** themselves directly, O(movers^2), so it allowed only 2 sqrt(N) + 16
+** movers: the random state at N = 40000 was rebuilt every 8 steps, at
+** N = 400 every 21.)  And the movers are checked again at every call, as
+** they go on moving: once the pair tests since the rebuild reach
+** CHECKS_PER_CELL per cell, about the cost of a rebuild (a pair test takes
+** about 40 instructions, a rebuild about 1000 per cell: counted before the
+** scan of scan_cell was made branchless, not recounted since), the
+** candidates are rebuilt (the ski-rental rule: never more than twice the
+** cost of the better choice made in hindsight). */
+#define MOVERS_MAX(n) ((n) / 8 + 16)
+#define CHECKS_PER_CELL 25
+
+static int is_candidate(const afv_geom *g, int i, int j)
+{
+  int c;
+  for (c = g->cand_start[i]; c < g->cand_start[i + 1]; c++)
+    if (g->cand[c] == j) return 1;
+  return 0;
+}
+
+/* 1 if cells i and j are closer than 2l and not a candidate pair: the
+** same distance test, on the same wrapped centres, as filter_cell's. */
+static int missing_pair(const afv_geom *g, double l, const afv_box *b, int i,
+                        int j)
+{
+  double dx, dy;
+  displacement(g, i, j, b, &dx, &dy);
+  return i != j && dx * dx + dy * dy < 4 * l * l && !is_candidate(g, i, j);
+}
+
+/* 1 if mover m has a pair closer than 2l that is not a candidate pair;
+** adds the cells it tests to *tests. */
+static int mover_missing_pair(const afv_geom *g, int m, const double *r,
+                              double l, const afv_box *b, double *tests)
+{
+  bin_window w = window_around(g, r[2*m], r[2*m+1], 2 * l, 0);
+  int q, k;
+  for (q = 0; q < w.nx * w.ny; q++) {
+    int bin = window_bin(g, &w, q);
+    *tests += g->bin_start[bin + 1] - g->bin_start[bin];
+    for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++)
+      if (missing_pair(g, l, b, m, g->bin_cell[k])) return 1;
+  }
+  return 0;
+}
+
+/* 1 if every pair closer than 2l that involves a mover (is_mover) is a
+** candidate pair (rw: the wrapped centres, wrap_all; g->cand_moved set).
+** The movers are shared among threads; each thread stops testing at its
+** first missing pair. */
+static int movers_covered(afv_geom *g, int n, const double *r, double l,
+                          const afv_box *b)
+{
+  double tests = 0;           /* an integer: the same sum in any order */
+  int i, missing = 0;
+  AFV_PARALLEL_REDUCE(n, reduction(+: tests) reduction(|: missing))
+  for (i = 0; i < n; i++)
+    if (g->is_mover[i] && !missing)
+      missing = mover_missing_pair(g, i, r, l, b, &tests);
+  g->cand_checks += tests;
+  return !missing;
+}
+
+/* 1 if the candidates were built for this n, l and box and still hold
+** every pair closer than 2l: no cell has moved more than SKIN l / 2 since,
+** or a few have (MOVERS) and their pairs are candidates.  Sets
+** g->cand_moved, the largest distance of a cell from where it was at the
+** rebuild, and marks the movers in is_mover. */
+static int candidates_valid(afv_geom *g, int n, const double *r, double l,
+                            const afv_box *b)
+{
+  double lim2 = 0.25 * SKIN * SKIN * l * l, most2 = 0;
+  int i, movers = 0, nonfinite = 0;
+  if (g->cand_n != n || g->cand_l != l || !same_box(&g->cand_box, b))
+    return 0;
+  AFV_PARALLEL_REDUCE(n, reduction(max: most2) reduction(+: movers)
+                      reduction(|: nonfinite))
+  for (i = 0; i < n; i++) {
+    double dx = r[2*i] - g->cand_r0[2*i], dy = r[2*i+1] - g->cand_r0[2*i+1];
+    double d2 = dx * dx + dy * dy;
+    g->is_mover[i] = !(d2 <= lim2);
+    movers += g->is_mover[i];
+    if (!isfinite(d2)) nonfinite = 1;
+    else if (d2 > most2) most2 = d2;
+  }
+  if (nonfinite || movers > MOVERS_MAX(n)) return 0;
+  g->cand_moved = sqrt(most2);
+  if (movers == 0) return 1;
+  return g->cand_checks < (double)CHECKS_PER_CELL * n
+         && movers_covered(g, n, r, l, b);
+}
+
+/* Two passes over the cell list (count, then fill) let every cell write its
+** list in place, in parallel, at the cost of scanning the bins twice. */
+static int build_candidates(afv_geom *g, int n, const double *r, double l,
+                            const afv_box *b)
+{
+  double range = (2 + SKIN) * l;
+  grid G;
+  int i, st;
+  g->cand_n = 0;
+  if (b && b->periodic) grid_periodic(&G, b, 0.5 * range, n);
+  else grid_open(&G, n, r, 0.5 * range);
+  if ((st = fill_bins(g, &G, n, r)) != AFV_OK) return st;
+  g->cand_start[0] = 0;
+  scan_all(g, &G, range, 0);
+  for (i = 0; i < n; i++) g->cand_start[i + 1] += g->cand_start[i];
+  if (afv_grow((void **)&g->cand, &g->cap_cand, g->cand_start[n] + 1,
+           sizeof(int)))
+    return AFV_ENOMEM;
+  scan_all(g, &G, range, 1);
+  g->cand_grid = G;
+  memcpy(g->cand_r0, r, (size_t)(2 * n) * sizeof(double));
+  g->cand_box.periodic = b && b->periodic;
+  g->cand_box.Lx = g->cand_box.periodic ? b->Lx : 0;
+  g->cand_box.Ly = g->cand_box.periodic ? b->Ly : 0;
+  g->cand_l = l;
+  g->cand_n = n;
+  g->cand_checks = 0;
+  g->cand_moved = 0;
+  g->n_rebuilds++;
+  return AFV_OK;
+}
+
+/* ---- neighbour lists --------------------------------------------------- */
+
+/* e, the binary exponent of the larger of |x|, |y| (0 for a zero
+** vector): ldexp(x, -e), ldexp(y, -e) is the vector scaled exactly by a
+** power of 2 to a length in [0.5, 1.5). */
+static int unit_exponent(double x, double y)
+{
+  int e = 0;
+  frexp(fmax(fabs(x), fabs(y)), &e);
+  return e;
+}
+
+/* a x b where a x b computed as is came out 0: two displacements whose
+** products underflow (below ~1e-154 l, or one tiny and the other not
+** large enough) would sort two distinct directions as one.  Each vector
+** scaled by a power of 2 to length ~1 keeps the sign, and scaling is
+** exact, so where nothing underflowed this is a x b times a power of 2,
+** 0 again; and b x a = -(a x b) exactly, as before. */
+static double tiny_cross(double ax, double ay, double bx, double by)
+{
+  int ka = unit_exponent(ax, ay), kb = unit_exponent(bx, by);
+  return ldexp(ax, -ka) * ldexp(by, -kb) - ldexp(ay, -ka) * ldexp(bx, -kb);
+}
+
+/* 1 if neighbour ja at displacement (ax, ay) comes after jb at (bx, by) in
+** a cell's list: by the direction of the displacement (counter-clockwise
+** from +x; compared by half-plane, then by the sign of the cross product,
+** so without atan2), then by distance, then by cell.  A total order: the
+** sorted list does not depend on the order the candidates come in.
+** (inline: it is called about once per slot and step; measured 70
+** instructions per cell-step fewer than the call.) */
+/* comes_after for two displacements in one direction as far as a x b
+** computed as is can tell (rare): tiny_cross, then distance, then cell. */
+static COLD int comes_after_tied(double ax, double ay, int ja, double bx,
+                                 double by, int jb)
+{
+  double cross = tiny_cross(ax, ay, bx, by);
+  if (cross != 0) return cross < 0;
+  if (ax * ax + ay * ay != bx * bx + by * by)
+    return ax * ax + ay * ay > bx * bx + by * by;
+  return ja > jb;
+}
+
+static inline int comes_after(double ax, double ay, int ja, double bx,
+                              double by, int jb)
+{
+  double cross;
+  int ha = lower_half(ax, ay), hb = lower_half(bx, by);
+  if (ha != hb) return ha > hb;
+  cross = ax * by - ay * bx;
+  if (cross != 0) return cross < 0;
+  return comes_after_tied(ax, ay, ja, bx, by, jb);
+}
+
+static int slot_after(const int *nbr, const double *d, int a, int b)
+{
+  return comes_after(d[2*a], d[2*a+1], nbr[a], d[2*b], d[2*b+1], nbr[b]);
+}
+
+/* Insertion sort of a cell's m slots by direction (lists hold ~6).  The
+** order is the counter-clockwise order of the edges (clip_chords relies on
+** it) and fixes the order in which each chord meets its bounds, which
+** decides, where four or more centres are cocircular, which of the
+** coincident vertices survive: an order set by the geometry alone treats
+** every cell of a lattice alike, so the forces there cancel as they
+** should.  The candidates come nearly sorted (sort_candidates), so this
+** is about one comparison per slot. */
+static void sort_slots(int *nbr, double *d, int m)
+{
+  int k, q;
+  for (k = 1; k < m; k++)
+    for (q = k; q > 0 && slot_after(nbr, d, q - 1, q); q--) {
+      int tj = nbr[q];
+      double tx = d[2*q], ty = d[2*q+1];
+      nbr[q] = nbr[q - 1];
+      d[2*q] = d[2*q - 2];
+      d[2*q+1] = d[2*q - 1];
+      nbr[q - 1] = tj;
+      d[2*q - 2] = tx;
+      d[2*q - 1] = ty;
+    }
+}
+
+/* Right after a rebuild, sorts each cell's candidates by comes_after (their
+** directions now).  Cells turn little about each other between rebuilds,
+** so the lists filter_cell takes from them are then nearly sorted, and its
+** insertion sort does about one comparison per slot instead of k^2/4.
+** This only saves time: filter_cell sorts anyway, into a total order, so
+** the lists are the same whatever order the candidates are in. */
+/* A candidate with its displacement, for merge_sort_cell. */
+typedef struct cand_key {
+  double x, y;
+  int j;
+} cand_key;
+
+/* Sorts the m candidates c[] of cell i by comes_after in O(m log m)
+** (bottom-up merge sort, stable): for long lists (dense input, where m
+** is in the hundreds and the insertion sort took m^2/4 steps).  Returns
+** 0 if out of memory (the caller then sorts by insertion). */
+static int merge_sort_cell(const afv_geom *g, int i, const afv_box *b, int *c,
+                           int m)
+{
+  cand_key *A = malloc((size_t)m * 2 * sizeof *A), *B, *T;
+  int w, k;
+  if (!A) return 0;
+  B = A + m;
+  for (k = 0; k < m; k++) {
+    A[k].j = c[k];
+    displacement(g, i, c[k], b, &A[k].x, &A[k].y);
+  }
+  for (w = 1; w < m; w *= 2) {
+    for (k = 0; k < m; k += 2 * w) {
+      int p = k, q = k + w < m ? k + w : m, pe = q, qe = k + 2 * w < m
+                                                   ? k + 2 * w : m, o = k;
+      while (p < pe && q < qe)
+        B[o++] = comes_after(A[p].x, A[p].y, A[p].j, A[q].x, A[q].y, A[q].j)
+                 ? A[q++] : A[p++];
+      while (p < pe) B[o++] = A[p++];
+      while (q < qe) B[o++] = A[q++];
+    }
+    T = A; A = B; B = T;
+  }
+  for (k = 0; k < m; k++) c[k] = A[k].j;
+  free(A < B ? A : B);
+  return 1;
+}
+
+/* Lists longer than this are merge-sorted (merge_sort_cell); at the
+** paper's densities a cell has about 6 to 12 candidates. */
+#define LONG_LIST 32
+
+static void sort_candidates(afv_geom *g, int n, const afv_box *b)
+{
+  int i;
+  AFV_PARALLEL_FOR(n)
+  for (i = 0; i < n; i++) {
+    int *c = g->cand + g->cand_start[i], m = g->cand_start[i + 1]
+             - g->cand_start[i], k, q;
+    if (m > LONG_LIST && merge_sort_cell(g, i, b, c, m)) continue;
+    for (k = 1; k < m; k++) {
+      int j = c[k];
+      double jx, jy, px, py;
+      displacement(g, i, j, b, &jx, &jy);
+      for (q = k; q > 0; q--) {
+        displacement(g, i, c[q - 1], b, &px, &py);
+        if (!comes_after(px, py, c[q - 1], jx, jy, j)) break;
+        c[q] = c[q - 1];
+      }
+      c[q] = j;
+    }
+  }
+}
+
+/* Wrapping rounds a centre to a multiple of eps L, so the displacement of
+** two wrapped centres is off by up to ~eps L: nothing next to a distance
+** of l, everything next to one of 1e-16 l.  Below NEAR max(Lx, Ly) it is
+** taken from the unwrapped centres instead (exact_image), whose error is
+** then below eps / NEAR = 2.3e-10 relative.  Never reached in a tissue
+** (cells there are 1e-5 l apart at the very least). */
+#define NEAR 9.5367431640625e-07   /* 2^-20 */
+
+/* Below this d^2 a displacement is taken from the unwrapped centres (NEAR
+** max(Lx, Ly) in a periodic box); in open space, below the smallest
+** normal double, where d^2 may be 0 for centres that differ. */
+static double near_limit2(const afv_box *b)
+{
+  double L;
+  if (!b || !b->periodic) return DBL_MIN;
+  L = b->Lx > b->Ly ? b->Lx : b->Ly;
+  return NEAR * NEAR * L * L;
+}
+
+/* The minimum image of r_j - r_i from the unwrapped centres, for each
+** component whose unwrapped difference is already its minimum image (the
+** subtraction of two nearby doubles is exact); the other components keep
+** (*dx, *dy), from the wrapped centres.  Odd under i <-> j, as fold is:
+** the lists stay symmetric.  In open space the wrapped centres are the
+** centres, and (*dx, *dy) is kept. */
+static void exact_image(const double *r, int i, int j, const afv_box *b,
+                        double *dx, double *dy)
+{
+  double ex = r[2*j] - r[2*i], ey = r[2*j+1] - r[2*i+1];
+  if (!b || !b->periodic) return;
+  if (fabs(ex) < 0.5 * b->Lx) *dx = ex;
+  if (fabs(ey) < 0.5 * b->Ly) *dy = ey;
+}
+
+/* The neighbours of cell i (count of them in nbr, their displacements in
+** nbr_d) closer than sqrt(near2) get their displacement from exact_image;
+** returns the first whose displacement is then exactly 0 (the same
+** centre), or -1.  (A pass of its own after filter_cell's loop: inline in
+** the loop, gcc computed exact_image for every candidate, branch-free;
+** and COLD.) */
+static COLD int exact_near(const double *r, int i, const afv_box *b,
+                           double near2, const int *nbr, double *nbr_d,
+                           int count)
+{
+  int k;
+  for (k = 0; k < count; k++) {
+    double *D = nbr_d + 2 * k;
+    if (D[0] * D[0] + D[1] * D[1] >= near2) continue;
+    exact_image(r, i, nbr[k], b, &D[0], &D[1]);
+    if (D[0] == 0 && D[1] == 0) return k;
+  }
+  return -1;
+}
+
+/* The candidates of cell i closer than 2l, written to nbr[] with their
+** displacements D = r_j - r_i to nbr_d[] and sorted by sort_slots; returns
+** their number, or -1 - j if cell j has the same centre (the exact
+** displacement is 0: only then).  Minimum image by fold: the wrapped
+** centres differ by less than a box side.  (The box and
+** the list end are read into locals: the stores to nbr_d could alias them,
+** which would force a reload per candidate.) */
+static int filter_cell(const afv_geom *g, int i, const double *r, double l,
+                       const afv_box *b, int *nbr, double *nbr_d)
+{
+  double xi = g->rw[2*i], yi = g->rw[2*i+1], range2 = 4 * l * l;
+  int periodic = b && b->periodic, count = 0, c, end = g->cand_start[i + 1];
+  double Lx = periodic ? b->Lx : 0, Ly = periodic ? b->Ly : 0;
+  double near2 = near_limit2(b);
+  int near = 0;
+  for (c = g->cand_start[i]; c < end; c++) {
+    int j = g->cand[c];
+    double dx = g->rw[2*j] - xi, dy = g->rw[2*j+1] - yi, d2;
+    if (periodic) {
+      dx = fold(dx, Lx);
+      dy = fold(dy, Ly);
+    }
+    d2 = dx * dx + dy * dy;
+    if (d2 >= range2) continue;
+    near |= d2 < near2;             /* nearly coincident centres */
+    nbr[count] = j;
+    nbr_d[2*count] = dx;
+    nbr_d[2*count+1] = dy;
+    count++;
+  }
+  if (near) {                       /* rare: see NEAR */
+    int k = exact_near(r, i, b, near2, nbr, nbr_d, count);
+    if (k >= 0) return -1 - nbr[k];
+  }
+  sort_slots(nbr, nbr_d, count);
+  return count;
+}
+
+/* |(dx, dy)| where dx^2 + dy^2 underflows (below ~1e-154 l): computed on
+** the vector scaled by a power of 2 (exact), then scaled back. */
+static COLD double tiny_length(double dx, double dy)
+{
+  int e = unit_exponent(dx, dy);
+  double x = ldexp(dx, -e), y = ldexp(dy, -e);
+  return ldexp(sqrt(x * x + y * y), e);
+}
+
+/* The edge cache of slot s (g->edge, 4 doubles per slot: u = D/d, h = d/2,
+** sc = sqrt(l^2 - h^2)) and of its reverse slot t, from the displacement
+** D of s: the clipping, the boundary assembly and the forces (afv.c) all
+** need these.  D_t = -D_s exactly (fold is odd), so d, h and sc are the
+** same bits from both cells and u_t = -u_s exactly: one computation (two
+** square roots, two divisions) serves the pair. */
+static inline void fill_edge_pair(afv_geom *g, int s, int t, double l)
+{
+  double dx = g->nbr_d[2*s], dy = g->nbr_d[2*s+1], d2 = dx * dx + dy * dy;
+  double d, h;
+  double *e = g->edge + 4 * s, *f = g->edge + 4 * t;
+  if (d2 >= DBL_MIN) {
+    d = sqrt(d2);
+    h = 0.5 * d;
+  } else {                          /* rare: d below ~1e-154 l */
+    d = tiny_length(dx, dy);
+    h = 0.5 * d > 0 ? 0.5 * d : d;  /* h > 0 for the smallest subnormal d
+                                    ** too: keeps b / 2h finite (afv.c) */
+  }
+  e[0] = dx / d;
+  e[1] = dy / d;
+  e[2] = h;                         /* h, not d: clip_chords' inner loop
+                                    ** needs h; d = 2h is exact */
+  e[3] = sqrt((l - h) * (l + h));   /* (l-h)(l+h) is exact where l*l - h*h
+                                    ** would cancel for h near l */
+  f[0] = -e[0];
+  f[1] = -e[1];
+  f[2] = e[2];
+  f[3] = e[3];
+}
+
+/* The pairs of cell i with its smaller neighbours j < i: for the slot s of
+** j in the list of i, nbr_rev[s] = t, the slot of i in the list of j, and
+** nbr_rev[t] = s; the edge cache of both slots (fill_edge_pair); and zero
+** in both gradient slots, where afv_cell_shape_gradient adds.  The lists
+** are exactly symmetric (fold is odd, so d^2 has the same bits both ways),
+** so the reverse slot exists.  Each pair is linked once, from its larger
+** cell, which writes both directions: every entry has exactly one writer.
+** j's list must be filtered already. */
+/* The slot of cell i in the list of j, where i sits at displacement
+** (x, y) from j: in a long list (more than LONG_LIST slots) a binary
+** search by comes_after (the list is sorted by it); else, or if that
+** misses, a scan. */
+static int reverse_slot(const afv_geom *g, int i, int j, double x, double y)
+{
+  int lo = g->nbr_start[j], hi = g->nbr_end[j], t;
+  if (hi - lo > LONG_LIST) {
+    while (lo < hi) {
+      int mid = lo + (hi - lo) / 2;
+      if (comes_after(x, y, i, g->nbr_d[2*mid], g->nbr_d[2*mid+1],
+                      g->nbr[mid]))
+        lo = mid + 1;
+      else
+        hi = mid;
+    }
+    if (lo < g->nbr_end[j] && g->nbr[lo] == i) return lo;
+  }
+  for (t = g->nbr_start[j]; t < g->nbr_end[j]; t++)
+    if (g->nbr[t] == i) return t;
+  return -1;                        /* cannot happen: the lists are symmetric */
+}
+
+/* Links slot s (of i) and t (of j), its reverse. */
+static void link_pair(afv_geom *g, int s, int t, double l)
+{
+  g->nbr_rev[s] = t;
+  g->nbr_rev[t] = s;
+  fill_edge_pair(g, t, s, l);
+  g->grad[2*s] = g->grad[2*s+1] = 0;
+  g->grad[2*t] = g->grad[2*t+1] = 0;
+}
+
+/* link_cell for a cell with a long list (dense input): each reverse slot
+** found in O(log k), not by a scan. */
+static COLD void link_long_cell(afv_geom *g, int i, double l)
+{
+  int s, t;
+  for (s = g->nbr_start[i]; s < g->nbr_end[i]; s++) {
+    int j = g->nbr[s];
+    if (j > i) continue;
+    t = reverse_slot(g, i, j, -g->nbr_d[2*s], -g->nbr_d[2*s+1]);
+    if (t >= 0) link_pair(g, s, t, l);
+  }
+}
+
+static void link_cell(afv_geom *g, int i, double l)
+{
+  int s, t;
+  if (g->nbr_end[i] - g->nbr_start[i] > LONG_LIST) {
+    link_long_cell(g, i, l);
+    return;
+  }
+  for (s = g->nbr_start[i]; s < g->nbr_end[i]; s++) {
+    int j = g->nbr[s];
+    if (j > i) continue;
+    for (t = g->nbr_start[j]; t < g->nbr_end[j]; t++)
+      if (g->nbr[t] == i) {
+        g->nbr_rev[s] = t;
+        g->nbr_rev[t] = s;
+        fill_edge_pair(g, t, s, l);
+        g->grad[2*s] = g->grad[2*s+1] = 0;
+        g->grad[2*t] = g->grad[2*t+1] = 0;
+        break;
+      }
+  }
+}
+
+/* Cell i's list, written in place at its candidate offset, nbr_start[i] =
+** cand_start[i] (room for every candidate), up to nbr_end[i]; the slots
+** between nbr_end[i] and nbr_start[i+1] are unused: no compaction to pay
+** for.  Returns 0, or -1 - j if cell j has the same centre as i. */
+static int list_cell(afv_geom *g, int i, const double *r, double l,
+                     const afv_box *b)
+{
+  int c = g->cand_start[i];
+  int count = filter_cell(g, i, r, l, b, g->nbr + c, g->nbr_d + 2 * c);
+  g->nbr_start[i] = c;
+  g->nbr_end[i] = count < 0 ? count : c + count;
+  return count < 0 ? count : 0;
+}
+
+/* Piece storage, set when the candidates are rebuilt: cell i with k
+** candidates has at most k neighbours and 2k + 1 pieces (an edge per
+** neighbour, an arc after each, or one full circle), so its pieces go at
+** piece_start[i] = 2 cand_start[i] + i, like its list at its candidate
+** offset: no pass per call to place them.  g->max_cand sizes the work
+** space. */
+static int reserve_pieces(afv_geom *g, int n)
+{
+  int i;
+  g->max_cand = 0;
+  for (i = 0; i < n; i++) {
+    int k = g->cand_start[i + 1] - g->cand_start[i];
+    if (k > g->max_cand) g->max_cand = k;
+    g->piece_start[i] = 2 * g->cand_start[i] + i;
+  }
+  g->piece_start[n] = 2 * g->cand_start[n] + n;
+  return afv_grow((void **)&g->pieces, &g->cap_pieces, g->piece_start[n] + 1,
+              sizeof(afv_piece));
+}
+
+/* ---- the reference neighbour search (make REFERENCE=1) ---------------- */
+/* The same lists as the candidates' (below), found plainly at every call:
+** a cell list with bins of side >= 2l, and for each cell i, in the bins
+** within 2l of it, every cell j closer than 2l, D = r_j - r_i between the
+** wrapped centres, minimum image (afv_min_image: the bits of filter_cell's
+** fold, but at a tie of half a box), sorted by direction (sort_slots).
+** The lists have no gaps.  The grid stays in g as the one afv_cells_around
+** reads, with cand_moved = 0: it is the grid of these very positions. */
+
+/* Cell i's neighbours, written to nbr[] and nbr_d[] unless nbr is NULL;
+** returns how many, or -1 - j for the first cell j at i's centre (cells
+** at one centre share a bin, in increasing order: j is the smallest). */
+static int plain_list(const afv_geom *g, int i, const double *r, double l,
+                      const afv_box *b, int *nbr, double *nbr_d)
+{
+  bin_window w = window_around(g, g->rw[2*i], g->rw[2*i+1], 2 * l, 0);
+  double near2 = near_limit2(b);
+  int q, k, count = 0;
+  for (q = 0; q < w.nx * w.ny; q++) {
+    int bin = window_bin(g, &w, q);
+    for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++) {
+      int j = g->bin_cell[k];
+      double dx = g->rw[2*j] - g->rw[2*i], dy = g->rw[2*j+1] - g->rw[2*i+1];
+      double d2;
+      afv_min_image(b, &dx, &dy);
+      d2 = dx * dx + dy * dy;
+      if (j == i || !(d2 < 4 * l * l)) continue;
+      if (d2 < near2) {             /* nearly coincident: as filter_cell */
+        exact_image(r, i, j, b, &dx, &dy);
+        if (dx == 0 && dy == 0) return -1 - j;
+      }
+      if (nbr) {
+        nbr[count] = j;
+        nbr_d[2*count] = dx;
+        nbr_d[2*count+1] = dy;
+      }
+      count++;
+    }
+  }
+  return count;
+}
+
+/* Counts every list, then writes, sorts and links them in cell order (a
+** cell's smaller neighbours are listed when link_cell pairs them).  The
+** offsets go to cand_start, where reserve_pieces reads a cell's room. */
+static int plain_neighbours(afv_geom *g, int n, const double *r, double l,
+                            const afv_box *b)
+{
+  grid G;
+  int i, st;
+  if (b && b->periodic) grid_periodic(&G, b, l, n);
+  else grid_open(&G, n, r, l);
+  if ((st = fill_bins(g, &G, n, r)) != AFV_OK) return st;
+  g->cand_grid = G;
+  g->cand_l = l;
+  g->cand_moved = 0;
+  wrap_all(g, n, r, b);
+  g->cand_start[0] = 0;
+  for (i = 0; i < n; i++) {
+    int count = plain_list(g, i, r, l, b, NULL, NULL);
+    if (count < 0) {                 /* the first cell i with a twin j > i */
+      g->bad_i = i;
+      g->bad_j = -1 - count;
+      return AFV_ECOINCIDENT;
+    }
+    g->cand_start[i + 1] = g->cand_start[i] + count;
+  }
+  if (grow_nbr(g, g->cand_start[n] + 1) || reserve_pieces(g, n))
+    return AFV_ENOMEM;
+  for (i = 0; i < n; i++) {
+    int s0 = g->cand_start[i];
+    g->nbr_start[i] = s0;
+    g->nbr_end[i] = s0 + plain_list(g, i, r, l, b, g->nbr + s0,
+                                    g->nbr_d + 2 * s0);
+    sort_slots(g->nbr + s0, g->nbr_d + 2 * s0, g->nbr_end[i] - s0);
+    link_cell(g, i, l);
+  }
+  g->nbr_start[n] = g->cand_start[n];
+  return AFV_OK;
+}
+
+/* The exact lists from the candidates, then the pairs linked.  Serially,
+** one pass: cell i is linked right after it is listed, to its smaller
+** neighbours, listed moments before, whose slots are still in cache (at
+** N = 40000 a second pass found them evicted).  With OpenMP, a smaller
+** neighbour may belong to another thread, so every list is filtered
+** before any is linked.  Either way each entry gets the same bits. */
+int afv_neighbours(afv_geom *g, int n, const double *r, double l,
+                   const afv_box *b)
+{
+  int i, st;
+  if (grow_cells(g, n)) return AFV_ENOMEM;
+  g->n = n;
+  g->nbr_start[0] = g->piece_start[0] = 0;
+  if (n == 0) return AFV_OK;
+  if (AFV_REFERENCE_MODE) return plain_neighbours(g, n, r, l, b);
+  wrap_all(g, n, r, b);
+  if (!candidates_valid(g, n, r, l, b)) {
+    if ((st = build_candidates(g, n, r, l, b)) != AFV_OK) return st;
+    if (grow_nbr(g, g->cand_start[n] + 1) || reserve_pieces(g, n)) {
+      g->cand_n = 0;                /* no space: rebuild at the next call */
+      return AFV_ENOMEM;
+    }
+    sort_candidates(g, n, b);
+  }
+  g->nbr_start[n] = g->cand_start[n];
+#ifdef _OPENMP
+  {
+    int first = n;                  /* the first cell with a coincidence */
+    AFV_PARALLEL_REDUCE(n, reduction(min: first))
+    for (i = 0; i < n; i++)
+      if (list_cell(g, i, r, l, b) < 0 && i < first) first = i;
+    if (first < n) return find_coincident(g, g->nbr_end, first + 1);
+  }
+  AFV_PARALLEL_FOR(n)
+  for (i = 0; i < n; i++) link_cell(g, i, l);
+#else
+  for (i = 0; i < n; i++) {
+    if (list_cell(g, i, r, l, b) < 0)   /* the first such cell: as after */
+      return find_coincident(g, g->nbr_end, i + 1);   /* a whole pass */
+    link_cell(g, i, l);
+  }
+#endif
+  return AFV_OK;
+}
+
+int afv_spatial_order(int n, const double *r, double l, const afv_box *b,
+                      int *perm)
+{
+  afv_geom tmp;
+  grid G;
+  int st;
+  if (n <= 0) return AFV_OK;
+  memset(&tmp, 0, sizeof tmp);
+  if (b && b->periodic) grid_periodic(&G, b, l, n);
+  else grid_open(&G, n, r, l);
+  st = grow_cells(&tmp, n);
+  if (st == AFV_OK) st = fill_bins(&tmp, &G, n, r);
+  if (st == AFV_OK) memcpy(perm, tmp.bin_cell, (size_t)n * sizeof(int));
+  afv_geom_free(&tmp);
+  return st;
+}
