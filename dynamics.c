@@ -34,6 +34,8 @@
 ** afv_sincos's own arithmetic).
 */
 #include "afv.h"
+#include "afv_internal.h"
+#include "fastmath.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -42,68 +44,10 @@
 #include <omp.h>
 #endif
 
-#define TWO_PI 6.28318530717958647692
-
 /* OpenMP (make OPENMP=1, see afv_internal.h): the per-cell loops of a step
 ** touch only their own cell, the noise is drawn per (cell, step), and the only
 ** reductions are a maximum and an or, so every thread count gives the same
 ** bits.  The macros are in afv.h; empty in the plain C99 build. */
-
-/* ---- sine and cosine ---------------------------------------------------- */
-/* Every step needs cos and sin of every cell's angle (the polarity) and of
-** one Box-Muller angle per two cells: the C library's sincos took about 130
-** instructions a call, 200 per cell and step (callgrind), a sixth of a
-** step.  afv_sincos takes about 70, in plain arithmetic without branches:
-**   1. reduction: x = k pi/2 + r with k the integer nearest x (2/pi) (to
-**      within 2^-32), so |r| <= pi/4 (1 + 2^-30);  r = x - k P1 - k P2 -
-**      k P3, where P1 + P2 + P3 = pi/2 to about 2^-150 (fdlibm's split:
-**      P1 and P2 have 33 significant bits, so k P1 and k P2 are exact for
-**      |k| < 2^20, and x - k P1 is exact by Sterbenz' lemma); the error of
-**      r is an ulp of r;
-**   2. Taylor series on [-pi/4, pi/4]: sin to the term r^17/17!, cos to
-**      r^16/16!; the first term left out is below (pi/4)^18/18! = 2e-18;
-**   3. the quadrant k mod 4 picks +-sin r or +-cos r, as the sum
-**      a sin r + b cos r with a, b in {-1, 0, 1} from a table: exact, and
-**      free of a branch that a random quadrant would mispredict.
-** Measured against the C library (test_dynamics.c): within 2.22e-16.
-** |x| >= SINCOS_FAST_LIMIT (k would not fit the split), inf and NaN go to
-** the C library. */
-#define SINCOS_FAST_LIMIT 1e6
-#define PIO2_1 1.57079632673412561417e+00   /* first 33 bits of pi/2 */
-#define PIO2_2 6.07710050630396597660e-11   /* next 33 bits */
-#define PIO2_3 2.02226624879595063154e-21   /* the rest */
-
-void afv_sincos(double x, double *sin_x, double *cos_x)
-{
-  static const double sa[5] = {1, 0, -1, 0, 1}, sb[5] = {0, 1, 0, -1, 0};
-  double t, r, z, sr, cr;
-  long m, k;
-  unsigned q;
-  /* the C library's also in the reference build (make REFERENCE=1) */
-  if (AFV_REFERENCE_MODE || !(fabs(x) < SINCOS_FAST_LIMIT)) {
-    *sin_x = sin(x);
-    *cos_x = cos(x);
-    return;
-  }
-  /* k = floor(x (2/pi) + 1/2), as m - 2^20 with m = (long)(positive): no
-  ** branch on the sign of x (truncation of a negative value rounds up) */
-  t = x * 0.63661977236758134308 + (0.5 + 1048576.0);
-  m = (long)t;
-  k = m - 1048576;
-  r = ((x - k * PIO2_1) - k * PIO2_2) - k * PIO2_3;
-  z = r * r;
-  sr = r + r * z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040
-       + z * (1.0 / 362880 + z * (-1.0 / 39916800 + z * (1.0 / 6227020800.0
-       + z * (-1.0 / 1307674368000.0 + z * (1.0 / 355687428096000.0))))))));
-  cr = 1 + z * (-0.5 + z * (1.0 / 24 + z * (-1.0 / 720 + z * (1.0 / 40320
-       + z * (-1.0 / 3628800 + z * (1.0 / 479001600.0
-       + z * (-1.0 / 87178291200.0 + z * (1.0 / 20922789888000.0))))))));
-  q = (unsigned)m & 3u;                      /* k mod 4 */
-  /* sin(r + q pi/2) = sin r, cos r, -sin r, -cos r for q = 0..3, and
-  ** cos(r + q pi/2) = sin(r + (q + 1) pi/2) */
-  *sin_x = sa[q] * sr + sb[q] * cr;
-  *cos_x = sa[q + 1] * sr + sb[q + 1] * cr;
-}
 
 /* ---- Philox4x32-10 ----------------------------------------------------- */
 /* Multipliers and Weyl key increments from Random123 (philox.h). */
@@ -158,7 +102,7 @@ void afv_rng_uniform2(unsigned long long seed, uint32_t cell,
 static void box_muller(const double u[2], double z[2])
 {
   double rho = sqrt(-2.0 * log(u[0])), c, sn;
-  afv_sincos(TWO_PI * u[1], &sn, &c);
+  afv_sincos_inline(TWO_PI * u[1], &sn, &c);
   z[0] = rho * c;
   z[1] = rho * sn;
 }
@@ -435,7 +379,7 @@ static double euler_all(afv_sim *s, double split, double dt)
   for (i = 0; i < n; i++) {
     double fx = f[2*i], fy = f[2*i+1], x = r[2*i], y = r[2*i+1];
     double v = v0_i ? v0_i[i] : v0, c, sn, px, py, mx, my, move2;
-    afv_sincos(theta[i], &sn, &c);
+    afv_sincos_inline(theta[i], &sn, &c);
     px = v * c;
     py = v * sn;
     mx = hmu * fx;

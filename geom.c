@@ -41,6 +41,7 @@
 */
 #include "afv.h"
 #include "afv_internal.h"
+#include "fastmath.h"
 
 #include <float.h>
 #include <limits.h>
@@ -437,80 +438,6 @@ static afv_piece *store_piece(const afv_geom *g, afv_piece *pc, int slot,
   return pc + 1;
 }
 
-/* ---- the angle of a vector ---------------------------------------------- */
-/* The angle of every arc is an atan2.  What it costs is its latency more
-** than its instructions: the cell's area, hence every term of its gradient,
-** waits for it.  Measured on the random state's force evaluation (N = 400,
-** in one process, interleaved): a stub of a few instructions and little
-** latency in its place was 23% faster; a stub as short but with a chain of
-** divisions as long as the function's was only 6% faster; and the C
-** library's atan2 (150 instructions) was as fast as this function's former
-** 60-instruction version, which had two divisions and a 10-deep polynomial
-** in series.  So afv_angle is written for a short dependency chain (force
-** evaluation 12% faster than that former version), without a branch on
-** the quadrant:
-**   1. lo = min(|x|, |y|), hi = max(|x|, |y|), and the angle is
-**      off + sgn atan(lo / hi), (off, sgn) from a table by which of |x|,
-**      |y| is larger and by the signs of x and y;
-**   2. atan(lo / hi) = atan(c) + atan(u),  u = (lo - c hi) / (hi + c lo)
-**      (one division), with c = 7/16, so that u lies in [-7/16, 9/23];
-**   3. atan(u) = u - u z Q(z), z = u^2, with Q the polynomial of fdlibm's
-**      atan (s_atan.c, Sun Microsystems 1993) for |u| <= 7/16, good to
-**      about 2^-58, evaluated by Estrin's scheme (pairs of terms, then
-**      pairs of pairs): depth 4 instead of Horner's 10;  atan(7/16) as a
-**      sum of two doubles (computed to 60 digits).
-** Measured against the C library's atan2 (+ 2 pi if negative, test_core.c):
-** within 8.9e-16, an ulp of 2 pi.  The error is absolute: an angle below
-** 1e-17 may come out as 0.  (An infinite component gives NaN, where atan2
-** gives an angle; the geometry never asks.) */
-#define ATAN_C      0.4375                  /* c = 7/16 */
-#define ATAN_C_HI   0.4124104415973873      /* atan(7/16) = HI + LO */
-#define ATAN_C_LO   (-1.587652227770689e-17)
-
-/* The reference twin (make REFERENCE=1): the C library's atan2. */
-static double angle_libm(double y, double x)
-{
-  double a = atan2(y, x);
-  return a < 0 ? a + TWO_PI : a;
-}
-
-double afv_angle(double y, double x)
-{
-  static const double aT[11] = {
-    3.33333333333329318027e-01, -1.99999999998764832476e-01,
-    1.42857142725034663711e-01, -1.11111104054623557880e-01,
-    9.09088713343650656196e-02, -7.69187620504482999495e-02,
-    6.66107313738753120669e-02, -5.83357013379057348645e-02,
-    4.97687799461593236017e-02, -3.65315727442169155270e-02,
-    1.62858201153657823623e-02};
-  /* index: 1 if |y| > |x|, + 2 if x < 0, + 4 if y < 0 */
-  static const double off[8] = {0, PI / 2, PI, PI / 2, TWO_PI, 1.5 * PI, PI,
-                                1.5 * PI};
-  static const double sgn[8] = {1, -1, -1, 1, -1, 1, 1, -1};
-  double ax = fabs(x), ay = fabs(y), lo, hi, num, den, u, z, z2, z4, Q, a;
-  int steep = ay > ax, k;
-  if (AFV_REFERENCE_MODE) return angle_libm(y, x);
-  if (isnan(x) || isnan(y)) return x + y;
-  lo = ay < ax ? ay : ax;                     /* min and max (minsd, maxsd */
-  hi = ay > ax ? ay : ax;                     /* on x86): no branch */
-  num = lo - ATAN_C * hi;
-  den = hi + ATAN_C * lo;
-  if (!(den > 0)) {                           /* (0, 0): angle 0 */
-    num = -ATAN_C;
-    den = 1;
-  }
-  u = num / den;
-  z = u * u;
-  z2 = z * z;
-  z4 = z2 * z2;
-  Q = ((aT[0] + aT[1] * z) + (aT[2] + aT[3] * z) * z2)
-      + ((aT[4] + aT[5] * z) + (aT[6] + aT[7] * z) * z2) * z4
-      + ((aT[8] + aT[9] * z) + aT[10] * z2) * (z4 * z4);
-  a = ATAN_C_HI + (ATAN_C_LO + (u - u * (z * Q)));
-  k = steep + 2 * (x < 0) + 4 * (y < 0);
-  return off[k] + sgn[k] * a;
-}
-
 /* The arc from (ax, ay), the end of a segment, to the start of segment b
 ** (counter-clockwise), as an angle in [0, 2 pi); `single` if b is that same
 ** segment. */
@@ -521,7 +448,7 @@ static double gap_angle(const afv_geom *g, double ax, double ay,
   point_on(bisector_of(g, b->slot), b->tau0, &bx, &by);
   /* the angle from a to b as the angle of (dot, cross): half the cost of
   ** two polar angles, and as accurate */
-  phi = afv_angle(ax * by - ay * bx, ax * bx + ay * by);
+  phi = afv_angle_inline(ax * by - ay * bx, ax * bx + ay * by);
   if (phi >= TWO_PI) phi -= TWO_PI;
   if (phi < 0) phi = 0;   /* afv_angle's absolute error: an angle of ~0
                           ** came out as -3e-17 (a fuzzer case: area < 0) */

@@ -1,0 +1,156 @@
+/*
+** fastmath.h -- the two functions of libm that the hot path computes in
+** its own arithmetic, each beside its reference twin (make REFERENCE=1,
+** doc/reference.md):
+**   afv_angle    the counter-clockwise angle of a vector, atan2(y, x) + 2 pi
+**                if negative: every arc of every cell (geom.c, gap_angle);
+**                twin: angle_libm, the C library's atan2;
+**   afv_sincos   sin x and cos x: every cell's polarity n_i and every
+**                Box-Muller angle (dynamics.c); twin: sin, cos.
+** Both are plain C99 arithmetic, so they give the same bits on every
+** machine whose double arithmetic is IEEE 754 (the C library's functions
+** need not); both are checked against the C library in the tests
+** (test_core.c, test_dynamics.c) and through the twins (make twins).
+** The code is here, as static inline functions, so that the files of the
+** hot path (geom.c, dynamics.c) compile it into their own code: called
+** across files, afv_angle cost 1.7% more instructions per step (the caller
+** must then save every floating-point register around the call).  The
+** library's public afv_angle and afv_sincos (fastmath.c) are these.
+** Library-internal, like afv_internal.h (which it needs before it).
+*/
+#ifndef AFV_FASTMATH_H
+#define AFV_FASTMATH_H
+
+#include <math.h>
+
+/* ---- the angle of a vector ---------------------------------------------- */
+/* The angle of every arc is an atan2.  What it costs is its latency more
+** than its instructions: the cell's area, hence every term of its gradient,
+** waits for it.  Measured on the random state's force evaluation (N = 400,
+** in one process, interleaved): a stub of a few instructions and little
+** latency in its place was 23% faster; a stub as short but with a chain of
+** divisions as long as the function's was only 6% faster; and the C
+** library's atan2 (150 instructions) was as fast as this function's former
+** 60-instruction version, which had two divisions and a 10-deep polynomial
+** in series.  So afv_angle is written for a short dependency chain (force
+** evaluation 12% faster than that former version), without a branch on
+** the quadrant:
+**   1. lo = min(|x|, |y|), hi = max(|x|, |y|), and the angle is
+**      off + sgn atan(lo / hi), (off, sgn) from a table by which of |x|,
+**      |y| is larger and by the signs of x and y;
+**   2. atan(lo / hi) = atan(c) + atan(u),  u = (lo - c hi) / (hi + c lo)
+**      (one division), with c = 7/16, so that u lies in [-7/16, 9/23];
+**   3. atan(u) = u - u z Q(z), z = u^2, with Q the polynomial of fdlibm's
+**      atan (s_atan.c, Sun Microsystems 1993) for |u| <= 7/16, good to
+**      about 2^-58, evaluated by Estrin's scheme (pairs of terms, then
+**      pairs of pairs): depth 4 instead of Horner's 10;  atan(7/16) as a
+**      sum of two doubles (computed to 60 digits).
+** Measured against the C library's atan2 (+ 2 pi if negative, test_core.c):
+** within 8.9e-16, an ulp of 2 pi.  The error is absolute: an angle below
+** 1e-17 may come out as 0.  (An infinite component gives NaN, where atan2
+** gives an angle; the geometry never asks.) */
+#define ATAN_C      0.4375                  /* c = 7/16 */
+#define ATAN_C_HI   0.4124104415973873      /* atan(7/16) = HI + LO */
+#define ATAN_C_LO   (-1.587652227770689e-17)
+
+/* The reference twin (make REFERENCE=1): the C library's atan2. */
+static inline double angle_libm(double y, double x)
+{
+  double a = atan2(y, x);
+  return a < 0 ? a + TWO_PI : a;
+}
+
+static inline double afv_angle_inline(double y, double x)
+{
+  static const double aT[11] = {
+    3.33333333333329318027e-01, -1.99999999998764832476e-01,
+    1.42857142725034663711e-01, -1.11111104054623557880e-01,
+    9.09088713343650656196e-02, -7.69187620504482999495e-02,
+    6.66107313738753120669e-02, -5.83357013379057348645e-02,
+    4.97687799461593236017e-02, -3.65315727442169155270e-02,
+    1.62858201153657823623e-02};
+  /* index: 1 if |y| > |x|, + 2 if x < 0, + 4 if y < 0 */
+  static const double off[8] = {0, PI / 2, PI, PI / 2, TWO_PI, 1.5 * PI, PI,
+                                1.5 * PI};
+  static const double sgn[8] = {1, -1, -1, 1, -1, 1, 1, -1};
+  double ax = fabs(x), ay = fabs(y), lo, hi, num, den, u, z, z2, z4, Q, a;
+  int steep = ay > ax, k;
+  if (AFV_REFERENCE_MODE) return angle_libm(y, x);
+  if (isnan(x) || isnan(y)) return x + y;
+  lo = ay < ax ? ay : ax;                     /* min and max (minsd, maxsd */
+  hi = ay > ax ? ay : ax;                     /* on x86): no branch */
+  num = lo - ATAN_C * hi;
+  den = hi + ATAN_C * lo;
+  if (!(den > 0)) {                           /* (0, 0): angle 0 */
+    num = -ATAN_C;
+    den = 1;
+  }
+  u = num / den;
+  z = u * u;
+  z2 = z * z;
+  z4 = z2 * z2;
+  Q = ((aT[0] + aT[1] * z) + (aT[2] + aT[3] * z) * z2)
+      + ((aT[4] + aT[5] * z) + (aT[6] + aT[7] * z) * z2) * z4
+      + ((aT[8] + aT[9] * z) + aT[10] * z2) * (z4 * z4);
+  a = ATAN_C_HI + (ATAN_C_LO + (u - u * (z * Q)));
+  k = steep + 2 * (x < 0) + 4 * (y < 0);
+  return off[k] + sgn[k] * a;
+}
+
+/* ---- sine and cosine ---------------------------------------------------- */
+/* Every step needs cos and sin of every cell's angle (the polarity) and of
+** one Box-Muller angle per two cells: the C library's sincos took about 130
+** instructions a call, 200 per cell and step (callgrind), a sixth of a
+** step.  afv_sincos takes about 70, in plain arithmetic without branches:
+**   1. reduction: x = k pi/2 + r with k the integer nearest x (2/pi) (to
+**      within 2^-32), so |r| <= pi/4 (1 + 2^-30);  r = x - k P1 - k P2 -
+**      k P3, where P1 + P2 + P3 = pi/2 to about 2^-150 (fdlibm's split:
+**      P1 and P2 have 33 significant bits, so k P1 and k P2 are exact for
+**      |k| < 2^20, and x - k P1 is exact by Sterbenz' lemma); the error of
+**      r is an ulp of r;
+**   2. Taylor series on [-pi/4, pi/4]: sin to the term r^17/17!, cos to
+**      r^16/16!; the first term left out is below (pi/4)^18/18! = 2e-18;
+**   3. the quadrant k mod 4 picks +-sin r or +-cos r, as the sum
+**      a sin r + b cos r with a, b in {-1, 0, 1} from a table: exact, and
+**      free of a branch that a random quadrant would mispredict.
+** Measured against the C library (test_dynamics.c): within 2.22e-16.
+** |x| >= SINCOS_FAST_LIMIT (k would not fit the split), inf and NaN go to
+** the C library. */
+#define SINCOS_FAST_LIMIT 1e6
+#define PIO2_1 1.57079632673412561417e+00   /* first 33 bits of pi/2 */
+#define PIO2_2 6.07710050630396597660e-11   /* next 33 bits */
+#define PIO2_3 2.02226624879595063154e-21   /* the rest */
+
+static inline void afv_sincos_inline(double x, double *sin_x, double *cos_x)
+{
+  static const double sa[5] = {1, 0, -1, 0, 1}, sb[5] = {0, 1, 0, -1, 0};
+  double t, r, z, sr, cr;
+  long m, k;
+  unsigned q;
+  /* the C library's also in the reference build (make REFERENCE=1) */
+  if (AFV_REFERENCE_MODE || !(fabs(x) < SINCOS_FAST_LIMIT)) {
+    *sin_x = sin(x);
+    *cos_x = cos(x);
+    return;
+  }
+  /* k = floor(x (2/pi) + 1/2), as m - 2^20 with m = (long)(positive): no
+  ** branch on the sign of x (truncation of a negative value rounds up) */
+  t = x * 0.63661977236758134308 + (0.5 + 1048576.0);
+  m = (long)t;
+  k = m - 1048576;
+  r = ((x - k * PIO2_1) - k * PIO2_2) - k * PIO2_3;
+  z = r * r;
+  sr = r + r * z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040
+       + z * (1.0 / 362880 + z * (-1.0 / 39916800 + z * (1.0 / 6227020800.0
+       + z * (-1.0 / 1307674368000.0 + z * (1.0 / 355687428096000.0))))))));
+  cr = 1 + z * (-0.5 + z * (1.0 / 24 + z * (-1.0 / 720 + z * (1.0 / 40320
+       + z * (-1.0 / 3628800 + z * (1.0 / 479001600.0
+       + z * (-1.0 / 87178291200.0 + z * (1.0 / 20922789888000.0))))))));
+  q = (unsigned)m & 3u;                      /* k mod 4 */
+  /* sin(r + q pi/2) = sin r, cos r, -sin r, -cos r for q = 0..3, and
+  ** cos(r + q pi/2) = sin(r + (q + 1) pi/2) */
+  *sin_x = sa[q] * sr + sb[q] * cr;
+  *cos_x = sa[q + 1] * sr + sb[q + 1] * cr;
+}
+
+#endif /* AFV_FASTMATH_H */
