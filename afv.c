@@ -324,9 +324,8 @@ static int check_inputs(int n, const afv_params *p, const afv_box *b)
 
 /* Every cell's shape and, if `gradient`, its G_ij in grad (its own slots,
 ** which afv_geometry_prepare has zeroed).  A cell writes only its own
-** entries, so the cells may be shared among threads.  (Visiting them in
-** cell-list order instead was measured slower for cells given in random
-** order: the per-cell arrays are in cell order.) */
+** entries, so the cells may be shared among threads.  In cell order, not
+** cell-list order: the per-cell arrays are in cell order. */
 static void shape_all(afv_geom *g, int n, const afv_params *p, int gradient)
 {
   int i;

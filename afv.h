@@ -232,7 +232,7 @@ int  afv_cells_around(const afv_geom *g, double x, double y, double R,
 /* A spatial order of the cells (the cell list's, bins of side >= 2l row by
 ** row): perm[k] = the cell to put k-th.  Numbering cells in this order
 ** keeps neighbours close in memory: large N runs faster than with a random
-** numbering (1.5x at N = 400000).  AFV_OK or AFV_ENOMEM. */
+** numbering.  AFV_OK or AFV_ENOMEM. */
 int  afv_spatial_order(int n, const double *r, double l, const afv_box *b,
                        int *perm);
 /* Shape of cell i from its neighbour list: pieces, area, perimeter, arc.
@@ -546,14 +546,13 @@ void afv_init_angles(int n, unsigned long long seed, double *theta);
 
 /* The counter-clockwise angle from +x to the vector (x, y), in [0, 2 pi]
 ** (2 pi only by rounding, for y a hair below 0): atan2(y, x) + (2 pi if
-** negative), within 8.9e-16 (measured), in plain arithmetic (geom.c);
+** negative), within 8.9e-16 (measured), in plain arithmetic (fastmath.h);
 ** NaN if both components are infinite.  Reference build: exactly
 ** atan2(y, x) + (2 pi if negative). */
 double afv_angle(double y, double x);
 /* sin x and cos x to within 2.22e-16 of the C library's (measured), in
-** plain arithmetic (dynamics.c: about 70 instructions without a branch,
-** where the library's sincos takes about 130); |x| >= 1e6, inf and NaN
-** are passed to sin and cos.  Reference build: sin x and cos x. */
+** plain arithmetic without a branch (fastmath.h); |x| >= 1e6, inf and
+** NaN are passed to sin and cos.  Reference build: sin x and cos x. */
 void afv_sincos(double x, double *sin_x, double *cos_x);
 
 /* ---- random numbers ---------------------------------------------------- */

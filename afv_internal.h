@@ -6,8 +6,8 @@
 #define AFV_INTERNAL_H
 
 /* A function for a rare case, kept out of line so that the compiler does
-** not hoist its work into the common path that calls it (gcc did: the
-** pass of exact_near cost 18 instructions per cell inline, never taken).
+** not hoist its work into the common path that calls it (gcc did, with
+** exact_near: its pass cost every cell instructions, though never taken).
 ** An extension of gcc and clang; other compilers inline as they like. */
 #if defined(__GNUC__)
 #define COLD __attribute__((noinline, cold))
@@ -26,13 +26,11 @@
 ** depend on the order (max, min, | and sums of integers), so again any
 ** thread count gives the same bits.
 ** `size` is the loop's length in cells (in bins for the bin loop): below
-** AFV_PARALLEL_MIN (afv.h) the loop runs on the calling thread.  The
-** sub-steps' regions (dynamics.c) are tens of cells, and each of their
-** force evaluations runs about eight such loops: in the random benchmark
-** state at N = 40000 a step started about 300 teams of 2 threads; with
-** the threshold it takes 1% to 8% less time (in-process A/B, six runs,
-** README).  Without OpenMP the macros are empty and the file is plain
-** C99. */
+** AFV_PARALLEL_MIN (afv.h) the loop runs on the calling thread: the
+** sub-steps' regions (dynamics.c) are tens of cells, each of their force
+** evaluations runs about eight such loops, and starting a team of threads
+** for each cost more than the loop.  Without OpenMP the macros are empty
+** and the files are plain C99. */
 
 /* 0 for a direction in [0, pi) counter-clockwise from +x, 1 in [pi, 2 pi). */
 static inline int lower_half(double dx, double dy)

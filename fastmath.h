@@ -12,9 +12,9 @@
 ** need not); both are checked against the C library in the tests
 ** (test_core.c, test_dynamics.c) and through the twins (make twins).
 ** The code is here, as static inline functions, so that the files of the
-** hot path (geom.c, dynamics.c) compile it into their own code: called
-** across files, afv_angle cost 1.7% more instructions per step (the caller
-** must then save every floating-point register around the call).  The
+** hot path (geom.c, dynamics.c) compile it into their own code: a call
+** across files makes the caller save every floating-point register around
+** it.  The
 ** library's public afv_angle and afv_sincos (fastmath.c) are these.
 ** Library-internal, like afv_internal.h (which it needs before it).
 */
@@ -26,15 +26,8 @@
 /* ---- the angle of a vector ---------------------------------------------- */
 /* The angle of every arc is an atan2.  What it costs is its latency more
 ** than its instructions: the cell's area, hence every term of its gradient,
-** waits for it.  Measured on the random state's force evaluation (N = 400,
-** in one process, interleaved): a stub of a few instructions and little
-** latency in its place was 23% faster; a stub as short but with a chain of
-** divisions as long as the function's was only 6% faster; and the C
-** library's atan2 (150 instructions) was as fast as this function's former
-** 60-instruction version, which had two divisions and a 10-deep polynomial
-** in series.  So afv_angle is written for a short dependency chain (force
-** evaluation 12% faster than that former version), without a branch on
-** the quadrant:
+** waits for it (doc/perf-figures.md).  So afv_angle is written for a short
+** dependency chain, one division and no branch on the quadrant:
 **   1. lo = min(|x|, |y|), hi = max(|x|, |y|), and the angle is
 **      off + sgn atan(lo / hi), (off, sgn) from a table by which of |x|,
 **      |y| is larger and by the signs of x and y;
@@ -99,9 +92,9 @@ static inline double afv_angle_inline(double y, double x)
 
 /* ---- sine and cosine ---------------------------------------------------- */
 /* Every step needs cos and sin of every cell's angle (the polarity) and of
-** one Box-Muller angle per two cells: the C library's sincos took about 130
-** instructions a call, 200 per cell and step (callgrind), a sixth of a
-** step.  afv_sincos takes about 70, in plain arithmetic without branches:
+** one Box-Muller angle per two cells, a sizeable part of a step with the
+** C library's sincos; afv_sincos takes about half its instructions (doc/
+** perf-figures.md), in plain arithmetic without branches:
 **   1. reduction: x = k pi/2 + r with k the integer nearest x (2/pi) (to
 **      within 2^-32), so |r| <= pi/4 (1 + 2^-30);  r = x - k P1 - k P2 -
 **      k P3, where P1 + P2 + P3 = pi/2 to about 2^-150 (fdlibm's split:

@@ -29,11 +29,7 @@
 ** Cost: O(k^2) per cell for k neighbours (k is about 6 in a tissue), so
 ** O(N) for the tissue.  Dense input (k > PRUNE_FROM = 16): the nearest
 ** neighbours only, as Voro++ (see "pruning"), O(k log k) per cell, the
-** same bits.  Measured (test/evidence_prune.sh, loaded machine): afv eval
-** of 8021 cells at k = 700, 33 s before, 8.2 s after; k = 50, 53 us per
-** cell.  Measured (README, Performance): about 1090 instructions per cell
-** and evaluation for the shape in the cluster benchmark state, 2928 for a
-** whole step.
+** same bits (what it saves: doc/perf-figures.md).
 ** afv_geometry_prepare is here, not in neighbours.c: after the lists it
 ** reserves the clipping's work space, sized by this file's segment type.
 ** Different cells may be shaped on OpenMP threads at once, with the same
@@ -190,8 +186,8 @@ static void clip_near_parallel(const double *Da, const double *Db,
 ** slot order.  A pair of nearly parallel lines on one side of the centre
 ** (clip_near_parallel) is handled only if `careful`; else the pass stops
 ** there and returns 1, and the caller runs it again with care: the common
-** pass then carries no code for the rare case (with it inline, the
-** cluster benchmark's shapes took 11% more instructions). */
+** pass then carries no code for the rare case (which, inline, cost the
+** common case instructions). */
 static inline int clip_pairs(const double *edge, const double *D, int s0,
                              int nn, segment *seg, int careful)
 {

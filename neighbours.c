@@ -26,8 +26,7 @@
 **     distance and sorted (filter_cell), written in place ("neighbour
 **     lists"), and the pairs linked.
 ** Cost: O(N) time and memory; long candidate lists (dense input) are
-** merge-sorted and reverse slots found by binary search.  About 1.1 kB
-** per cell at N = 400000.
+** merge-sorted and reverse slots found by binary search.
 ** afv_cells_around reads the cell list for the sub-steps (dynamics.c) and
 ** afv_force_check; afv_spatial_order numbers cells in its order.  The
 ** buffers of an afv_geom are grown here too (afv_grow, grow_cells).
@@ -368,11 +367,9 @@ static int stencil_runs(const afv_geom *g, const grid *G, int bx, int by,
 ** cell with the same wrapped centre is a candidate like any other:
 ** filter_cell decides on the exact displacement whether two centres
 ** coincide (wrapping can round two distinct centres onto one).
-** The loop has no branch on the distance: of the cells scanned 30% are
-** candidates in the random state (8.7 scanned per cell), in no order a
-** predictor learns, 22% in the cluster's lattice (27 scanned); with the
-** branch a scanned cell cost 8 ns in the first, 2 ns in the second
-** (N = 40000, the counting pass timed).  Every cell scanned is stored at
+** The loop has no branch on the distance, which a predictor cannot learn
+** in a random tissue (where a minority of the cells scanned are
+** candidates, in no order).  Every cell scanned is stored at
 ** the next free place, which the next candidate overwrites if it was
 ** none; once the list is full the stores go to a scratch word instead. */
 static int scan_cell(const afv_geom *g, const grid *G, int k,
@@ -453,13 +450,9 @@ static int find_coincident(afv_geom *g, const int *count, int n)
 ** positions alone: the same bits whether or not the candidates were rebuilt
 ** (a resumed run repeats an uninterrupted one).
 ** A few cells that have moved farther do not force a rebuild (MOVERS,
-** below).  SKIN = 0.3 l: (2.3/2)^2 = 1.3x the pairs of a 2l search;
-** rebuilt in the random benchmark state (v0 = 1, dt = 0.01) every 16.7
-** steps at N = 400, 14.3 at 4000, 12.5 at 40000 and 10 at 400000 (steps
-** 20 - 120 after relaxing; at N = 400 47 in steps 2000 - 12000),
-** and every 1100 in the relaxed cluster (v0 = 0.1) (test/bench.c).  0.2
-** and 0.5 cost more instructions per step over the two (measured, before
-** MOVERS). */
+** below).  SKIN = 0.3 l: (2.3/2)^2 = 1.3x the pairs of a 2l search, and
+** the fewest instructions per step of the skins tried in the two
+** benchmark states (doc/perf-figures.md). */
 #define SKIN 0.3
 
 static int same_box(const afv_box *a, const afv_box *b)
@@ -566,22 +559,17 @@ int afv_cells_around(const afv_geom *g, double x, double y, double R,
 ** mover's cells within 2l, movers included, are found in the cell list of
 ** the rebuild (window_around, which widens its search by the largest move
 ** since the rebuild, g->cand_moved).  Without this, one fast cell
-** anywhere forced a rebuild of the whole tissue: at N = 40000 in the
-** random benchmark state every 3.9 steps.  Both the marking of the movers
-** and their checks are parallel loops (a serial scan here took about 7%
-** of the first thread's time in a 2-thread step; random, N = 40000,
-** perf).  The checks cost O(movers), so
-** MOVERS_MAX is a fixed fraction of the cells and the rebuilds come as
-** often at every N.  (An earlier version tested the movers' pairs among
-** themselves directly, O(movers^2), so it allowed only 2 sqrt(N) + 16
-** movers: the random state at N = 40000 was rebuilt every 8 steps, at
-** N = 400 every 21.)  And the movers are checked again at every call, as
-** they go on moving: once the pair tests since the rebuild reach
-** CHECKS_PER_CELL per cell, about the cost of a rebuild (a pair test takes
-** about 40 instructions, a rebuild about 1000 per cell: counted before the
-** scan of scan_cell was made branchless, not recounted since), the
-** candidates are rebuilt (the ski-rental rule: never more than twice the
-** cost of the better choice made in hindsight). */
+** anywhere would force a rebuild of the whole tissue, and large tissues
+** always have one.  Both the marking of the movers and their checks are
+** parallel loops (a serial scan would hold the other threads up).  The
+** checks cost O(movers), so MOVERS_MAX is a fixed fraction of the cells
+** and the rebuilds come as often at every N.  And the movers are checked
+** again at every call, as they go on moving: once the pair tests since
+** the rebuild reach CHECKS_PER_CELL per cell, about the cost of a rebuild
+** (a pair test against a rebuild's work per cell, counted:
+** doc/perf-figures.md), the candidates are rebuilt (the ski-rental rule:
+** never more than twice the cost of the better choice made in
+** hindsight). */
 #define MOVERS_MAX(n) ((n) / 8 + 16)
 #define CHECKS_PER_CELL 25
 
@@ -721,13 +709,6 @@ static double tiny_cross(double ax, double ay, double bx, double by)
   return ldexp(ax, -ka) * ldexp(by, -kb) - ldexp(ay, -ka) * ldexp(bx, -kb);
 }
 
-/* 1 if neighbour ja at displacement (ax, ay) comes after jb at (bx, by) in
-** a cell's list: by the direction of the displacement (counter-clockwise
-** from +x; compared by half-plane, then by the sign of the cross product,
-** so without atan2), then by distance, then by cell.  A total order: the
-** sorted list does not depend on the order the candidates come in.
-** (inline: it is called about once per slot and step; measured 70
-** instructions per cell-step fewer than the call.) */
 /* comes_after for two displacements in one direction as far as a x b
 ** computed as is can tell (rare): tiny_cross, then distance, then cell. */
 static COLD int comes_after_tied(double ax, double ay, int ja, double bx,
@@ -740,6 +721,13 @@ static COLD int comes_after_tied(double ax, double ay, int ja, double bx,
   return ja > jb;
 }
 
+/* 1 if neighbour ja at displacement (ax, ay) comes after jb at (bx, by) in
+** a cell's list: by the direction of the displacement (counter-clockwise
+** from +x; compared by half-plane, then by the sign of the cross product,
+** so without atan2), then by distance, then by cell.  A total order: the
+** sorted list does not depend on the order the candidates come in.
+** (inline: it is called about once per slot and step, and the call cost
+** more than the comparison.) */
 static inline int comes_after(double ax, double ay, int ja, double bx,
                               double by, int jb)
 {
@@ -1175,8 +1163,8 @@ static int plain_neighbours(afv_geom *g, int n, const double *r, double l,
 
 /* The exact lists from the candidates, then the pairs linked.  Serially,
 ** one pass: cell i is linked right after it is listed, to its smaller
-** neighbours, listed moments before, whose slots are still in cache (at
-** N = 40000 a second pass found them evicted).  With OpenMP, a smaller
+** neighbours, listed moments before, whose slots are still in cache (in a
+** large tissue a second pass finds them evicted).  With OpenMP, a smaller
 ** neighbour may belong to another thread, so every list is filtered
 ** before any is linked.  Either way each entry gets the same bits. */
 int afv_neighbours(afv_geom *g, int n, const double *r, double l,
