@@ -1,8 +1,12 @@
 /*
 ** afv.c -- energy, exact analytic forces and the finite-difference check.
 **
-** Energy (paper, Eq. energy):  E = sum_i e_i,
+** Energy (paper, Eq. (3), label eq:energy, there in units KA = l = 1 with
+** kP = KP/KA):  E = sum_i e_i,
 **     e_i = KA_i (A_i - A0_i)^2 + KP_i (P_i - P0_i)^2 + Lambda L_i.
+** Force (paper, after Eq. (3)):  F_i = -grad_i E.
+** (The paper's equations are numbered (1) energy_eq_first, (2) its
+** simplified form, (3) eq:energy, (4) the equation of motion, (5) eq:abp.)
 **
 ** FORCES.  By the chain rule, with wA = 2 KA (A_i - A0), wP = 2 KP (P_i - P0)
 ** and wL = Lambda,
@@ -136,6 +140,7 @@ static cell_targets targets_of(const afv_params *p, int i)
 double afv_cell_energy(const afv_params *p, int i, double A, double P, double L)
 {
   cell_targets c = targets_of(p, i);
+  /* e_i, the term of cell i in Eq. (3) of the paper */
   return c.KA * (A - c.A0) * (A - c.A0) + c.KP * (P - c.P0) * (P - c.P0)
        + p->Lambda * L;
 }
@@ -201,8 +206,9 @@ static edge edge_of(const afv_geom *g, int s)
 static void area_terms(const afv_piece *pc, double wA, double *ab)
 {
   double c = wA * pc->length;
-  ab[0] += 0.5 * c;
-  ab[1] -= c * (pc->tau + 0.5 * pc->length);   /* tau0 + ell/2 = mid */
+  ab[0] += 0.5 * c;                            /* (A): a += wA ell / 2 */
+  ab[1] -= c * (pc->tau + 0.5 * pc->length);   /* (A): b -= wA ell mid;
+                                               ** tau0 + ell/2 = mid */
 }
 
 /* (V1): a of one arc end of edge E (the same at both ends); the b terms
@@ -212,7 +218,7 @@ static double arc_end_radial(const edge *E, double l, double cap, double wP,
 {
   double s = E->s, h = E->h;
   if (!(s > 0)) return 0;              /* a chord of length 0 makes no edge */
-  if (2 * s >= cap)                    /* exact gradient */
+  if (2 * s >= cap)                    /* exact gradient, (V1) */
     return (wP * (l - h) + wL * l) * (0.5 / s);
   /* capped: (dV/dD)^T w along u with l^2/(d s) -> l^2/(d cap/2), where
   ** -sigma t.w = (wP (h - l) + wL h) / l and w.u = (wP + wL) s / l at
@@ -224,7 +230,7 @@ static double arc_end_radial(const edge *E, double l, double cap, double wP,
 
 static double arc_turn(const edge *E, double l, double wP, double wL)
 {
-  return wP * (l - E->h) + wL * l;
+  return wP * (l - E->h) + wL * l;              /* (V1): b at an arc end */
 }
 
 /* (V2): the triple junction of edge E (leaving the vertex, which lies at
@@ -237,7 +243,7 @@ static void junction_terms(const edge *E, const edge *K, double tau_e,
   double q = E->ux * K->ux + E->uy * K->uy;   /* u_E . u_K */
   double m;
   if (c == 0) return;                 /* parallel lines make no vertex */
-  m = q >= 0 ? wP * c / (1 + q) : wP * (1 - q) / c;
+  m = q >= 0 ? wP * c / (1 + q) : wP * (1 - q) / c;   /* (V2) */
   abe[0] -= 0.5 * m;
   abe[1] += tau_e * m;
   abk[0] -= 0.5 * m;
@@ -268,15 +274,15 @@ void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
     }
     E = edge_of(g, pc->slot);
     ab = grad + 2 * pc->slot;
-    area_terms(pc, wA, ab);
-    if (prev->nbr == AFV_ARC) {               /* arc arrives at the start */
+    area_terms(pc, wA, ab);                   /* (A) */
+    if (prev->nbr == AFV_ARC) {               /* (V1): an arc arrives */
       ab[0] += arc_end_radial(&E, l, cap, wP, wL);
       ab[1] += arc_turn(&E, l, wP, wL);
-    } else {                                  /* triple junction (i,k,j) */
+    } else {                                  /* (V2): junction (i,k,j) */
       junction_terms(&E, &K, pc->tau, prev->tau + prev->length, wP, ab,
                      grad + 2 * prev->slot);
     }
-    if (next_arc) {                           /* arc leaves at the end */
+    if (next_arc) {                           /* (V1): an arc leaves */
       ab[0] += arc_end_radial(&E, l, cap, wP, wL);
       ab[1] -= arc_turn(&E, l, wP, wL);
     }
@@ -306,7 +312,7 @@ static void gather_forces(const afv_geom *g, int n, double *f)
       const double *e = g->edge + 4 * s;
       double a = g->grad[2*s] + g->grad[2*t];
       double bt = (g->grad[2*s+1] + g->grad[2*t+1]) / (e[2] + e[2]);
-      fx += a * e[0] - bt * e[1];
+      fx += a * e[0] - bt * e[1];             /* (F): F_j += G_js - G_rev(s) */
       fy += a * e[1] + bt * e[0];
     }
     f[2*j] = fx;
@@ -334,6 +340,7 @@ static void shape_all(afv_geom *g, int n, const afv_params *p, int gradient)
     cell_targets c = targets_of(p, i);
     afv_cell_shape(g, i, p->l);
     if (!gradient) continue;
+    /* the chain rule of Eq. (3): wA = de_i/dA_i, wP = de_i/dP_i, wL */
     afv_cell_shape_gradient(g, i, p->l, p->cap, 2 * c.KA * (g->area[i] - c.A0),
                             2 * c.KP * (g->perim[i] - c.P0), p->Lambda,
                             g->grad);
@@ -346,7 +353,7 @@ static double total_energy(const afv_geom *g, int n, const afv_params *p)
 {
   double E = 0;
   int i;
-  for (i = 0; i < n; i++)
+  for (i = 0; i < n; i++)                   /* Eq. (3): E = sum_i e_i */
     E += afv_cell_energy(p, i, g->area[i], g->perim[i], g->arc[i]);
   return E;
 }
@@ -371,7 +378,7 @@ int afv_compute(afv_geom *g, int n, const double *r, const afv_params *p,
   if ((st = afv_geometry_prepare(g, n, r, p->l, b)) != AFV_OK) return st;
   shape_all(g, n, p, 1);
   g->energy = total_energy(g, n, p);
-  gather_forces(g, n, f);
+  gather_forces(g, n, f);                   /* F = -grad E, by (F) */
   return AFV_OK;
 }
 

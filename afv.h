@@ -5,7 +5,7 @@
 ** radius l about r_i, clipped by the perpendicular-bisector half-plane of
 ** every other centre closer than 2l.  Its boundary is a cyclic sequence of
 ** straight contact edges (shared with one neighbour) and circular arcs of
-** radius l (free, non-contacting boundary).  The energy (paper, Eq. energy) is
+** radius l (free, non-contacting boundary).  The energy (paper, Eq. (3)) is
 **
 **     E = sum_i KA_i (A_i - A0_i)^2 + KP_i (P_i - P0_i)^2 + Lambda L_i
 **

@@ -1,7 +1,9 @@
 /*
 ** geom.c -- the exact shape of every finite-Voronoi cell: the clipping.
 **
-** Invariant: after afv_geometry, cell i's boundary (pieces) is the boundary of
+** The cell (paper, Model section: the Voronoi cell of r_i within the circle
+** of radius l about it).  Invariant: after afv_geometry, cell i's boundary
+** (pieces) is the boundary of
 **     disk(r_i, l)  intersected with  { x : |x - r_i| <= |x - r_j| }  for all j,
 ** written as a counter-clockwise cycle of straight edges and circular arcs.
 ** Only centres closer than 2l can cut the disk (the bisector of a pair at
@@ -462,7 +464,8 @@ static void isolated_cell(afv_geom *g, int i, double l)
 }
 
 /* Writes the pieces of cell i from its kept segments seg[0..ns-1] and sums
-** A (triangles h*len/2 on the edges, sectors l^2 phi/2 on the arcs), P, L. */
+** A (triangles h*len/2 on the edges, sectors l^2 phi/2 on the arcs), P, L:
+** the A_i, P_i and L_i of the paper's energy, Eq. (3). */
 static void assemble_boundary(afv_geom *g, int i, double l, const segment *seg,
                               int ns)
 {
