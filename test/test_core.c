@@ -1,5 +1,6 @@
 /*
-** test_core.c -- the geometry, energy and forces of afv (neighbours.c, geom.c, afv.c).
+** test_core.c -- the geometry, energy and forces of afv (neighbours.c,
+** geom.c, afv.c).
 **
 ** Order: hand-solvable closed forms first (one cell, a lens, the hexagonal
 ** lattice in both regimes, the Voronoi limit, the paper's mean-field point),
