@@ -388,11 +388,6 @@ typedef struct afv_dyn {
 /* Paper defaults: mu 1, v0 0, Dr 0.1, dt 0.01, seed 1; max_move 0.05. */
 void afv_dyn_default(afv_dyn *d);
 
-/* Private (neighbours.c; geom.c and dynamics.c use it too): makes room
-** for `need` elements of `elem` bytes in *ptr, whose capacity *cap grows by
-** doubling.  AFV_OK or AFV_ENOMEM (then *ptr and *cap are unchanged). */
-int afv_grow(void **ptr, int *cap, int need, size_t elem);
-
 /* Private (dynamics.c, GROUPS): a group of fast cells in a step.  Its
 ** region, the cells within REGION_RADIUS of its fast cells, is
 ** group_cells[start .. start + nr - 1] (increasing); its fast cells are

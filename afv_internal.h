@@ -5,6 +5,8 @@
 #ifndef AFV_INTERNAL_H
 #define AFV_INTERNAL_H
 
+#include <stddef.h>
+
 /* A function for a rare case, kept out of line so that the compiler does
 ** not hoist its work into the common path that calls it (gcc did, with
 ** exact_near: its pass cost every cell instructions, though never taken).
@@ -14,6 +16,11 @@
 #else
 #define COLD
 #endif
+
+/* Makes room for `need` elements of `elem` bytes in *ptr, whose capacity
+** *cap grows by doubling (neighbours.c; geom.c and dynamics.c use it too).
+** AFV_OK or AFV_ENOMEM (then *ptr and *cap are unchanged). */
+int afv_grow(void **ptr, int *cap, int need, size_t elem);
 
 #define PI     3.14159265358979323846
 #define TWO_PI 6.28318530717958647692
