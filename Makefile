@@ -35,9 +35,10 @@ override CFLAGS += -DAFV_REFERENCE
 endif
 
 # The library, one file per idea (doc/reference.md has the reading order);
-# afv_internal.h and fastmath.h are shared by its files only (not part of
-# the API, afv.h).
-LIB_SRC  = neighbours.c geom.c fastmath.c afv.c dynamics.c analysis.c svg.c io.c phase.c
+# afv_internal.h, fastmath.h and rng.h are shared by its files only (not
+# part of the API, afv.h).
+LIB_SRC  = neighbours.c geom.c fastmath.c afv.c dynamics.c substeps.c rng.c \
+           analysis.c svg.c io.c phase.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
@@ -59,7 +60,7 @@ BUILD_FLAGS = $(CC) $(CFLAGS) $(LDLIBS)
 
 FORCE:
 
-$(LIB_OBJ): afv_internal.h fastmath.h
+$(LIB_OBJ): afv_internal.h fastmath.h rng.h
 
 libafv.a: $(LIB_OBJ)
 	$(AR) rcs $@ $(LIB_OBJ)
@@ -132,7 +133,7 @@ FUZZ_CFLAGS  = -O1 -g -std=c99 -fno-omit-frame-pointer \
 FUZZ_NAMES   = $(patsubst fuzz/fuzz_%.c,%,$(wildcard fuzz/fuzz_*.c))
 FUZZ_OBJ     = $(patsubst %.c,fuzz/build/%.o,$(LIB_SRC) cli.c)
 
-fuzz/build/%.o: %.c afv.h afv_internal.h fastmath.h cli.h
+fuzz/build/%.o: %.c afv.h afv_internal.h fastmath.h rng.h cli.h
 	@mkdir -p fuzz/build
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -c -o $@ $<
 
@@ -157,11 +158,11 @@ fuzz: $(addprefix fuzz-,$(FUZZ_NAMES))
 TWIN_SRC    = test/twins.c test/fixtures.c $(LIB_SRC)
 TWIN_CFLAGS = $(filter-out -DAFV_REFERENCE,$(CFLAGS))
 
-test/twins_fast: $(TWIN_SRC) test/test.h afv.h afv_internal.h fastmath.h \
+test/twins_fast: $(TWIN_SRC) test/test.h afv.h afv_internal.h fastmath.h rng.h \
                   .build-flags
 	$(CC) $(TWIN_CFLAGS) -I. -o $@ $(TWIN_SRC) $(LDLIBS)
 
-test/twins_ref: $(TWIN_SRC) test/test.h afv.h afv_internal.h fastmath.h \
+test/twins_ref: $(TWIN_SRC) test/test.h afv.h afv_internal.h fastmath.h rng.h \
                  .build-flags
 	$(CC) $(TWIN_CFLAGS) -DAFV_REFERENCE -I. -o $@ $(TWIN_SRC) $(LDLIBS)
 

@@ -70,7 +70,7 @@ const char *afv_strerror(int status);   /* one-line description of a status */
   AFV_PRAGMA(omp parallel for schedule(static) \
              if ((size) >= AFV_PARALLEL_MIN) clauses)
 /* A loop over independent tasks of unequal cost (the small groups of fast
-** cells, dynamics.c, which uses it only for two tasks or more): each
+** cells, substeps.c, which uses it only for two tasks or more): each
 ** thread takes the next task when it is free. */
 #define AFV_PARALLEL_TASKS \
   AFV_PRAGMA(omp parallel for schedule(dynamic, 1))
@@ -360,7 +360,7 @@ void afv_traj_free(afv_traj *tr);
 ** (AFV_EUNSTABLE): the forces change on the scale l, so such a step is
 ** outside the range where Euler's method follows the dynamics at all. */
 #define AFV_MAX_STEP_DISP 0.5
-/* At most this many pieces per step (dynamics.c, SUB-STEPS): each piece
+/* At most this many pieces per step (substeps.c, SUB-STEPS): each piece
 ** but the last moves the fastest cell by max_move l, so 64 pieces cover
 ** 3 l of force-driven motion, more than the l/2 a step may move at all. */
 #define AFV_MAX_SUBSTEPS 64
@@ -379,7 +379,7 @@ typedef struct afv_dyn {
   double max_move;    /* sub-step threshold, in l (>= 0; 0 = plain Euler):
                       ** a step in which the force would move some cell
                       ** farther is integrated in pieces that move it at
-                      ** most this far (dynamics.c, SUB-STEPS) */
+                      ** most this far (substeps.c, SUB-STEPS) */
   const double *v0_i; /* optional per-cell v0 (length n), NULL = scalar v0 */
   const double *Dr_i; /* optional per-cell Dr (length n), NULL = scalar Dr */
   unsigned long long seed; /* key of the random streams */
@@ -388,7 +388,7 @@ typedef struct afv_dyn {
 /* Paper defaults: mu 1, v0 0, Dr 0.1, dt 0.01, seed 1; max_move 0.05. */
 void afv_dyn_default(afv_dyn *d);
 
-/* Private (dynamics.c, GROUPS): a group of fast cells in a step.  Its
+/* Private (substeps.c, GROUPS): a group of fast cells in a step.  Its
 ** region, the cells within REGION_RADIUS of its fast cells, is
 ** group_cells[start .. start + nr - 1] (increasing); its fast cells are
 ** the nf entries after that (increasing). */
@@ -396,7 +396,7 @@ typedef struct afv_group {
   int       start, nr, nf;
   int       status;    /* how its pieces ended: AFV_OK or an error */
   int       bad_cell;  /* on AFV_EUNSTABLE: the cell, and its move */
-  double    bad_len;   /*   length (for unstable() in dynamics.c) */
+  double    bad_len;   /*   length (for afv_unstable) */
   long long pieces;    /* the extra pieces it took */
 } afv_group;
 
@@ -424,7 +424,7 @@ typedef struct afv_sim {
   afv_geom   geom;     /* geometry at r (energy, areas, contacts, ...) */
   long long  substeps;  /* extra sub-step pieces so far, summed over the
                        ** groups of fast cells (= extra force evaluations
-                       ** of their regions; dynamics.c, GROUPS) */
+                       ** of their regions; substeps.c, GROUPS) */
   long long  halvings; /* steps (or parts of steps) taken again in two
                        ** halves so far (dynamics.c, HALVES) */
   int        bad_cell; /* on AFV_EUNSTABLE: the offending cell, else -1 */

@@ -5,6 +5,8 @@
 #ifndef AFV_INTERNAL_H
 #define AFV_INTERNAL_H
 
+#include "afv.h"
+
 #include <stddef.h>
 
 /* A function for a rare case, kept out of line so that the compiler does
@@ -18,7 +20,8 @@
 #endif
 
 /* Makes room for `need` elements of `elem` bytes in *ptr, whose capacity
-** *cap grows by doubling (neighbours.c; geom.c and dynamics.c use it too).
+** *cap grows by doubling (neighbours.c; geom.c, dynamics.c and substeps.c
+** use it too).
 ** AFV_OK or AFV_ENOMEM (then *ptr and *cap are unchanged). */
 int afv_grow(void **ptr, int *cap, int need, size_t elem);
 
@@ -34,7 +37,7 @@ int afv_grow(void **ptr, int *cap, int need, size_t elem);
 ** thread count gives the same bits.
 ** `size` is the loop's length in cells (in bins for the bin loop): below
 ** AFV_PARALLEL_MIN (afv.h) the loop runs on the calling thread: the
-** sub-steps' regions (dynamics.c) are tens of cells, each of their force
+** sub-steps' regions (substeps.c) are tens of cells, each of their force
 ** evaluations runs about eight such loops, and starting a team of threads
 ** for each cost more than the loop.  Without OpenMP the macros are empty
 ** and the files are plain C99. */
@@ -44,5 +47,18 @@ static inline int lower_half(double dx, double dy)
 {
   return dy < 0 || (dy == 0 && dx < 0);
 }
+
+/* ---- the step (dynamics.c) and its sub-steps (substeps.c) -------------- */
+/* dynamics.c: moves the m cells of list by h (Eq. (4): h (mu F_i + v0 n_i),
+** with this step's polarity); records a refused step's cell and move and
+** returns AFV_EUNSTABLE. */
+void afv_move_cells(afv_sim *s, const int *list, int m, double h);
+int  afv_unstable(afv_sim *s, int cell, double len);
+/* substeps.c: lists the step's fast cells (force move over dt above
+** split, from euler_all's move_len) into *nf and moves them over dt in
+** pieces, group by group (moved: how far the other cells may have moved
+** since the last force evaluation).  AFV_OK or an error (AFV_EUNSTABLE via
+** afv_unstable). */
+int  afv_substeps(afv_sim *s, double split, double moved, double dt, int *nf);
 
 #endif /* AFV_INTERNAL_H */

@@ -27,7 +27,7 @@
 **     lists"), and the pairs linked.
 ** Cost: O(N) time and memory; long candidate lists (dense input) are
 ** merge-sorted and reverse slots found by binary search.
-** afv_cells_around reads the cell list for the sub-steps (dynamics.c) and
+** afv_cells_around reads the cell list for the sub-steps (substeps.c) and
 ** afv_force_check; afv_spatial_order numbers cells in its order.  The
 ** buffers of an afv_geom are grown here too (afv_grow, grow_cells).
 ** Every per-cell loop may run on OpenMP threads with the same result bits

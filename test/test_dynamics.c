@@ -939,7 +939,7 @@ static void detaching_cluster(int n, const afv_box *one, double gap,
   r[2*(n-1)+1] = r[2*rim+1];
 }
 
-/* The groups of the fast cells fast[0 .. nf-1] by hand (dynamics.c,
+/* The groups of the fast cells fast[0 .. nf-1] by hand (substeps.c,
 ** GROUPS): closer than R at positions r, directly or through other fast
 ** cells.  gid[k] = the group of fast[k] (0, 1, ...); returns how many. */
 static int groups_by_hand(const double *r, const int *fast, int nf,
@@ -983,7 +983,7 @@ static int groups_by_hand(const double *r, const int *fast, int nf,
 static void local_vs_whole_tissue(int per_cell)
 {
   enum { N = 80 };
-  const double R = 5.0;       /* REGION_RADIUS in dynamics.c, in l */
+  const double R = 5.0;       /* REGION_RADIUS in substeps.c, in l */
   afv_box b = {1, 30, 30};
   afv_params p;
   afv_dyn d;
@@ -1122,7 +1122,7 @@ static void test_far_groups_step_alone(void)
 static void test_near_groups_either_order(void)
 {
   enum { N = 4 };
-  const double R = 5.0;       /* REGION_RADIUS in dynamics.c, in l */
+  const double R = 5.0;       /* REGION_RADIUS in substeps.c, in l */
   afv_box b = {1, 30, 30};
   afv_params p;
   afv_dyn d;
