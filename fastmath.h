@@ -14,12 +14,14 @@
 ** The code is here, as static inline functions, so that the files of the
 ** hot path (geom.c, dynamics.c) compile it into their own code: a call
 ** across files makes the caller save every floating-point register around
-** it.  The
-** library's public afv_angle and afv_sincos (fastmath.c) are these.
-** Library-internal, like afv_internal.h (which it needs before it).
+** it.  The library's public afv_angle and afv_sincos (fastmath.c) are
+** these.
+** Library-internal, like afv_internal.h.
 */
 #ifndef AFV_FASTMATH_H
 #define AFV_FASTMATH_H
+
+#include "afv_internal.h"
 
 #include <math.h>
 

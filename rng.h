@@ -24,11 +24,13 @@
 ** afv_sincos's own arithmetic).
 ** The code is here, as static inline functions, so that the noise loop
 ** (dynamics.c, rotate_block) and the initial states compile it into their
-** own code; rng.c's public functions are
-** these.  Needs afv.h, afv_internal.h and fastmath.h before it.
+** own code; rng.c's public functions are these.
 */
 #ifndef AFV_RNG_H
 #define AFV_RNG_H
+
+#include "afv_internal.h"
+#include "fastmath.h"
 
 #include <math.h>
 #include <stdint.h>
