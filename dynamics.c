@@ -290,6 +290,15 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   return st;
 }
 
+int afv_sim_refresh(afv_sim *s)
+{
+  if (afv_params_check(&s->par, s->n) != AFV_OK
+      || dyn_check(&s->dyn, s->n) != AFV_OK)
+    return AFV_EINVAL;
+  /* the one cache of a step that depends on par, box and r: f and geom */
+  return afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
+}
+
 double afv_sim_max_force(const afv_sim *s)
 {
   double m2 = 0;
