@@ -206,14 +206,17 @@ MANDIR   = $(DESTDIR)$(PREFIX)/share/man/man1
 
 # afv.pc: -lm always (the static library needs it, and pkg-config --libs
 # leaves Libs.private out unless --static); -fopenmp for an OpenMP build.
-afv.pc: Makefile .build-flags
+# Rewritten whenever PREFIX or the flags change (FORCE, then cmp: as for
+# .build-flags), so it never records the prefix of an earlier install.
+afv.pc: FORCE
 	@printf '%s\n' 'prefix=$(PREFIX)' 'exec_prefix=$${prefix}' \
 	  'libdir=$${exec_prefix}/lib' 'includedir=$${prefix}/include' '' \
 	  'Name: afv' \
 	  'Description: Active Finite Voronoi model of epithelial and mesenchymal tissue' \
 	  'Version: $(VERSION)' \
 	  'Libs: -L$${libdir} -lafv $(LDLIBS)' \
-	  'Cflags: -I$${includedir}' > $@
+	  'Cflags: -I$${includedir}' > $@.tmp
+	@cmp -s $@.tmp $@ || mv $@.tmp $@; rm -f $@.tmp
 
 install: afv libafv.a libafv.so afv.pc doc/afv.1
 	mkdir -p $(BINDIR) $(LIBDIR) $(INCDIR) $(PCDIR) $(MANDIR)
