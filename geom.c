@@ -31,7 +31,7 @@
 ** lists merge-sorted, reverse slots found by binary search.  Measured
 ** (test/evidence_prune.sh, loaded machine): afv eval of 8021 cells at
 ** k = 700, 33 s before, 8.2 s after; k = 50, 53 us per cell.  Measured
-** (README, Performance): about 1090 instructions per cell and evaluation
+** (doc/performance.md): about 1090 instructions per cell and evaluation
 ** for the shape in the cluster benchmark state, 2928 for a whole step;
 ** about 1.1 kB per cell at N = 400000.
 ** Every per-cell loop may run on OpenMP threads with the same result bits.
@@ -86,8 +86,8 @@
 ** force evaluations runs about eight such loops: in the random benchmark
 ** state at N = 40000 a step started about 300 teams of 2 threads; with
 ** the threshold it takes 1% to 8% less time (in-process A/B, six runs,
-** README).  Without OpenMP the macros are empty and the file is plain
-** C99. */
+** doc/performance.md).  Without OpenMP the macros are empty and the file
+** is plain C99. */
 
 /* ---- buffers ----------------------------------------------------------- */
 int afv_grow(void **ptr, int *cap, int need, size_t elem)

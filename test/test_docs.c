@@ -321,7 +321,7 @@ static void test_run_help_defaults_true(void)
     if (K) check_same_number(lib_keys[k], K->def, lib[k]);
   }
   /* v0: the library's default is 0 (no activity); afv run's is a state of
-  ** the paper's diagram (README: "make run and afv run").  Nothing else
+  ** the paper's diagram (README.md, "Using the library").  Nothing else
   ** may differ. */
   snprintf(args, sizeof args, "run --steps 0 --relax_max_steps 0 --quiet "
            "--out %s/defaults", tmp);
