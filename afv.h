@@ -432,7 +432,8 @@ typedef struct afv_group_work {
 **     the end of the last step): par (any field; per-cell arrays as for
 **     v0_i), box, r[].
 ** Every other field is the library's: read n, step, t, r, theta, f, geom,
-** substeps, bad_cell, bad_disp; never write the fields marked private. */
+** substeps, halvings, bad_cell, bad_disp, bad_time; never write the fields
+** marked private. */
 typedef struct afv_sim {
   int        n;        /* number of cells */
   long long  step;     /* steps taken since the start of the active run */
