@@ -9,6 +9,11 @@
 #                   (default 60; clang; make -j2 fuzz runs two at a time)
 #   make twins      the two modes side by side (test/twins.c, doc/reference.md)
 #   make protocol-check  the paper's protocol at N = 400 (~1 hour, 2 cores)
+#   make shared     the shared library libafv.so (for Python's ctypes, ...)
+#   make install    bin/afv, lib/libafv.a, lib/libafv.so, include/afv.h,
+#                   lib/pkgconfig/afv.pc, share/man/man1/afv.1 under
+#                   $(DESTDIR)$(PREFIX) (PREFIX defaults to /usr/local)
+#   make uninstall  removes exactly those files
 #   make clean
 #
 # CC and CFLAGS may be overridden (make CC=clang, make CC=tcc).
@@ -42,7 +47,8 @@ LIB_SRC  = neighbours.c geom.c fastmath.c afv.c dynamics.c substeps.c rng.c \
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
-.PHONY: all test run bench bench-quick bench-compare fuzz twins protocol-check clean FORCE
+.PHONY: all test run bench bench-quick bench-compare fuzz twins \
+        protocol-check shared install uninstall clean FORCE
 
 all: afv libafv.a
 
@@ -77,22 +83,35 @@ afv: $(CLI_OBJ) libafv.a .build-flags
 
 $(CLI_OBJ): cli.h
 
+# The shared library: the same sources compiled again as position-
+# independent code into *.pic.o, so the static library and the program
+# keep their objects (and their speed) exactly as without it.
+PIC_OBJ  = $(LIB_SRC:.c=.pic.o)
+
+%.pic.o: %.c afv.h .build-flags
+	$(CC) $(CFLAGS) -fPIC -c -o $@ $<
+
+libafv.so: $(PIC_OBJ)
+	$(CC) $(CFLAGS) -shared -o $@ $(PIC_OBJ) $(LDLIBS)
+
+shared: libafv.so
+
 test/run_tests: $(TEST_SRC) test/test.h libafv.a afv.h .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ $(TEST_SRC) libafv.a $(LDLIBS)
 
 test: afv test/run_tests
 	./test/run_tests
 
-# The main job: a short simulation of the paper's protocol (cluster of 400
-# cells, relaxed, then active), into out/run/ (replaced on every make run).
-RUN_ARGS = --N 400 --P0 4.2 --v0 1 --steps 5000 --frame_every 100 \
-           --svg_every 1000 --checkpoint_every 1000
-
+# The main job: afv run with its defaults (the paper's protocol and
+# parameters, 400 cells, P0 4.8, v0 0.5, 10000 steps; afv run --help), into
+# out/run/ (replaced on every make run).  No key is overridden here, so
+# make run and afv run always agree.
 run: afv
 	rm -rf out/run && mkdir -p out
-	./afv run $(RUN_ARGS) --out out/run
+	./afv run --out out/run
 	@echo "snapshots:   out/run/snap_*.svg, out/run/final.svg"
 	@echo "observables: out/run/observables.csv (trajectory: out/run/trajectory.dat)"
+	@echo "next:        ./afv analyze out/run --lag 10  (writes out/run/analysis/)"
 
 # The benchmark (test/bench.c): one line per state and N, see its header.
 BENCH_STATES = random cluster
@@ -182,7 +201,45 @@ test/protocol_check: test/protocol_check.c libafv.a afv.h .build-flags
 protocol-check: test/protocol_check
 	./test/protocol_check $(PROTOCOL_ARGS)
 
+# Installation.  DESTDIR (for packagers) is prepended to every path;
+# PREFIX is what afv.pc records.
+PREFIX  ?= /usr/local
+DESTDIR ?=
+VERSION  = 0.1.0
+BINDIR   = $(DESTDIR)$(PREFIX)/bin
+LIBDIR   = $(DESTDIR)$(PREFIX)/lib
+INCDIR   = $(DESTDIR)$(PREFIX)/include
+PCDIR    = $(LIBDIR)/pkgconfig
+MANDIR   = $(DESTDIR)$(PREFIX)/share/man/man1
+
+# afv.pc: -lm always (the static library needs it, and pkg-config --libs
+# leaves Libs.private out unless --static); -fopenmp for an OpenMP build.
+# Rewritten whenever PREFIX or the flags change (FORCE, then cmp: as for
+# .build-flags), so it never records the prefix of an earlier install.
+afv.pc: FORCE
+	@printf '%s\n' 'prefix=$(PREFIX)' 'exec_prefix=$${prefix}' \
+	  'libdir=$${exec_prefix}/lib' 'includedir=$${prefix}/include' '' \
+	  'Name: afv' \
+	  'Description: Active Finite Voronoi model of epithelial and mesenchymal tissue' \
+	  'Version: $(VERSION)' \
+	  'Libs: -L$${libdir} -lafv $(LDLIBS)' \
+	  'Cflags: -I$${includedir}' > $@.tmp
+	@cmp -s $@.tmp $@ || mv $@.tmp $@; rm -f $@.tmp
+
+install: afv libafv.a libafv.so afv.pc doc/afv.1
+	mkdir -p $(BINDIR) $(LIBDIR) $(INCDIR) $(PCDIR) $(MANDIR)
+	cp afv $(BINDIR)/afv
+	cp libafv.a libafv.so $(LIBDIR)/
+	cp afv.h $(INCDIR)/afv.h
+	cp afv.pc $(PCDIR)/afv.pc
+	cp doc/afv.1 $(MANDIR)/afv.1
+
+uninstall:
+	rm -f $(BINDIR)/afv $(LIBDIR)/libafv.a $(LIBDIR)/libafv.so \
+	  $(INCDIR)/afv.h $(PCDIR)/afv.pc $(MANDIR)/afv.1
+
 clean:
-	rm -f *.o libafv.a afv test/run_tests test/bench test/protocol_check .build-flags
+	rm -f *.o libafv.a libafv.so afv.pc afv test/run_tests test/bench \
+	  test/protocol_check .build-flags
 	rm -f test/twins_fast test/twins_ref test/twins_fast.out test/twins_ref.out
 	rm -rf fuzz/build

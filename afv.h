@@ -410,7 +410,25 @@ typedef struct afv_group_work {
 
 /* A running simulation.  Zero-initialise, then afv_sim_init; free with
 ** afv_sim_free.  Invariant between calls: f and geom hold the forces and
-** the geometry at r, and geom.energy the energy there. */
+** the geometry at r, and geom.energy the energy there.
+**
+** What a caller may change between afv_sim_step calls (a quench, a
+** mixture switched on, ...); the next step then continues exactly as a
+** simulation started from that state with the new values would
+** (test/test_docs.c):
+**   - no call needed (afv_sim_step reads them afresh every step):
+**     dyn.v0, dyn.Dr, dyn.mu, dyn.max_move, dyn.seed, theta[], step (the
+**     noise of a step is drawn for (seed, cell, step)); dyn.dt too, but t
+**     is recomputed as step * dt, so keep your own clock across a change
+**     of dt; dyn.v0_i and dyn.Dr_i may be pointed at arrays of n values
+**     that the caller owns and keeps alive (or set to NULL: the scalar is
+**     then used), but not written through (they point into own[]);
+**   - then afv_sim_refresh (the forces f and the geometry are cached from
+**     the end of the last step): par (any field; per-cell arrays as for
+**     v0_i), box, r[].
+** Every other field is the library's: read n, step, t, r, theta, f, geom,
+** substeps, halvings, bad_cell, bad_disp, bad_time; never write the fields
+** marked private. */
 typedef struct afv_sim {
   int        n;        /* number of cells */
   long long  step;     /* steps taken since the start of the active run */
@@ -471,6 +489,12 @@ int  afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
 ** it even in dt / 2^AFV_MAX_HALVINGS (or in dt, with max_move = 0). */
 int  afv_sim_step(afv_sim *s);
 void afv_sim_free(afv_sim *s);
+/* Recomputes the geometry, energy and forces at r with par and box: call
+** it after changing any of them between steps (see afv_sim).  AFV_EINVAL
+** (nothing changed) if a value of par or dyn is out of range, else as
+** afv_compute (on an error, set valid values and call it again before the
+** next step). */
+int  afv_sim_refresh(afv_sim *s);
 /* Largest |F_i| over the cells (0 if n = 0). */
 double afv_sim_max_force(const afv_sim *s);
 

@@ -23,6 +23,11 @@
 #define EXIT_BAD_INPUT    2
 #define EXIT_UNSTABLE     3
 
+/* The text of a macro's value: AFV_STR(AFV_MAX_SUBSTEPS) is "64".  Help
+** texts quote the code's constants through it, so they cannot drift. */
+#define AFV_STR_(x) #x
+#define AFV_STR(x)  AFV_STR_(x)
+
 /* Longest run directory or file path the commands accept. */
 #define RUN_PATH_MAX 1024
 

@@ -133,7 +133,7 @@ void afv_move_cells(afv_sim *s, const int *list, int m, double h)
 ** dependent operations (Philox's ten rounds, then a log and a sine), too
 ** long for the processor to overlap with the next pair's within one loop
 ** iteration; in two loops each chain is half as long (the same bits,
-** faster: doc/perf-figures.md). */
+** faster: doc/performance.md). */
 #define NOISE_BLOCK 32
 
 static void rotate_block(afv_sim *s, int first, int m, unsigned long long seed,
@@ -415,6 +415,15 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
     s->geom.bad_j = bad_j;
   }
   return st;
+}
+
+int afv_sim_refresh(afv_sim *s)
+{
+  if (afv_params_check(&s->par, s->n) != AFV_OK
+      || dyn_check(&s->dyn, s->n) != AFV_OK)
+    return AFV_EINVAL;
+  /* the one cache of a step that depends on par, box and r: f and geom */
+  return afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
 }
 
 double afv_sim_max_force(const afv_sim *s)

@@ -28,7 +28,7 @@
 /* ---- the angle of a vector ---------------------------------------------- */
 /* The angle of every arc is an atan2.  What it costs is its latency more
 ** than its instructions: the cell's area, hence every term of its gradient,
-** waits for it (doc/perf-figures.md).  So afv_angle is written for a short
+** waits for it (doc/performance.md).  So afv_angle is written for a short
 ** dependency chain, one division and no branch on the quadrant:
 **   1. lo = min(|x|, |y|), hi = max(|x|, |y|), and the angle is
 **      off + sgn atan(lo / hi), (off, sgn) from a table by which of |x|,
@@ -96,7 +96,7 @@ static inline double afv_angle_inline(double y, double x)
 /* Every step needs cos and sin of every cell's angle (the polarity) and of
 ** one Box-Muller angle per two cells, a sizeable part of a step with the
 ** C library's sincos; afv_sincos takes about half its instructions (doc/
-** perf-figures.md), in plain arithmetic without branches:
+** performance.md), in plain arithmetic without branches:
 **   1. reduction: x = k pi/2 + r with k the integer nearest x (2/pi) (to
 **      within 2^-32), so |r| <= pi/4 (1 + 2^-30);  r = x - k P1 - k P2 -
 **      k P3, where P1 + P2 + P3 = pi/2 to about 2^-150 (fdlibm's split:

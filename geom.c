@@ -31,7 +31,7 @@
 ** Cost: O(k^2) per cell for k neighbours (k is about 6 in a tissue), so
 ** O(N) for the tissue.  Dense input (k > PRUNE_FROM = 16): the nearest
 ** neighbours only, as Voro++ (see "pruning"), O(k log k) per cell, the
-** same bits (what it saves: doc/perf-figures.md).
+** same bits (what it saves: doc/performance.md).
 ** afv_geometry_prepare is here, not in neighbours.c: after the lists it
 ** reserves the clipping's work space, sized by this file's segment type.
 ** Different cells may be shaped on OpenMP threads at once, with the same

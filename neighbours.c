@@ -452,7 +452,7 @@ static int find_coincident(afv_geom *g, const int *count, int n)
 ** A few cells that have moved farther do not force a rebuild (MOVERS,
 ** below).  SKIN = 0.3 l: (2.3/2)^2 = 1.3x the pairs of a 2l search, and
 ** the fewest instructions per step of the skins tried in the two
-** benchmark states (doc/perf-figures.md). */
+** benchmark states (doc/performance.md). */
 #define SKIN 0.3
 
 static int same_box(const afv_box *a, const afv_box *b)
@@ -567,7 +567,7 @@ int afv_cells_around(const afv_geom *g, double x, double y, double R,
 ** again at every call, as they go on moving: once the pair tests since
 ** the rebuild reach CHECKS_PER_CELL per cell, about the cost of a rebuild
 ** (a pair test against a rebuild's work per cell, counted:
-** doc/perf-figures.md), the candidates are rebuilt (the ski-rental rule:
+** doc/performance.md), the candidates are rebuilt (the ski-rental rule:
 ** never more than twice the cost of the better choice made in
 ** hindsight). */
 #define MOVERS_MAX(n) ((n) / 8 + 16)

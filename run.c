@@ -59,39 +59,46 @@ typedef struct run_key {
 #define RK(name, kind, field, def, unit, help) \
   {name, kind, offsetof(run_cfg, field), def, unit, help}
 static const run_key run_keys[] = {
-  RK("N", K_INT, N, "400", "cells", "number of cells (a cells file sets it)"),
+  RK("N", K_INT, N, "400", "cells", "number of cells (a cells file sets it); must be in 1 .. "
+     "100000000"),
   RK("phi", K_REAL, phi, "0.5", "-", "packing fraction N pi l^2/L^2: sets "
-     "the box side L (open: the side of the random start square)"),
+     "the box side L (open: the side of the random start square); must be "
+     "in (0, 1], and a periodic L must be >= 4 l"),
   RK("box", K_WORD, box, "periodic", "periodic|open", "boundary: periodic "
      "L x L box (minimum image) or open space"),
   RK("l", K_REAL, l, "1", "length", "maximal cell radius l (the unit of "
-     "length)"),
-  RK("KA", K_REAL, KA, "1", "energy/l^4", "area modulus"),
-  RK("KP", K_REAL, KP, "1", "energy/l^2", "perimeter modulus"),
-  RK("A0", K_REAL, A0, "3.1415926535897931", "l^2", "preferred area (pi)"),
-  RK("P0", K_REAL, P0, "4.8", "l", "preferred perimeter (main knob)"),
+     "length); must be > 0"),
+  RK("KA", K_REAL, KA, "1", "energy/l^4", "area modulus; must be >= 0"),
+  RK("KP", K_REAL, KP, "1", "energy/l^2", "perimeter modulus; must be >= 0"),
+  RK("A0", K_REAL, A0, "3.1415926535897931", "l^2", "preferred area (pi l^2); any finite "
+     "number"),
+  RK("P0", K_REAL, P0, "4.8", "l", "preferred perimeter (main knob); "
+     "any finite number"),
   RK("Lambda", K_REAL, Lambda, "0.2", "energy/l", "extra tension of the "
-     "free (arc) boundary"),
+     "free (arc) boundary; any finite number"),
   RK("cap", K_REAL, cap, "0", "l", "contact cap delta: near detachment "
      "(4l^2-d^2 < delta^2) the force uses sqrt(4l^2-d^2) >= delta, so it "
      "stays bounded but is NOT -grad E (the peers' regularisation); 0 = "
-     "exact -grad E"),
-  RK("mu", K_REAL, mu, "1", "l/(time force)", "mobility"),
+     "exact -grad E; must be >= 0"),
+  RK("mu", K_REAL, mu, "1", "l/(time force)", "mobility; must be > 0"),
   RK("v0", K_REAL, v0, "0.5", "l/time", "self-propulsion speed (main "
-     "knob)"),
+     "knob); any finite number (a step with |v0| dt > "
+     AFV_STR(AFV_MAX_STEP_DISP) " l is refused)"),
   RK("Dr", K_REAL, Dr, "0.1", "1/time", "rotational diffusion of the "
-     "polarity"),
-  RK("dt", K_REAL, dt, "0.01", "time", "time step (Euler-Maruyama)"),
+     "polarity; must be >= 0"),
+  RK("dt", K_REAL, dt, "0.01", "time", "time step (Euler-Maruyama); must be "
+     "> 0"),
   RK("max_move", K_REAL, max_move, "0.05", "l", "sub-step threshold: a "
      "cell that the force would move farther in a step moves in pieces of "
-     "at most this length (at most 64), which tames the exact force's "
-     "divergence at contact breaking; a step that would still move a cell "
-     "more than l/2 is taken in halves (down to dt/256); 0 = plain Euler "
-     "steps, and such a step is refused"),
+     "at most this length (at most " AFV_STR(AFV_MAX_SUBSTEPS) " pieces), "
+     "which tames the exact force's divergence at contact breaking; a step "
+     "that would still move a cell more than " AFV_STR(AFV_MAX_STEP_DISP)
+     " l is taken in halves (down to dt/2^" AFV_STR(AFV_MAX_HALVINGS) "); "
+     "0 = plain Euler steps, and such a step is refused; must be >= 0"),
   RK("steps", K_INT, steps, "10000", "steps", "active steps of the whole "
-     "run (main knob)"),
-  RK("seed", K_SEED, seed, "1", "-", "random seed (0 .. 2^64-1): noise, "
-     "random start, initial angles"),
+     "run (main knob); must be >= 0"),
+  RK("seed", K_SEED, seed, "1", "-", "random seed: noise, random start, "
+     "initial angles; must be in 0 .. 18446744073709551615 (2^64-1)"),
   RK("init", K_WORD, init, "cluster", "cluster|lattice|random|file",
      "start: cluster = the authors' protocol, the N centres uniform at "
      "random (from seed) in a square of side 0.3 L centred in the box, "
@@ -101,22 +108,23 @@ static const run_key run_keys[] = {
      "(for tests and comparisons); random = uniform over the whole box; "
      "file = the x y of the cells file"),
   RK("spacing", K_REAL, spacing, "1.8", "l", "lattice spacing of the "
-     "lattice start"),
+     "lattice start; must be > 0"),
   RK("relax_tol", K_REAL, relax_tol, "1e-6", "force", "relaxation at v0 = "
      "0 (overdamped steps of dt) stops when max_i |F_i| <= relax_tol, or "
      "at a kink of E (every cell's mean force over 1000 steps <= 1e-3, "
-     "mean energy change <= 1e-4 of sum |e_i|, max |F| <= 5)"),
+     "mean energy change <= 1e-4 of sum |e_i|, max |F| <= 5); must be > 0"),
   RK("relax_max_steps", K_INT, relax_max_steps, "100000", "steps",
      "relaxation step limit (0: no relaxation; reaching it is reported, "
-     "and the run goes on)"),
+     "and the run goes on); must be >= 0"),
   RK("sample_every", K_INT, sample_every, "100", "steps", "observables.csv "
-     "row every so many steps (0: none)"),
+     "row every so many steps (0: none); must be >= 0"),
   RK("frame_every", K_INT, frame_every, "1000", "steps", "trajectory frame "
-     "every so many steps (0: none)"),
+     "every so many steps (0: none); must be >= 0"),
   RK("checkpoint_every", K_INT, checkpoint_every, "10000", "steps",
-     "checkpoint every so many steps (and always at the start and end)"),
+     "checkpoint every so many steps (and always at the start and end); "
+     "must be >= 0"),
   RK("svg_every", K_INT, svg_every, "5000", "steps", "SVG snapshot every "
-     "so many steps (0: only final.svg)"),
+     "so many steps (0: only final.svg); must be >= 0"),
   RK("xyz", K_BOOL, xyz, "0", "0|1", "also write trajectory.xyz (extended "
      "XYZ, for OVITO)"),
   RK("quiet", K_BOOL, quiet, "0", "0|1", "no progress or summary on stderr "

@@ -68,7 +68,7 @@
 ** their whole step already.  One piece length for all the fast cells of
 ** the tissue would make every fast cell follow the finest pieces of any,
 ** and every piece recompute every region: the cost per cell would grow
-** with N (doc/perf-figures.md). */
+** with N (doc/performance.md). */
 
 /* Lists the fast cells (force move over dt above `split`; move_len holds
 ** its square, from euler_all) in increasing order; returns how many. */

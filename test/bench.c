@@ -32,7 +32,7 @@
 **
 ** Two comparisons (make bench-compare) time two things in turn within one
 ** process, because separate runs of a virtual machine's wall clock compare
-** poorly (README, Performance):
+** poorly (doc/performance.md):
 **   test/bench --vs-400 random|cluster N [COPIES]
 **     the per-cell cost of N over that of 400 at the same age of the two
 **     states (compare_sizes); prints

@@ -63,6 +63,7 @@ int main(void)
   suite_sweep();
   suite_geometry();
   suite_protocol();
+  suite_docs();
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;
 }

@@ -91,5 +91,6 @@ void suite_reference(void);
 void suite_sweep(void);
 void suite_geometry(void);
 void suite_protocol(void);
+void suite_docs(void);
 
 #endif

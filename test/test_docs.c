@@ -1,0 +1,624 @@
+/*
+** test_docs.c -- what the documentation promises, checked against the code:
+**
+**   - every key of `afv run --help` states its range, and the program
+**     accepts the values inside it and refuses those outside (probed with
+**     tiny runs of ./afv); the defaults it prints are the ones a run uses
+**     and the library's (afv_params_default, afv_dyn_default), except v0;
+**     the constants it quotes are the code's (AFV_MAX_SUBSTEPS, ...);
+**   - the defaults printed by eval's and analyze's --help agree with them;
+**   - the man page doc/afv.1 names every command and every option;
+**   - the quench of the README and afv.h: v0 (or per-cell v0) changed
+**     between afv_sim_step calls continues as a run started with the new
+**     value from that state, and a model parameter changed between steps
+**     does so after afv_sim_refresh.
+**
+** Run from the repository root (make test), like test_cli.c.
+*/
+#define _POSIX_C_SOURCE 200809L
+#include "afv.h"
+#include "test.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#define AFV_PROGRAM "./afv"
+#define MAN_PAGE    "doc/afv.1"
+#define TEXT_MAX    65536
+#define MAX_KEYS    64
+
+static char tmp[64];        /* the suite's temporary directory */
+static char err[TEXT_MAX];  /* stderr of the last afv_status */
+
+/* ---- running the program ------------------------------------------------ */
+/* Reads the whole file at path into buf (empty if unreadable). */
+static void read_text(const char *path, char *buf, size_t len)
+{
+  FILE *fp = fopen(path, "r");
+  size_t k = 0;
+  if (fp) {
+    k = fread(buf, 1, len - 1, fp);
+    fclose(fp);
+  }
+  buf[k] = 0;
+}
+
+/* stdout of ./afv ARGS into buf; returns the exit status (-1 if none). */
+static int afv_output(const char *args, char *buf, size_t len)
+{
+  char cmd[1024], path[128];
+  int st;
+  snprintf(path, sizeof path, "%s/stdout", tmp);
+  snprintf(cmd, sizeof cmd, "%s %s >%s 2>/dev/null", AFV_PROGRAM, args, path);
+  st = system(cmd);
+  read_text(path, buf, len);
+  return st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* Exit status of ./afv ARGS, its stderr in err (stdout discarded). */
+static int afv_status(const char *args)
+{
+  char cmd[2048], path[128];
+  int st;
+  snprintf(path, sizeof path, "%s/stderr", tmp);
+  snprintf(cmd, sizeof cmd, "%s %s >/dev/null 2>%s", AFV_PROGRAM, args, path);
+  st = system(cmd);
+  read_text(path, err, sizeof err);
+  return st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* ---- afv run --help, parsed --------------------------------------------- */
+/* One key as --help prints it: "  NAME DEFAULT [UNIT]", then its meaning
+** on lines indented by six spaces (joined here with single spaces). */
+typedef struct help_key {
+  char name[32], def[64], unit[64], text[1024];
+} help_key;
+
+static int parse_run_help(help_key *keys, int max)
+{
+  static char help[TEXT_MAX];
+  char *line, *save = NULL;
+  int n = 0;
+  afv_output("run --help", help, sizeof help);
+  for (line = strtok_r(help, "\n", &save); line;
+       line = strtok_r(NULL, "\n", &save)) {
+    if (strncmp(line, "      ", 6) == 0 && n > 0) {   /* a meaning line */
+      help_key *k = &keys[n - 1];
+      size_t m = strlen(k->text);
+      snprintf(k->text + m, sizeof k->text - m, "%s%s", m ? " " : "",
+               line + 6);
+    } else if (strncmp(line, "  ", 2) == 0 && line[2] != ' ' && n < max
+               && strchr(line, '[')) {                  /* a key line */
+      help_key *k = &keys[n];
+      memset(k, 0, sizeof *k);
+      if (sscanf(line, " %31s %63s [%63[^]]]", k->name, k->def, k->unit) == 3)
+        n++;
+    }
+  }
+  return n;
+}
+
+static const help_key *key_named(const help_key *keys, int n, const char *name)
+{
+  int k;
+  for (k = 0; k < n; k++)
+    if (strcmp(keys[k].name, name) == 0) return &keys[k];
+  return NULL;
+}
+
+/* ---- ranges as the help states them -------------------------------------- */
+/* "any finite number", or "must be" followed by "> A", ">= A",
+** "in (A, B]" (either bracket) or "in A .. B" (integers, inclusive). */
+typedef struct range {
+  int any;                 /* any finite number */
+  int integer;             /* an integer range (A .. B) */
+  char lo[32], hi[32];     /* the bounds as written ("" = none) */
+  int lo_open, hi_open;    /* 1: the bound itself is outside */
+} range;
+
+static int parse_range(const char *text, range *rg)
+{
+  const char *p = strstr(text, "must be ");
+  memset(rg, 0, sizeof *rg);
+  if (strstr(text, "any finite number")) return rg->any = 1;
+  if (!p) return 0;
+  p += 8;
+  if (strncmp(p, ">= ", 3) == 0) return sscanf(p + 3, "%31[^ ;,)]", rg->lo);
+  if (strncmp(p, "> ", 2) == 0) {
+    rg->lo_open = 1;
+    return sscanf(p + 2, "%31[^ ;,)]", rg->lo);
+  }
+  if (strncmp(p, "in (", 4) == 0 || strncmp(p, "in [", 4) == 0) {
+    char close = 0;
+    rg->lo_open = p[3] == '(';
+    if (sscanf(p + 4, "%31[^,], %31[^])]%c", rg->lo, rg->hi, &close) != 3)
+      return 0;
+    rg->hi_open = close == ')';
+    return 1;
+  }
+  if (strncmp(p, "in ", 3) == 0) {
+    rg->integer = 1;
+    return sscanf(p + 3, "%31s .. %31[0-9]", rg->lo, rg->hi) == 2;
+  }
+  return 0;
+}
+
+/* The decimal string s plus one (s non-negative) or minus one, into out. */
+static void integer_step(const char *s, int up, char *out, size_t len)
+{
+  if (up) {
+    unsigned long long v = strtoull(s, NULL, 10);
+    if (v == ~0ULL) snprintf(out, len, "18446744073709551616");
+    else snprintf(out, len, "%llu", v + 1);
+  } else {
+    snprintf(out, len, "%lld", strtoll(s, NULL, 10) - 1);
+  }
+}
+
+/* A real just beyond the bound b, downwards (up = 0) or upwards. */
+static void real_step(const char *b, int up, char *out, size_t len)
+{
+  double v = strtod(b, NULL), d = fabs(v) > 1 ? 1e-3 * fabs(v) : 1e-3;
+  snprintf(out, len, "%.17g", up ? v + d : v - d);
+}
+
+/* The keys of a probe: a tiny open-space run that does no step.  (Each
+** probe's key replaces its entry here, or is added.) */
+static const char *const probe_base[][2] = {
+  {"N", "12"}, {"box", "open"}, {"steps", "0"}, {"relax_max_steps", "0"},
+  {"sample_every", "0"}, {"frame_every", "0"}, {"svg_every", "0"},
+  {"checkpoint_every", "0"}, {"quiet", "1"}};
+#define N_PROBE_BASE ((int)(sizeof probe_base / sizeof probe_base[0]))
+
+/* Runs afv run with KEY VALUE on top of probe_base; returns the status. */
+static int probe(const char *key, const char *value)
+{
+  static int count;
+  char args[1536];
+  size_t m;
+  int k, replaced = 0;
+  m = (size_t)snprintf(args, sizeof args, "run --out %s/probe%d", tmp,
+                       count++);
+  for (k = 0; k < N_PROBE_BASE; k++) {
+    const char *v = probe_base[k][1];
+    if (strcmp(probe_base[k][0], key) == 0) v = value, replaced = 1;
+    m += (size_t)snprintf(args + m, sizeof args - m, " --%s %s",
+                          probe_base[k][0], v);
+  }
+  if (!replaced)
+    m += (size_t)snprintf(args + m, sizeof args - m, " --%s %s", key, value);
+  if (strcmp(key, "init") == 0 && strcmp(value, "file") == 0)
+    snprintf(args + m, sizeof args - m, " --cells %s/cells.txt", tmp);
+  return afv_status(args);
+}
+
+static void expect_accepted(const char *key, const char *value)
+{
+  int st = probe(key, value);
+  CHECK(st == 0, "afv run --%s %s: the help allows it, the program exits %d: "
+        "%.200s", key, value, st, err);
+}
+
+static void expect_refused(const char *key, const char *value)
+{
+  int st = probe(key, value);
+  CHECK(st == 2 && strstr(err, key) != NULL, "afv run --%s %s: outside the "
+        "help's range, but the program exits %d: %.200s", key, value, st,
+        err);
+}
+
+/* The bounds of rg probed on both sides. */
+static void probe_range(const help_key *K, const range *rg)
+{
+  char v[64];
+  if (rg->any) {
+    expect_accepted(K->name, "-1");
+    expect_accepted(K->name, "0.5");
+    expect_refused(K->name, "nan");
+    return;
+  }
+  if (rg->lo[0]) {
+    if (rg->integer) integer_step(rg->lo, 0, v, sizeof v);
+    else real_step(rg->lo, !rg->lo_open ? 0 : 1, v, sizeof v);
+    if (rg->lo_open) {
+      expect_refused(K->name, rg->lo);
+      expect_accepted(K->name, v);
+    } else {
+      expect_accepted(K->name, rg->lo);
+      if (!rg->integer && strcmp(K->unit, "steps") == 0)
+        snprintf(v, sizeof v, "%lld", strtoll(rg->lo, NULL, 10) - 1);
+      expect_refused(K->name, v);
+    }
+  }
+  if (rg->hi[0]) {
+    if (rg->integer) integer_step(rg->hi, 1, v, sizeof v);
+    else real_step(rg->hi, 1, v, sizeof v);
+    /* N = 100000000 would be a real run of that size: only the refusal */
+    if (!rg->hi_open && strtod(rg->hi, NULL) <= 1e6)
+      expect_accepted(K->name, rg->hi);
+    expect_refused(K->name, rg->hi_open ? rg->hi : v);
+  }
+}
+
+/* The choices of a key whose unit lists them (a|b|c): each accepted, a
+** word outside them refused. */
+static void probe_choices(const help_key *K)
+{
+  char choices[64], *w, *save = NULL;
+  snprintf(choices, sizeof choices, "%s", K->unit);
+  for (w = strtok_r(choices, "|", &save); w; w = strtok_r(NULL, "|", &save))
+    expect_accepted(K->name, w);
+  expect_refused(K->name, "bogus");
+}
+
+static void write_cells_file(void)
+{
+  char path[128];
+  FILE *fp;
+  int i;
+  snprintf(path, sizeof path, "%s/cells.txt", tmp);
+  if (!(fp = fopen(path, "w"))) return;
+  fprintf(fp, "# x y\n");
+  for (i = 0; i < 12; i++) fprintf(fp, "%d %d\n", 2 * (i % 4), 2 * (i / 4));
+  fclose(fp);
+}
+
+/* Every key's help states its range, and the program keeps to it. */
+static void test_run_help_ranges_true(void)
+{
+  help_key keys[MAX_KEYS];
+  int n = parse_run_help(keys, MAX_KEYS), k;
+  CHECK(n >= 25, "afv run --help lists %d keys", n);
+  write_cells_file();
+  for (k = 0; k < n; k++) {
+    const help_key *K = &keys[k];
+    range rg;
+    if (strchr(K->unit, '|')) probe_choices(K);
+    else if (strcmp(K->unit, "file") == 0) continue;   /* a path */
+    else if (!parse_range(K->text, &rg))
+      CHECK(0, "afv run --help, key %s: no range stated (\"must be ...\" or "
+            "\"any finite number\"): '%s'", K->name, K->text);
+    else probe_range(K, &rg);
+  }
+}
+
+/* Numbers of two help texts agree (both parsed by strtod). */
+static void check_same_number(const char *what, const char *a, double b)
+{
+  char *end;
+  double v = strtod(a, &end);
+  CHECK(end != a && v == b, "%s: help says %s, the code %.17g", what, a, b);
+}
+
+/* The defaults --help prints are what a run uses and, for the model and
+** dynamics keys, the library's own defaults; the constants it quotes are
+** the code's. */
+static void test_run_help_defaults_true(void)
+{
+  static char params[TEXT_MAX];
+  static const char *const lib_keys[] = {"l", "KA", "KP", "A0", "P0",
+                                         "Lambda", "cap", "mu", "Dr", "dt",
+                                         "max_move", "seed"};
+  help_key keys[MAX_KEYS];
+  int n = parse_run_help(keys, MAX_KEYS), k, most = -1;
+  afv_params p;
+  afv_dyn d;
+  const help_key *K;
+  char args[256], path[128], *at;
+  double lib[12], disp = -1;
+  afv_params_default(&p);
+  afv_dyn_default(&d);
+  lib[0] = p.l; lib[1] = p.KA; lib[2] = p.KP; lib[3] = p.A0; lib[4] = p.P0;
+  lib[5] = p.Lambda; lib[6] = p.cap; lib[7] = d.mu; lib[8] = d.Dr;
+  lib[9] = d.dt; lib[10] = d.max_move; lib[11] = (double)d.seed;
+  for (k = 0; k < 12; k++) {
+    CHECK((K = key_named(keys, n, lib_keys[k])) != NULL, "no key %s",
+          lib_keys[k]);
+    if (K) check_same_number(lib_keys[k], K->def, lib[k]);
+  }
+  /* v0: the library's default is 0 (no activity); afv run's is a state of
+  ** the paper's diagram (README.md, "Using the library").  Nothing else
+  ** may differ. */
+  snprintf(args, sizeof args, "run --steps 0 --relax_max_steps 0 --quiet "
+           "--out %s/defaults", tmp);
+  CHECK(afv_status(args) == 0, "default run failed: %.200s", err);
+  snprintf(path, sizeof path, "%s/defaults/params.txt", tmp);
+  read_text(path, params, sizeof params);
+  for (k = 0; k < n; k++) {
+    char pat[48], value[1100];
+    K = &keys[k];
+    if (!strcmp(K->name, "steps") || !strcmp(K->name, "relax_max_steps")
+        || !strcmp(K->name, "quiet"))
+      continue;                               /* set by the run above */
+    snprintf(pat, sizeof pat, "\n%s ", K->name);
+    at = strstr(params, pat);
+    CHECK(at && sscanf(at + strlen(pat), " %1099s", value) == 1,
+          "params.txt has no %s", K->name);
+    if (!at) continue;
+    if (strtod(K->def, NULL) != 0 || strchr("0123456789.-", K->def[0]))
+      check_same_number(K->name, K->def, strtod(value, NULL));
+    else
+      CHECK(strcmp(K->def, value) == 0, "%s: help default %s, a run uses %s",
+            K->name, K->def, value);
+  }
+  /* the constants quoted by max_move and v0 */
+  K = key_named(keys, n, "max_move");
+  for (at = K ? strstr(K->text, "at most ") : NULL; at;
+       at = strstr(at + 1, "at most "))
+    if (sscanf(at, "at most %d", &most) == 1) break;   /* "at most N" */
+  CHECK(at && most == AFV_MAX_SUBSTEPS, "max_move: help says at most %d "
+        "pieces, the code allows AFV_MAX_SUBSTEPS = %d", most,
+        AFV_MAX_SUBSTEPS);
+  K = key_named(keys, n, "v0");
+  at = K ? strstr(K->text, "dt > ") : NULL;
+  CHECK(at && sscanf(at, "dt > %lf", &disp) == 1
+        && disp == AFV_MAX_STEP_DISP, "v0: help says a step refuses v0 dt > "
+        "%g l, the code AFV_MAX_STEP_DISP = %g", disp, AFV_MAX_STEP_DISP);
+}
+
+/* The number after `after` in the help of option opt (its line and those
+** continuing it), or NaN. */
+static double option_number(const char *help, const char *opt,
+                            const char *after)
+{
+  char pat[64];
+  const char *at, *end;
+  snprintf(pat, sizeof pat, "  %s ", opt);
+  if (!(at = strstr(help, pat))) return NAN;
+  end = strstr(at + 2, "\n  --");        /* the next option */
+  at = strstr(at, after);
+  if (!at || (end && at > end)) return NAN;
+  return strtod(at + strlen(after), NULL);
+}
+
+/* eval's model options and analyze's fall-backs print the same defaults
+** as the library and afv run. */
+static void test_other_help_defaults_true(void)
+{
+  static char help[TEXT_MAX];
+  static const char *const opts[] = {"--l", "--A0", "--P0", "--KA", "--KP",
+                                     "--Lambda"};
+  help_key keys[MAX_KEYS];
+  int n = parse_run_help(keys, MAX_KEYS), k;
+  afv_params p;
+  double want[6];
+  const char *run_keys[3] = {"l", "v0", "Dr"};
+  afv_params_default(&p);
+  want[0] = p.l; want[1] = p.A0; want[2] = p.P0; want[3] = p.KA;
+  want[4] = p.KP; want[5] = p.Lambda;
+  afv_output("eval --help", help, sizeof help);
+  for (k = 0; k < 6; k++) {
+    double v = option_number(help, opts[k], "(default ");
+    /* A0 is printed to 16 digits: pi to within its last digit */
+    CHECK(test_close(v, want[k], 1e-15, 0), "afv eval --help: %s default "
+          "%.17g, afv_params_default %.17g", opts[k], v, want[k]);
+  }
+  afv_output("analyze --help", help, sizeof help);
+  for (k = 0; k < 3; k++) {
+    char opt[8];
+    const help_key *K = key_named(keys, n, run_keys[k]);
+    double v;
+    snprintf(opt, sizeof opt, "--%s", run_keys[k]);
+    v = option_number(help, opt, "else ");
+    CHECK(K && v == strtod(K->def, NULL), "afv analyze --help: %s falls "
+          "back to %g, afv run's default is %s", opt, v, K ? K->def : "?");
+  }
+}
+
+/* 1 for a placeholder such as KEY in "--KEY VALUE" (no lower case). */
+static int is_placeholder(const char *opt)
+{
+  for (; *opt; opt++)
+    if (*opt >= 'a' && *opt <= 'z') return 0;
+  return 1;
+}
+
+/* --opt as man(7) writes it: every '-' as "\-". */
+static void man_option(const char *opt, char *out, size_t len)
+{
+  size_t m = (size_t)snprintf(out, len, "\\-\\-");
+  for (; *opt && m + 3 < len; opt++) {
+    if (*opt == '-') out[m++] = '\\';
+    out[m++] = *opt;
+  }
+  out[m] = 0;
+}
+
+/* The man page names every command of `afv --help` and every option of
+** each command's --help (and every run key). */
+static void test_man_page_covers_options(void)
+{
+  static char man[TEXT_MAX * 2], top[TEXT_MAX], help[TEXT_MAX];
+  char *line, *save = NULL;
+  int commands = 0;
+  read_text(MAN_PAGE, man, sizeof man);
+  CHECK(man[0], "%s: missing", MAN_PAGE);
+  afv_output("--help", top, sizeof top);
+  line = strstr(top, "commands:");
+  for (line = line ? strtok_r(line, "\n", &save) : NULL; line;
+       line = strtok_r(NULL, "\n", &save)) {
+    char cmd[32], args[64], pat[80];
+    const char *p;
+    if (strncmp(line, "  ", 2) != 0) {
+      if (commands > 0) break;                  /* past the command list */
+      continue;
+    }
+    if (sscanf(line, " %31s", cmd) != 1) continue;
+    commands++;
+    snprintf(pat, sizeof pat, ".SS %s", cmd);
+    CHECK(strstr(man, pat) != NULL, "%s: no section '.SS %s'", MAN_PAGE, cmd);
+    snprintf(args, sizeof args, "%s --help", cmd);
+    afv_output(args, help, sizeof help);
+    for (p = strstr(help, "--"); p; p = strstr(p + 2, "--")) {
+      char opt[48], manopt[128];
+      if (sscanf(p + 2, "%47[A-Za-z0-9_-]", opt) != 1 || !strcmp(opt, "help")
+          || is_placeholder(opt))
+        continue;
+      man_option(opt, manopt, sizeof manopt);
+      CHECK(strstr(man, manopt) != NULL, "%s: afv %s --%s is not in it",
+            MAN_PAGE, cmd, opt);
+    }
+  }
+  CHECK(commands >= 6, "afv --help lists %d commands", commands);
+  {
+    help_key keys[MAX_KEYS];
+    int n = parse_run_help(keys, MAX_KEYS), k;
+    for (k = 0; k < n; k++) {
+      char pat[128];
+      man_option(keys[k].name, pat, sizeof pat);
+      CHECK(strstr(man, pat) != NULL, "%s: run key %s missing", MAN_PAGE,
+            keys[k].name);
+    }
+  }
+}
+
+/* ---- quench: parameters changed between steps ------------------------- */
+/* A jittered periodic 10 x 10 triangular tissue with random polarities,
+** P0 4.8, v0 0.3, initialised into s and stepped k steps; p and d get
+** its parameters.  (Contacts break and sub-steps occur once v0 is large.) */
+#define QN 100
+static int steps(afv_sim *s, int k)
+{
+  int st = AFV_OK;
+  while (k-- > 0 && st == AFV_OK) st = afv_sim_step(s);
+  return st;
+}
+
+static void quench_start(afv_sim *s, afv_params *p, afv_dyn *d, int k)
+{
+  double r[2 * QN], th[QN];
+  afv_box b = test_tri_lattice(10, 10, 1.75, 0.5, 0.5, r);
+  int i;
+  test_rng_seed(23);
+  for (i = 0; i < 2 * QN; i++) r[i] += 0.2 * (test_rng_uniform() - 0.5);
+  afv_init_angles(QN, 9, th);
+  afv_params_default(p);
+  afv_dyn_default(d);
+  d->v0 = 0.3;
+  memset(s, 0, sizeof *s);
+  CHECK(afv_sim_init(s, QN, r, th, p, &b, d) == AFV_OK, "init");
+  CHECK(steps(s, k) == AFV_OK, "%d steps at v0 0.3", k);
+}
+
+/* A fresh simulation of the state of s (positions, angles, step count)
+** with parameters p and d. */
+static int restart_from(afv_sim *fresh, const afv_sim *s, const afv_params *p,
+                        const afv_dyn *d)
+{
+  int st = afv_sim_init(fresh, s->n, s->r, s->theta, p, &s->box, d);
+  fresh->step = s->step;     /* the noise is drawn per (cell, step) */
+  fresh->t = s->t;
+  return st;
+}
+
+static int same_state(const afv_sim *a, const afv_sim *b)
+{
+  size_t two = 2 * (size_t)a->n * sizeof(double);
+  return a->n == b->n && a->step == b->step
+         && memcmp(a->r, b->r, two) == 0 && memcmp(a->f, b->f, two) == 0
+         && memcmp(a->theta, b->theta, two / 2) == 0;
+}
+
+/* v0 changed between steps: the next steps are those of a run started
+** from that state with the new v0 (bit for bit), and not those of the
+** old v0 (so a v0 cached anywhere would be caught). */
+static void test_quench_v0_between_steps(void)
+{
+  afv_params p;
+  afv_dyn d, hot;
+  afv_sim s, fresh, old;
+  long long before;
+  quench_start(&s, &p, &d, 30);
+  memset(&fresh, 0, sizeof fresh);
+  memset(&old, 0, sizeof old);
+  hot = d;
+  hot.v0 = 2.5;
+  CHECK(restart_from(&fresh, &s, &p, &hot) == AFV_OK, "fresh start");
+  CHECK(restart_from(&old, &s, &p, &d) == AFV_OK, "old start");
+  before = s.substeps;
+  s.dyn.v0 = 2.5;                              /* the quench */
+  CHECK(steps(&s, 60) == AFV_OK && steps(&fresh, 60) == AFV_OK
+        && steps(&old, 60) == AFV_OK, "60 steps after the quench");
+  CHECK(same_state(&s, &fresh), "quenched run differs from a fresh run at "
+        "the new v0");
+  CHECK(!same_state(&s, &old), "the quench changed nothing");
+  CHECK(s.substeps - before == fresh.substeps && fresh.substeps > 0,
+        "extra pieces after the quench: %lld quenched, %lld fresh (some are "
+        "needed to test the pieces)", s.substeps - before, fresh.substeps);
+  afv_sim_free(&s);
+  afv_sim_free(&fresh);
+  afv_sim_free(&old);
+}
+
+/* Per-cell v0 changed between steps through an array the caller owns. */
+static void test_quench_per_cell_v0(void)
+{
+  double v0[QN];
+  afv_params p;
+  afv_dyn d, hot;
+  afv_sim s, fresh;
+  int i;
+  quench_start(&s, &p, &d, 20);
+  memset(&fresh, 0, sizeof fresh);
+  for (i = 0; i < QN; i++) v0[i] = i % 2 ? 2.0 : 0.1;  /* two cell types */
+  hot = d;
+  hot.v0_i = v0;
+  CHECK(restart_from(&fresh, &s, &p, &hot) == AFV_OK, "fresh start");
+  s.dyn.v0_i = v0;                     /* caller-owned, alive while used */
+  CHECK(steps(&s, 40) == AFV_OK && steps(&fresh, 40) == AFV_OK, "40 steps");
+  CHECK(same_state(&s, &fresh), "per-cell quench differs from a fresh run");
+  afv_sim_free(&s);
+  afv_sim_free(&fresh);
+}
+
+/* A model parameter (P0) changed between steps: the forces of the last
+** step are stale until afv_sim_refresh; after it the run continues as a
+** fresh one at the new P0. */
+static void test_parameter_change_needs_refresh(void)
+{
+  afv_params p, soft;
+  afv_dyn d;
+  afv_sim s, fresh;
+  quench_start(&s, &p, &d, 20);
+  memset(&fresh, 0, sizeof fresh);
+  soft = p;
+  soft.P0 = 7.0;
+  CHECK(restart_from(&fresh, &s, &soft, &d) == AFV_OK, "fresh start");
+  s.par.P0 = 7.0;
+  CHECK(memcmp(s.f, fresh.f, 2 * QN * sizeof(double)) != 0,
+        "forces at P0 4.8 and 7 are the same: the test cannot see a stale "
+        "force");
+  CHECK(afv_sim_refresh(&s) == AFV_OK, "afv_sim_refresh");
+  CHECK(s.geom.energy == fresh.geom.energy, "energy after refresh %.17g, "
+        "fresh %.17g", s.geom.energy, fresh.geom.energy);
+  CHECK(steps(&s, 40) == AFV_OK && steps(&fresh, 40) == AFV_OK, "40 steps");
+  CHECK(same_state(&s, &fresh), "refreshed run differs from a fresh run");
+  s.par.KA = -1;                       /* out of range: refused, unchanged */
+  CHECK(afv_sim_refresh(&s) == AFV_EINVAL, "KA -1 accepted by refresh");
+  afv_sim_free(&s);
+  afv_sim_free(&fresh);
+}
+
+void suite_docs(void)
+{
+  char cmd[96];
+  strcpy(tmp, "/tmp/afv_docs_XXXXXX");
+  if (!mkdtemp(tmp)) {
+    printf("  cannot create a temporary directory under /tmp: %s\n",
+           strerror(errno));
+    return;
+  }
+  RUN(test_run_help_ranges_true);
+  RUN(test_run_help_defaults_true);
+  RUN(test_other_help_defaults_true);
+  RUN(test_man_page_covers_options);
+  RUN(test_quench_v0_between_steps);
+  RUN(test_quench_per_cell_v0);
+  RUN(test_parameter_change_needs_refresh);
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);   /* mkdtemp's own dir */
+  if (system(cmd) != 0) printf("  note: could not remove %s\n", tmp);
+}
