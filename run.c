@@ -561,8 +561,8 @@ static int run_start(run_state *R, char *err, size_t errlen)
 
 /* ---- what a run can compute --------------------------------------------- */
 /* The run later multiplies the energy and the squared force norm checked
-** here by modest factors (FIRE's velocity mixing and time step, the
-** relaxation's slack, sums over a step's pieces): a value within
+** here by modest factors (the relaxation's energy window, sums over a
+** step's pieces and halves): a value within
 ** COMPUTE_HEADROOM of the largest double is refused, so those products stay
 ** finite: |F|^2 summed over the cells above 1.8e302, or an energy bound
 ** above 1.8e302 (at the paper's values, KA = KP = 1 and N = 400, the

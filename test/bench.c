@@ -108,7 +108,7 @@ static int spatial_order(int n, double *r, const afv_box *b)
 /* The random state at n = TILES^2 m cells (m >= 400): TILES x TILES copies
 ** of the relaxed random state of m cells (same seed), in a box TILES times
 ** as wide, with n fresh angles.  A relaxation of n cells within the budget
-** would stop far from converged at large n (about 25 FIRE iterations at
+** would stop far from converged at large n (about 25 relaxation steps at
 ** n = 400000), and a less relaxed tissue costs more per cell (larger
 ** forces: more sub-steps and candidate rebuilds); the tiles give every n
 ** the local structure of a relaxed random tissue, so that the per-cell
