@@ -43,7 +43,7 @@ endif
 # afv_internal.h, fastmath.h and rng.h are shared by its files only (not
 # part of the API, afv.h).
 LIB_SRC  = neighbours.c geom.c fastmath.c afv.c dynamics.c substeps.c rng.c \
-           analysis.c svg.c io.c phase.c
+           analysis.c svg.c io.c phase.c api.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
@@ -78,7 +78,7 @@ CLI_OBJ  = $(CLI_SRC:.c=.o)
 afv: $(CLI_OBJ) libafv.a .build-flags
 	$(CC) $(CFLAGS) -o $@ $(CLI_OBJ) libafv.a $(LDLIBS)
 
-%.o: %.c afv.h .build-flags
+%.o: %.c afv.h afv_internal.h .build-flags
 	$(CC) $(CFLAGS) -c -o $@ $<
 
 $(CLI_OBJ): cli.h
@@ -88,7 +88,7 @@ $(CLI_OBJ): cli.h
 # keep their objects (and their speed) exactly as without it.
 PIC_OBJ  = $(LIB_SRC:.c=.pic.o)
 
-%.pic.o: %.c afv.h .build-flags
+%.pic.o: %.c afv.h afv_internal.h .build-flags
 	$(CC) $(CFLAGS) -fPIC -c -o $@ $<
 
 libafv.so: $(PIC_OBJ)
@@ -96,7 +96,7 @@ libafv.so: $(PIC_OBJ)
 
 shared: libafv.so
 
-test/run_tests: $(TEST_SRC) test/test.h libafv.a afv.h .build-flags
+test/run_tests: $(TEST_SRC) test/test.h libafv.a afv.h afv_internal.h .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ $(TEST_SRC) libafv.a $(LDLIBS)
 
 test: afv test/run_tests
@@ -116,7 +116,7 @@ run: afv
 # The benchmark (test/bench.c): one line per state and N, see its header.
 BENCH_STATES = random cluster
 
-test/bench: test/bench.c libafv.a afv.h .build-flags
+test/bench: test/bench.c libafv.a afv.h afv_internal.h .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ test/bench.c libafv.a $(LDLIBS)
 
 bench: test/bench

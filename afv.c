@@ -55,7 +55,7 @@
 **     At a triple junction both pieces are edges, so only P changes.
 ** Every formula is checked against central differences of E in the tests.
 */
-#include "afv.h"
+#include "afv_internal.h"
 
 #include <math.h>
 #include <stdlib.h>

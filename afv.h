@@ -29,7 +29,7 @@
 #define AFV_EINVAL       2  /* a parameter is out of range (l <= 0, NaN, ...) */
 #define AFV_EBOX         3  /* periodic box side smaller than 4l */
 #define AFV_ENONFINITE   4  /* a position is NaN or infinite */
-#define AFV_ECOINCIDENT  5  /* two centres coincide (d = 0): see afv_geom.bad_i/j */
+#define AFV_ECOINCIDENT  5  /* two centres coincide (d = 0): afv_geom_bad_pair */
 #define AFV_EIO          6  /* reading or writing a file failed */
 #define AFV_EFORMAT      7  /* a file is not in the documented format */
 
@@ -37,7 +37,7 @@ const char *afv_strerror(int status);   /* one-line description of a status */
 
 /* ---- tolerances (all relative to l; see geom.c for the reasoning) ------- */
 /* A straight edge shorter than AFV_CONTACT_TOL * l is geometry, not a
-** contact: it is kept in the boundary but not counted in afv_geom.contacts. */
+** contact: it is kept in the boundary but not counted in afv_geom_contacts. */
 #define AFV_CONTACT_TOL 1e-9
 
 /* ---- reference build (make REFERENCE=1) -------------------------------- */
@@ -51,33 +51,6 @@ const char *afv_strerror(int status);   /* one-line description of a status */
 #define AFV_REFERENCE_MODE 1
 #else
 #define AFV_REFERENCE_MODE 0
-#endif
-
-/* ---- OpenMP build (make OPENMP=1) -------------------------------------- */
-/* A per-cell loop over fewer than AFV_PARALLEL_MIN cells runs on the
-** calling thread alone (see afv_internal.h): starting and joining a team
-** costs more than such a loop.  The bits do not depend on it. */
-#define AFV_PARALLEL_MIN 256
-
-/* The library's per-cell loops are marked with these (afv_internal.h says
-** why any thread count gives the same bits); `size` is the loop's length in cells
-** (in bins for the cell list's bin loop).  Empty without OpenMP. */
-#ifdef _OPENMP
-#define AFV_PRAGMA(text) _Pragma(#text)
-#define AFV_PARALLEL_FOR(size) \
-  AFV_PRAGMA(omp parallel for schedule(static) if ((size) >= AFV_PARALLEL_MIN))
-#define AFV_PARALLEL_REDUCE(size, clauses) \
-  AFV_PRAGMA(omp parallel for schedule(static) \
-             if ((size) >= AFV_PARALLEL_MIN) clauses)
-/* A loop over independent tasks of unequal cost (the small groups of fast
-** cells, substeps.c, which uses it only for two tasks or more): each
-** thread takes the next task when it is free. */
-#define AFV_PARALLEL_TASKS \
-  AFV_PRAGMA(omp parallel for schedule(dynamic, 1))
-#else
-#define AFV_PARALLEL_FOR(size)
-#define AFV_PARALLEL_REDUCE(size, clauses)
-#define AFV_PARALLEL_TASKS
 #endif
 
 /* ---- parameters -------------------------------------------------------- */
@@ -124,8 +97,9 @@ void afv_wrap(const afv_box *b, double *x, double *y);
 ** them is an arc.  An isolated cell has one arc piece and no vertex. */
 typedef struct afv_piece {
   int    nbr;     /* cell on the other side of this edge, or AFV_ARC */
-  int    slot;    /* for an edge: index of nbr in the neighbour list
-                  ** (nbr_start[i] <= slot < nbr_end[i]); -1 for an arc */
+  int    slot;    /* for an edge: the library's index of this neighbour
+                  ** (afv_internal.h: nbr_start[i] <= slot < nbr_end[i]);
+                  ** -1 for an arc */
   double x, y;    /* start vertex, relative to the cell centre */
   double length;  /* edge length or arc length (>= 0) */
   double tau;     /* for an edge: where its start vertex lies along the
@@ -137,69 +111,41 @@ typedef struct afv_piece {
                   ** 0 for an arc */
 } afv_piece;
 
-/* Private: the grid of a cell list (neighbours.c). */
-typedef struct afv_grid {
-  int nbx, nby;     /* bins along x and y (>= 1) */
-  int periodic;     /* 1: the bins tile the periodic box */
-  double x0, y0;    /* lower-left corner of bin (0, 0) */
-  double wx, wy;    /* bin sides */
-  double Lx, Ly;    /* periodic box sides (0 in open space) */
-} afv_grid;
-
 /* Geometry of a whole tissue, filled by afv_compute (or afv_geometry).
-** Zero-initialise (afv_geom g = {0};) before first use; free with
-** afv_geom_free.  Buffers grow as needed and are reused between calls. */
-typedef struct afv_geom {
-  int     n;            /* number of cells */
-  double *area;         /* A_i */
-  double *perim;        /* P_i */
-  double *arc;          /* L_i, length of the free boundary */
-  int    *contacts;     /* number of edges longer than AFV_CONTACT_TOL l */
-  int    *piece_start;  /* pieces of cell i: pieces[piece_start[i] ..     */
-  int    *n_pieces;     /*   piece_start[i] + n_pieces[i] - 1]            */
-  afv_piece *pieces;
-  int    *nbr_start;    /* neighbours (centres closer than 2l) of cell i: */
-  int    *nbr_end;      /*   nbr[nbr_start[i] .. nbr_end[i]-1]; the slots  */
-  int    *nbr;          /*   up to nbr_start[i+1] are unused (room kept)   */
-  double *nbr_d;        /* their minimum-image displacements r_j - r_i,
-                        ** interleaved, same indexing as nbr */
-  int    *nbr_rev;      /* nbr_rev[s] = slot of i in the list of nbr[s] */
-  double  energy;       /* total energy E */
-  int     bad_i, bad_j; /* on AFV_ECOINCIDENT: the two coincident cells */
-  /* private: capacities and work space */
-  int     cap_cells, cap_nbr, cap_pieces, cap_bins, cap_work;
-  int    *bin_start, *bin_cell;
-  double *bin_xy;       /* centres in bin order (wrapped if periodic) */
-  int    *cand_start;   /* Verlet candidates of cell i (neighbours.c):     */
-  int    *cand;         /*   cand[cand_start[i] .. cand_start[i+1]-1]    */
-  double *cand_r0;      /* centres when the candidates were built */
-  double *rw;           /* centres as the lists see them (wrapped) */
-  afv_box cand_box;     /* box and l the candidates were built for */
-  double  cand_l;
-  int     cand_n;       /* cells they were built for; 0 = none */
-  int     cap_cand, n_rebuilds;  /* n_rebuilds: candidate rebuilds so far */
-  afv_grid cand_grid;   /* the cell list of the last rebuild */
-  unsigned char *is_mover; /* 1 for a cell moved beyond the skin */
-  double  cand_checks;  /* mover pair tests since the rebuild */
-  double  cand_moved;   /* largest move of a cell since the rebuild, as of
-                        ** the last call (afv_cells_around widens by it) */
-  int     max_cand;     /* most candidates of a cell (sizes the work) */
-  double *edge;         /* per slot s: u = D/d (2), d/2, half-chord
-                        ** sqrt(l^2 - d^2/4), set by afv_neighbours */
-  double *grad;         /* per neighbour slot s: dE_i/dr_nbr[s] as
-                        ** (a, b), see afv_cell_shape_gradient (zeroed
-                        ** by afv_neighbours, summed by afv_compute) */
-  double *work;         /* clipping work space, one block per thread */
-  int     work_stride;  /* doubles per thread block of work */
-} afv_geom;
+** Opaque: its buffers grow as needed and are reused between calls; read
+** it through the calls below.  Every pointer returned stays valid until
+** the next afv_compute/afv_geometry on g or afv_geom_delete(g). */
+typedef struct afv_geom afv_geom;
 
-void afv_geom_free(afv_geom *g);
+/* A new, empty geometry (NULL if out of memory); delete with afv_geom_delete. */
+afv_geom *afv_geom_new(void);
+void      afv_geom_delete(afv_geom *g);   /* NULL is allowed */
+
+int           afv_geom_n(const afv_geom *g);        /* number of cells */
+const double *afv_geom_area(const afv_geom *g);     /* A_i (n values) */
+const double *afv_geom_perim(const afv_geom *g);    /* P_i */
+const double *afv_geom_arc(const afv_geom *g);      /* L_i, free boundary */
+/* Number of straight edges of cell i longer than AFV_CONTACT_TOL l (n values). */
+const int    *afv_geom_contacts(const afv_geom *g);
+double        afv_geom_energy(const afv_geom *g);   /* total energy E */
+/* The pieces of cell i's boundary (counter-clockwise, see afv_piece):
+** *pieces points to the first; returns how many. */
+int afv_geom_pieces(const afv_geom *g, int i, const afv_piece **pieces);
+/* The neighbours of cell i (centres closer than 2l), sorted by direction
+** counter-clockwise from +x: *nbr their indices and, if d != NULL, *d
+** their minimum-image displacements r_j - r_i (interleaved); returns how
+** many. */
+int afv_geom_neighbours(const afv_geom *g, int i, const int **nbr,
+                        const double **d);
+/* After AFV_ECOINCIDENT: the two coincident cells. */
+void afv_geom_bad_pair(const afv_geom *g, int *i, int *j);
+
 
 /* Geometry only: neighbour lists and every cell's shape (no energy, no force). */
 int afv_geometry(afv_geom *g, int n, const double *r, const afv_params *p,
                  const afv_box *b);
 
-/* Geometry, total energy (g->energy) and, if f != NULL, the forces
+/* Geometry, total energy (afv_geom_energy) and, if f != NULL, the forces
 ** f[2i], f[2i+1] = -dE/dr_i.  O(N) time and memory. */
 int afv_compute(afv_geom *g, int n, const double *r, const afv_params *p,
                 const afv_box *b, double *f);
@@ -208,45 +154,12 @@ int afv_compute(afv_geom *g, int n, const double *r, const afv_params *p,
 double afv_cell_energy(const afv_params *p, int i, double A, double P, double L);
 
 /* ---- the geometric steps, for readers and advanced callers ------------- */
-/* Checks the positions, fills the neighbour lists and reserves the piece
-** and work space: what afv_cell_shape needs.  (afv_geometry = this, then
-** afv_cell_shape for every cell.) */
-int  afv_geometry_prepare(afv_geom *g, int n, const double *r, double l,
-                          const afv_box *b);
-/* Fills g's neighbour lists: every centre closer than 2l, sorted by
-** direction (counter-clockwise from +x), filtered from candidates that a
-** cell list refreshes only when cells have moved (neighbours.c, Verlet skin);
-** in the reference build, found in a cell list built at every call. */
-int  afv_neighbours(afv_geom *g, int n, const double *r, double l,
-                    const afv_box *b);
-/* The cells that may now lie within R of the point (x, y), from the cell
-** list of g's last candidate rebuild (a superset: the caller tests the
-** distance), written to out[] (room for g->n), each once; returns how
-** many.  g must come from afv_neighbours (or afv_compute) at positions
-** from which no cell has since moved more than `moved`.  Cost: the cells
-** in the bins within about R + cand_moved + moved, not O(N) (cand_moved,
-** the largest move since the rebuild, is at most 0.15 l unless some
-** cells have moved farther: geom.c, MOVERS). */
-int  afv_cells_around(const afv_geom *g, double x, double y, double R,
-                      double moved, int *out);
 /* A spatial order of the cells (the cell list's, bins of side >= 2l row by
 ** row): perm[k] = the cell to put k-th.  Numbering cells in this order
 ** keeps neighbours close in memory: large N runs faster than with a random
 ** numbering.  AFV_OK or AFV_ENOMEM. */
 int  afv_spatial_order(int n, const double *r, double l, const afv_box *b,
                        int *perm);
-/* Shape of cell i from its neighbour list: pieces, area, perimeter, arc.
-** Different cells may be shaped at once by OpenMP threads (at most
-** omp_get_max_threads() as of afv_geometry_prepare: one work block each). */
-void afv_cell_shape(afv_geom *g, int i, double l);
-/* Adds to grad[2s], grad[2s+1] (for every neighbour slot s of cell i)
-** the vector  G = wA dA_i/dr_j + wP dP_i/dr_j + wL dL_i/dr_j  (j = nbr[s])
-** as (a, b) with  G = a u + (b / d) t,  u = D/d (D = nbr_d of s), t = u
-** turned by +90 degrees: a = dG/dd, b the derivative for r_j turning
-** about r_i (see afv.c: both stay bounded as d -> 0, where G does not),
-** for the shape computed by afv_cell_shape.  cap as in afv_params. */
-void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
-                             double wA, double wP, double wL, double *grad);
 
 /* ---- finite-difference gradient check --------------------------------- */
 typedef struct afv_check_report {
@@ -369,7 +282,7 @@ void afv_traj_free(afv_traj *tr);
 ** to dt / 2^AFV_MAX_HALVINGS (dynamics.c, HALVES; with max_move > 0). */
 #define AFV_MAX_HALVINGS 8
 #define AFV_EUNSTABLE    8  /* NaN/Inf force, v0 dt > l/2, or a move > l/2 even
-                            ** in dt / 2^AFV_MAX_HALVINGS: afv_sim.bad_cell */
+                            ** in dt / 2^AFV_MAX_HALVINGS: afv_sim_bad_cell */
 
 typedef struct afv_dyn {
   double mu;          /* mobility (inverse friction), > 0 */
@@ -388,90 +301,65 @@ typedef struct afv_dyn {
 /* Paper defaults: mu 1, v0 0, Dr 0.1, dt 0.01, seed 1; max_move 0.05. */
 void afv_dyn_default(afv_dyn *d);
 
-/* Private (substeps.c, GROUPS): a group of fast cells in a step.  Its
-** region, the cells within REGION_RADIUS of its fast cells, is
-** group_cells[start .. start + nr - 1] (increasing); its fast cells are
-** the nf entries after that (increasing). */
-typedef struct afv_group {
-  int       start, nr, nf;
-  int       status;    /* how its pieces ended: AFV_OK or an error */
-  int       bad_cell;  /* on AFV_EUNSTABLE: the cell, and its move */
-  double    bad_len;   /*   length (for afv_unstable) */
-  long long pieces;    /* the extra pieces it took */
-} afv_group;
 
-/* Private: what one thread needs to move a group in pieces. */
-typedef struct afv_group_work {
-  afv_geom  geom;      /* the region's geometry */
-  double   *sub;       /* the region's positions, forces and per-cell
-                       ** parameters (8 per cell) */
-  int       cap_sub;   /* cells sub has room for */
-} afv_group_work;
-
-/* A running simulation.  Zero-initialise, then afv_sim_init; free with
-** afv_sim_free.  Invariant between calls: f and geom hold the forces and
-** the geometry at r, and geom.energy the energy there.
+/* A running simulation (opaque).  afv_sim_new, then afv_sim_init; delete
+** with afv_sim_delete.  Invariant between calls: the forces
+** (afv_sim_forces) and the geometry (afv_sim_geom) are those at the
+** positions, and the geometry's energy the energy there.
 **
 ** What a caller may change between afv_sim_step calls (a quench, a
 ** mixture switched on, ...); the next step then continues exactly as a
 ** simulation started from that state with the new values would
 ** (test/test_docs.c):
-**   - no call needed (afv_sim_step reads them afresh every step):
-**     dyn.v0, dyn.Dr, dyn.mu, dyn.max_move, dyn.seed, theta[], step (the
-**     noise of a step is drawn for (seed, cell, step)); dyn.dt too, but t
-**     is recomputed as step * dt, so keep your own clock across a change
-**     of dt; dyn.v0_i and dyn.Dr_i may be pointed at arrays of n values
-**     that the caller owns and keeps alive (or set to NULL: the scalar is
-**     then used), but not written through (they point into own[]);
-**   - then afv_sim_refresh (the forces f and the geometry are cached from
-**     the end of the last step): par (any field; per-cell arrays as for
-**     v0_i), box, r[].
-** Every other field is the library's: read n, step, t, r, theta, f, geom,
-** substeps, halvings, bad_cell, bad_disp, bad_time; never write the fields
-** marked private. */
-typedef struct afv_sim {
-  int        n;        /* number of cells */
-  long long  step;     /* steps taken since the start of the active run */
-  double     t;        /* simulated time, step * dt after a step */
-  double    *r;        /* 2n centres, UNWRAPPED (minimum image inside) */
-  double    *theta;    /* n polarity angles (radians, not reduced) */
-  double    *f;        /* 2n forces -dE/dr at r */
-  afv_params par;      /* model; per-cell arrays point into own[] */
-  afv_box    box;      /* boundary */
-  afv_dyn    dyn;      /* dynamics; per-cell arrays point into own[] */
-  afv_geom   geom;     /* geometry at r (energy, areas, contacts, ...) */
-  long long  substeps;  /* extra sub-step pieces so far, summed over the
-                       ** groups of fast cells (= extra force evaluations
-                       ** of their regions; substeps.c, GROUPS) */
-  long long  halvings; /* steps (or parts of steps) taken again in two
-                       ** halves so far (dynamics.c, HALVES) */
-  int        bad_cell; /* on AFV_EUNSTABLE: the offending cell, else -1 */
-  double     bad_disp; /* on AFV_EUNSTABLE: its step length / l (NaN or
-                       ** inf if the force was not finite) */
-  double     bad_time; /* on AFV_EUNSTABLE: the time over which it would
-                       ** have moved so far (dt, or the smallest half) */
-  double    *r_start;  /* private: r at the start of the step, or of its
-                       ** part being taken (2n) */
-  double    *r_step;   /* private: r at the start of a step taken in
-                       ** halves (2n) */
-  double    *move_len; /* private: per-cell squared move lengths (n) */
-  double    *pol;      /* private: v0_i n_i during a step (2n) */
-  int       *fast;     /* private, sub-steps: the fast cells (n) */
-  int       *region;   /* private, sub-steps: a region being listed (n) */
-  int       *in_region; /* private, sub-steps: marks while listing (n) */
-  int       *around;   /* private, sub-steps: cells around a fast one,
-                       ** then a group's fast cells (n) */
-  afv_group *groups;   /* private, sub-steps: the last step's groups
-                       ** (n_groups: 0 if it had no fast cell) */
-  int        n_groups, cap_groups;
-  int       *group_cells; /* private: their regions and fast cells */
-  int        cap_group_cells;
-  afv_group_work *work; /* private: one work space per thread */
-  int        n_work;
-  int       *iown;     /* private: one block holding the int arrays */
-  double    *own;      /* private: one block holding r, theta, f and the
-                       ** copies of the per-cell parameter arrays */
-} afv_sim;
+**   - no call needed (afv_sim_step reads them afresh every step): through
+**     afv_sim_dyn, v0, Dr, mu, max_move, seed; the angles (afv_sim_angles);
+**     the step count (afv_sim_set_steps: the noise of a step is drawn for
+**     (seed, cell, step)); dt too, but the time is recomputed as step * dt,
+**     so keep your own clock across a change of dt; v0_i and Dr_i may be
+**     pointed at arrays of n values that the caller owns and keeps alive
+**     (or set to NULL: the scalar is then used), but not written through
+**     (they point into the simulation's own copies);
+**   - then afv_sim_refresh (the forces and the geometry are cached from
+**     the end of the last step): the parameters (afv_sim_params, any
+**     field; per-cell arrays as for v0_i), the box (afv_sim_box), the
+**     positions (afv_sim_positions).
+** Everything else is the library's: read it through the calls below. */
+typedef struct afv_sim afv_sim;
+
+/* A new, empty simulation (NULL if out of memory); give it its cells with
+** afv_sim_init, delete it with afv_sim_delete (NULL is allowed). */
+afv_sim *afv_sim_new(void);
+void     afv_sim_delete(afv_sim *s);
+
+int        afv_sim_n(const afv_sim *s);         /* number of cells */
+long long  afv_sim_steps(const afv_sim *s);     /* steps taken since the
+                                                ** start of the active run */
+void       afv_sim_set_steps(afv_sim *s, long long step);
+double     afv_sim_time(const afv_sim *s);      /* step * dt after a step */
+/* The 2n centres, UNWRAPPED (minimum image inside), interleaved; writable
+** (then afv_sim_refresh). */
+double    *afv_sim_positions(afv_sim *s);
+/* The n polarity angles (radians, not reduced); writable. */
+double    *afv_sim_angles(afv_sim *s);
+const double   *afv_sim_forces(const afv_sim *s);  /* 2n forces -dE/dr */
+const afv_geom *afv_sim_geom(const afv_sim *s);    /* geometry at the
+                                                   ** positions (energy, ...) */
+/* The model, boundary and dynamics in use; writable as listed above. */
+afv_params *afv_sim_params(afv_sim *s);
+afv_box    *afv_sim_box(afv_sim *s);
+afv_dyn    *afv_sim_dyn(afv_sim *s);
+/* Extra sub-step pieces so far, summed over the groups of fast cells
+** (= extra force evaluations of their regions; substeps.c, GROUPS). */
+long long  afv_sim_substeps(const afv_sim *s);
+/* Steps (or parts of steps) taken again in two halves so far (dynamics.c,
+** HALVES). */
+long long  afv_sim_halvings(const afv_sim *s);
+/* After AFV_EUNSTABLE: the offending cell (else -1), its step length / l
+** (NaN or inf if the force was not finite), and the time over which it
+** would have moved so far (dt, or the smallest half). */
+int        afv_sim_bad_cell(const afv_sim *s);
+double     afv_sim_bad_disp(const afv_sim *s);
+double     afv_sim_bad_time(const afv_sim *s);
 
 /* Copies r (2n), theta (n; NULL = all 0), the parameters and their per-cell
 ** arrays, and computes the forces.  Status as afv_compute, or AFV_EINVAL. */
@@ -488,7 +376,6 @@ int  afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
 ** v0 dt alone exceeds AFV_MAX_STEP_DISP l, or if some cell's move exceeds
 ** it even in dt / 2^AFV_MAX_HALVINGS (or in dt, with max_move = 0). */
 int  afv_sim_step(afv_sim *s);
-void afv_sim_free(afv_sim *s);
 /* Recomputes the geometry, energy and forces at r with par and box: call
 ** it after changing any of them between steps (see afv_sim).  AFV_EINVAL
 ** (nothing changed) if a value of par or dyn is out of range, else as
@@ -539,8 +426,8 @@ typedef struct afv_relax_report {
 /* Optional observer, called after every step (may be NULL). */
 typedef void (*afv_relax_monitor)(void *ctx, long iter, double energy,
                                   double max_force);
-/* Moves s->r (step, t and theta unchanged); s->f and s->geom end at the
-** final r.  Status as afv_compute, or AFV_ENOMEM. */
+/* Moves the positions (step, time and angles unchanged); the forces and
+** the geometry end at the final positions.  Status as afv_compute, or AFV_ENOMEM. */
 int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
               afv_relax_monitor mon, void *ctx);
 

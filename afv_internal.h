@@ -1,6 +1,9 @@
 /*
-** afv_internal.h -- what the library's own files share and no caller needs
-** (included by the library's .c files only; not part of the API, afv.h).
+** afv_internal.h -- what the library's own files share and no caller needs:
+** the structs behind afv.h's opaque afv_geom and afv_sim, the steps of the
+** geometry and of the simulation, the OpenMP macros.  Included by the
+** library's .c files, the white-box tests and the parts of the program
+** that need the internals; not installed (make install copies afv.h only).
 */
 #ifndef AFV_INTERNAL_H
 #define AFV_INTERNAL_H
@@ -8,6 +11,199 @@
 #include "afv.h"
 
 #include <stddef.h>
+
+/* ---- OpenMP build (make OPENMP=1) ----------------------------------- */
+/* A per-cell loop over fewer than AFV_PARALLEL_MIN cells runs on the
+** calling thread alone (see below): starting and joining a team
+** costs more than such a loop.  The bits do not depend on it. */
+#define AFV_PARALLEL_MIN 256
+
+/* The library's per-cell loops are marked with these (the comment below says
+** why any thread count gives the same bits); `size` is the loop's length in cells
+** (in bins for the cell list's bin loop).  Empty without OpenMP. */
+#ifdef _OPENMP
+#define AFV_PRAGMA(text) _Pragma(#text)
+#define AFV_PARALLEL_FOR(size) \
+  AFV_PRAGMA(omp parallel for schedule(static) if ((size) >= AFV_PARALLEL_MIN))
+#define AFV_PARALLEL_REDUCE(size, clauses) \
+  AFV_PRAGMA(omp parallel for schedule(static) \
+             if ((size) >= AFV_PARALLEL_MIN) clauses)
+/* A loop over independent tasks of unequal cost (the small groups of fast
+** cells, substeps.c, which uses it only for two tasks or more): each
+** thread takes the next task when it is free. */
+#define AFV_PARALLEL_TASKS \
+  AFV_PRAGMA(omp parallel for schedule(dynamic, 1))
+#else
+#define AFV_PARALLEL_FOR(size)
+#define AFV_PARALLEL_REDUCE(size, clauses)
+#define AFV_PARALLEL_TASKS
+#endif
+
+/* Private: the grid of a cell list (neighbours.c). */
+typedef struct afv_grid {
+  int nbx, nby;     /* bins along x and y (>= 1) */
+  int periodic;     /* 1: the bins tile the periodic box */
+  double x0, y0;    /* lower-left corner of bin (0, 0) */
+  double wx, wy;    /* bin sides */
+  double Lx, Ly;    /* periodic box sides (0 in open space) */
+} afv_grid;
+
+/* The geometry (afv.h, afv_geom): the library, the tests and the program
+** may hold one by value.  Zero-initialise (afv_geom g = {0};) before first
+** use; release its buffers with afv_geom_free (the struct stays, empty and
+** reusable).  Buffers grow as needed and are reused between calls. */
+struct afv_geom {
+  int     n;            /* number of cells */
+  double *area;         /* A_i */
+  double *perim;        /* P_i */
+  double *arc;          /* L_i, length of the free boundary */
+  int    *contacts;     /* number of edges longer than AFV_CONTACT_TOL l */
+  int    *piece_start;  /* pieces of cell i: pieces[piece_start[i] ..     */
+  int    *n_pieces;     /*   piece_start[i] + n_pieces[i] - 1]            */
+  afv_piece *pieces;
+  int    *nbr_start;    /* neighbours (centres closer than 2l) of cell i: */
+  int    *nbr_end;      /*   nbr[nbr_start[i] .. nbr_end[i]-1]; the slots  */
+  int    *nbr;          /*   up to nbr_start[i+1] are unused (room kept)   */
+  double *nbr_d;        /* their minimum-image displacements r_j - r_i,
+                        ** interleaved, same indexing as nbr */
+  int    *nbr_rev;      /* nbr_rev[s] = slot of i in the list of nbr[s] */
+  double  energy;       /* total energy E */
+  int     bad_i, bad_j; /* on AFV_ECOINCIDENT: the two coincident cells */
+  /* private: capacities and work space */
+  int     cap_cells, cap_nbr, cap_pieces, cap_bins, cap_work;
+  int    *bin_start, *bin_cell;
+  double *bin_xy;       /* centres in bin order (wrapped if periodic) */
+  int    *cand_start;   /* Verlet candidates of cell i (neighbours.c):     */
+  int    *cand;         /*   cand[cand_start[i] .. cand_start[i+1]-1]    */
+  double *cand_r0;      /* centres when the candidates were built */
+  double *rw;           /* centres as the lists see them (wrapped) */
+  afv_box cand_box;     /* box and l the candidates were built for */
+  double  cand_l;
+  int     cand_n;       /* cells they were built for; 0 = none */
+  int     cap_cand, n_rebuilds;  /* n_rebuilds: candidate rebuilds so far */
+  afv_grid cand_grid;   /* the cell list of the last rebuild */
+  unsigned char *is_mover; /* 1 for a cell moved beyond the skin */
+  double  cand_checks;  /* mover pair tests since the rebuild */
+  double  cand_moved;   /* largest move of a cell since the rebuild, as of
+                        ** the last call (afv_cells_around widens by it) */
+  int     max_cand;     /* most candidates of a cell (sizes the work) */
+  double *edge;         /* per slot s: u = D/d (2), d/2, half-chord
+                        ** sqrt(l^2 - d^2/4), set by afv_neighbours */
+  double *grad;         /* per neighbour slot s: dE_i/dr_nbr[s] as
+                        ** (a, b), see afv_cell_shape_gradient (zeroed
+                        ** by afv_neighbours, summed by afv_compute) */
+  double *work;         /* clipping work space, one block per thread */
+  int     work_stride;  /* doubles per thread block of work */
+};
+
+void afv_geom_free(afv_geom *g);
+
+/* ---- the geometric steps (geom.c, neighbours.c) ------------------------ */
+/* Checks the positions, fills the neighbour lists and reserves the piece
+** and work space: what afv_cell_shape needs.  (afv_geometry = this, then
+** afv_cell_shape for every cell.) */
+int  afv_geometry_prepare(afv_geom *g, int n, const double *r, double l,
+                          const afv_box *b);
+/* Fills g's neighbour lists: every centre closer than 2l, sorted by
+** direction (counter-clockwise from +x), filtered from candidates that a
+** cell list refreshes only when cells have moved (neighbours.c, Verlet skin);
+** in the reference build, found in a cell list built at every call. */
+int  afv_neighbours(afv_geom *g, int n, const double *r, double l,
+                    const afv_box *b);
+/* The cells that may now lie within R of the point (x, y), from the cell
+** list of g's last candidate rebuild (a superset: the caller tests the
+** distance), written to out[] (room for g->n), each once; returns how
+** many.  g must come from afv_neighbours (or afv_compute) at positions
+** from which no cell has since moved more than `moved`.  Cost: the cells
+** in the bins within about R + cand_moved + moved, not O(N) (cand_moved,
+** the largest move since the rebuild, is at most 0.15 l unless some
+** cells have moved farther: geom.c, MOVERS). */
+int  afv_cells_around(const afv_geom *g, double x, double y, double R,
+                      double moved, int *out);
+
+/* Shape of cell i from its neighbour list: pieces, area, perimeter, arc.
+** Different cells may be shaped at once by OpenMP threads (at most
+** omp_get_max_threads() as of afv_geometry_prepare: one work block each). */
+void afv_cell_shape(afv_geom *g, int i, double l);
+/* Adds to grad[2s], grad[2s+1] (for every neighbour slot s of cell i)
+** the vector  G = wA dA_i/dr_j + wP dP_i/dr_j + wL dL_i/dr_j  (j = nbr[s])
+** as (a, b) with  G = a u + (b / d) t,  u = D/d (D = nbr_d of s), t = u
+** turned by +90 degrees: a = dG/dd, b the derivative for r_j turning
+** about r_i (see afv.c: both stay bounded as d -> 0, where G does not),
+** for the shape computed by afv_cell_shape.  cap as in afv_params. */
+void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
+                             double wA, double wP, double wL, double *grad);
+
+/* ---- the simulation (dynamics.c, substeps.c) --------------------------- */
+/* Private (substeps.c, GROUPS): a group of fast cells in a step.  Its
+** region, the cells within REGION_RADIUS of its fast cells, is
+** group_cells[start .. start + nr - 1] (increasing); its fast cells are
+** the nf entries after that (increasing). */
+typedef struct afv_group {
+  int       start, nr, nf;
+  int       status;    /* how its pieces ended: AFV_OK or an error */
+  int       bad_cell;  /* on AFV_EUNSTABLE: the cell, and its move */
+  double    bad_len;   /*   length (for afv_unstable) */
+  long long pieces;    /* the extra pieces it took */
+} afv_group;
+
+/* Private: what one thread needs to move a group in pieces. */
+typedef struct afv_group_work {
+  afv_geom  geom;      /* the region's geometry */
+  double   *sub;       /* the region's positions, forces and per-cell
+                       ** parameters (8 per cell) */
+  int       cap_sub;   /* cells sub has room for */
+} afv_group_work;
+
+/* The simulation (afv.h, afv_sim; what a caller may change between steps
+** is listed there).  Zero-initialise, then afv_sim_init; release its
+** buffers with afv_sim_free.  Invariant between calls: f and geom hold the
+** forces and the geometry at r, and geom.energy the energy there.  The
+** fields marked private are the step's work space. */
+struct afv_sim {
+  int        n;        /* number of cells */
+  long long  step;     /* steps taken since the start of the active run */
+  double     t;        /* simulated time, step * dt after a step */
+  double    *r;        /* 2n centres, UNWRAPPED (minimum image inside) */
+  double    *theta;    /* n polarity angles (radians, not reduced) */
+  double    *f;        /* 2n forces -dE/dr at r */
+  afv_params par;      /* model; per-cell arrays point into own[] */
+  afv_box    box;      /* boundary */
+  afv_dyn    dyn;      /* dynamics; per-cell arrays point into own[] */
+  afv_geom   geom;     /* geometry at r (energy, areas, contacts, ...) */
+  long long  substeps;  /* extra sub-step pieces so far, summed over the
+                       ** groups of fast cells (= extra force evaluations
+                       ** of their regions; substeps.c, GROUPS) */
+  long long  halvings; /* steps (or parts of steps) taken again in two
+                       ** halves so far (dynamics.c, HALVES) */
+  int        bad_cell; /* on AFV_EUNSTABLE: the offending cell, else -1 */
+  double     bad_disp; /* on AFV_EUNSTABLE: its step length / l (NaN or
+                       ** inf if the force was not finite) */
+  double     bad_time; /* on AFV_EUNSTABLE: the time over which it would
+                       ** have moved so far (dt, or the smallest half) */
+  double    *r_start;  /* private: r at the start of the step, or of its
+                       ** part being taken (2n) */
+  double    *r_step;   /* private: r at the start of a step taken in
+                       ** halves (2n) */
+  double    *move_len; /* private: per-cell squared move lengths (n) */
+  double    *pol;      /* private: v0_i n_i during a step (2n) */
+  int       *fast;     /* private, sub-steps: the fast cells (n) */
+  int       *region;   /* private, sub-steps: a region being listed (n) */
+  int       *in_region; /* private, sub-steps: marks while listing (n) */
+  int       *around;   /* private, sub-steps: cells around a fast one,
+                       ** then a group's fast cells (n) */
+  afv_group *groups;   /* private, sub-steps: the last step's groups
+                       ** (n_groups: 0 if it had no fast cell) */
+  int        n_groups, cap_groups;
+  int       *group_cells; /* private: their regions and fast cells */
+  int        cap_group_cells;
+  afv_group_work *work; /* private: one work space per thread */
+  int        n_work;
+  int       *iown;     /* private: one block holding the int arrays */
+  double    *own;      /* private: one block holding r, theta, f and the
+                       ** copies of the per-cell parameter arrays */
+};
+void afv_sim_free(afv_sim *s);
 
 /* A function for a rare case, kept out of line so that the compiler does
 ** not hoist its work into the common path that calls it (gcc did, with
@@ -28,7 +224,7 @@ int afv_grow(void **ptr, int *cap, int need, size_t elem);
 #define PI     3.14159265358979323846
 #define TWO_PI 6.28318530717958647692
 
-/* OpenMP (make OPENMP=1; the macros are in afv.h): the per-cell loops
+/* OpenMP (make OPENMP=1; the macros are above): the per-cell loops
 ** marked AFV_PARALLEL_FOR write only their own cell's entries, so any
 ** thread count gives the same bits.  Static schedule: each thread gets
 ** one contiguous, spatially coherent block.  AFV_PARALLEL_REDUCE adds
@@ -36,7 +232,7 @@ int afv_grow(void **ptr, int *cap, int need, size_t elem);
 ** depend on the order (max, min, | and sums of integers), so again any
 ** thread count gives the same bits.
 ** `size` is the loop's length in cells (in bins for the bin loop): below
-** AFV_PARALLEL_MIN (afv.h) the loop runs on the calling thread: the
+** AFV_PARALLEL_MIN the loop runs on the calling thread: the
 ** sub-steps' regions (substeps.c) are tens of cells, each of their force
 ** evaluations runs about eight such loops, and starting a team of threads
 ** for each cost more than the loop.  Without OpenMP the macros are empty

@@ -28,7 +28,7 @@
 ** count V3 = Ec - N + 1 of a confluent cluster exact, omega = 1.  A real
 ** 4-fold vertex (edge exactly 0) is the same case.
 */
-#include "afv.h"
+#include "afv_internal.h"
 
 #include <limits.h>
 #include <math.h>

@@ -128,10 +128,12 @@ int load_points(const char *path, const afv_box *b, int *n, double **r)
 
 int library_error(int st, const afv_geom *g)
 {
-  if (st == AFV_ECOINCIDENT)
+  int i, j;
+  if (st == AFV_ECOINCIDENT) {
+    afv_geom_bad_pair(g, &i, &j);
     fprintf(stderr, "afv: cells %d and %d (0-based, input order) have the "
-            "same centre\n", g->bad_i, g->bad_j);
-  else
+            "same centre\n", i, j);
+  } else
     fprintf(stderr, "afv: %s\n", afv_strerror(st));
   return EXIT_BAD_INPUT;
 }

@@ -21,12 +21,13 @@ int cmd_eval(int argc, char **argv)
 {
   afv_params p;
   afv_box b = {0, 0, 0};
-  afv_geom g;
+  afv_geom *g;
   const char *path = NULL;
   double *r = NULL, *f = NULL;
+  const double *area, *perim, *arc;
+  const int *contacts;
   int n, k, st, i;
   afv_params_default(&p);
-  memset(&g, 0, sizeof g);
   for (k = 1; k < argc; k++) {
     int m;
     if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
@@ -53,19 +54,29 @@ int cmd_eval(int argc, char **argv)
   if (!model_valid(&p, &b) || !load_points(path, &b, &n, &r))
     return EXIT_BAD_INPUT;
   f = malloc((size_t)(2 * n + 1) * sizeof(double));
-  if (!f) return bad_input("out of memory");
-  st = afv_compute(&g, n, r, &p, &b, f);
+  g = afv_geom_new();
+  if (!f || !g) {
+    free(f);
+    free(r);
+    afv_geom_delete(g);
+    return bad_input("out of memory");
+  }
+  st = afv_compute(g, n, r, &p, &b, f);
   if (st != AFV_OK) {
-    st = library_error(st, &g);
+    st = library_error(st, g);
   } else {
+    area = afv_geom_area(g);
+    perim = afv_geom_perim(g);
+    arc = afv_geom_arc(g);
+    contacts = afv_geom_contacts(g);
     printf("# cell x y area perimeter arc_length contacts fx fy\n");
     for (i = 0; i < n; i++)
       printf("%d %.17g %.17g %.17g %.17g %.17g %d %.17g %.17g\n", i, r[2*i],
-             r[2*i+1], g.area[i], g.perim[i], g.arc[i], g.contacts[i],
+             r[2*i+1], area[i], perim[i], arc[i], contacts[i],
              f[2*i], f[2*i+1]);
-    printf("# energy %.17g\n", g.energy);
+    printf("# energy %.17g\n", afv_geom_energy(g));
   }
-  afv_geom_free(&g);
+  afv_geom_delete(g);
   free(r);
   free(f);
   return st;
@@ -77,12 +88,11 @@ int cmd_check(int argc, char **argv)
   afv_params p;
   afv_box b = {0, 0, 0};
   afv_check_report rep;
-  afv_geom g;
+  afv_geom *g;
   const char *path = NULL;
   double *r = NULL, h = 1e-6, tol = 1e-6;
   int n, k, st;
   afv_params_default(&p);
-  memset(&g, 0, sizeof g);
   for (k = 1; k < argc; k++) {
     int m;
     if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
@@ -131,10 +141,14 @@ int cmd_check(int argc, char **argv)
     return bad_input("check: missing POINTS file (see afv check --help)");
   if (!model_valid(&p, &b) || !load_points(path, &b, &n, &r))
     return EXIT_BAD_INPUT;
-  st = afv_compute(&g, n, r, &p, &b, NULL);  /* names a coincident pair */
+  if (!(g = afv_geom_new())) {
+    free(r);
+    return bad_input("out of memory");
+  }
+  st = afv_compute(g, n, r, &p, &b, NULL);   /* names a coincident pair */
   if (st == AFV_OK) st = afv_gradient_check(n, r, &p, &b, h * p.l, &rep);
-  if (st != AFV_OK) st = library_error(st, &g);
-  afv_geom_free(&g);
+  if (st != AFV_OK) st = library_error(st, g);
+  afv_geom_delete(g);
   free(r);
   if (st != AFV_OK) return st;
   printf("cells %d\nstep %.3g\nmax_abs_error %.6e\nforce_scale %.6e\n"
@@ -462,12 +476,11 @@ static int draw_frames(const draw_job *J, const afv_traj *tr, afv_geom *g)
 static int draw_run(draw_job *J)
 {
   afv_traj tr;
-  afv_geom g;
+  afv_geom *g = NULL;
   double *r = NULL, *theta = NULL, *value = NULL;
   char err[RUN_PATH_MAX + 128];
   int traj = is_trajectory(J->path), n = 0, st = EXIT_BAD_INPUT;
   memset(&tr, 0, sizeof tr);
-  memset(&g, 0, sizeof g);
   if (traj && !J->l_given) run_l_beside(J->path, &J->p.l);
   if (!traj && (J->frame >= 0 || J->frames_dir))
     return bad_input(J->frame >= 0 ? "draw: --frame needs a trajectory"
@@ -492,16 +505,17 @@ static int draw_run(draw_job *J)
   }
   if (model_valid(&J->p, &J->b) && draw_check_box(J)
       && (!J->color_by || strcmp(J->color_by, "cluster") == 0
-          || color_values(J, traj, n, &value))) {
+          || color_values(J, traj, n, &value))
+      && (g = afv_geom_new()) != NULL) {
     J->o.color_by_cluster = J->color_by && !strcmp(J->color_by, "cluster");
     J->o.value = value;
     J->o.value_name = J->color_by;
-    if (J->frames_dir) st = draw_frames(J, &tr, &g);
-    else if ((st = draw_one(stdout, J, &g, n, r, theta)) == 0
+    if (J->frames_dir) st = draw_frames(J, &tr, g);
+    else if ((st = draw_one(stdout, J, g, n, r, theta)) == 0
              && fflush(stdout) != 0)
       st = bad_input("draw: cannot write the SVG");
   }
-  afv_geom_free(&g);
+  afv_geom_delete(g);
   if (traj) afv_traj_free(&tr);
   else free(r);
   free(value);

@@ -3,6 +3,10 @@
 */
 #define _POSIX_C_SOURCE 200809L  /* mkdir, truncate, isatty, clock_gettime */
 #include "cli.h"
+/* Internal: the job holds its afv_sim by value and reads its fields (r,
+** theta, f, geom, step, t, dyn, ...) at every output, checkpoint and
+** error message; afv.h's accessors would do, at about 100 call sites. */
+#include "afv_internal.h"
 
 #include <errno.h>
 #include <float.h>

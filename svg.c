@@ -34,7 +34,7 @@
 ** for such configurations the element counts equal the geometry's counts
 ** (tested).
 */
-#include "afv.h"
+#include "afv_internal.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -30,7 +30,7 @@
 ** opposite, has a vertex moving 1e124 times as fast as its neighbour,
 ** over d = 1e-289: 1e382.  Not a property to check.)
 */
-#include "afv.h"
+#include "afv_internal.h"
 
 #include <math.h>
 #include <stdint.h>

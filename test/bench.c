@@ -45,7 +45,7 @@
 **     threads state=STATE N=N speedup=X reference_speedup=Y chunks=C
 */
 #define _POSIX_C_SOURCE 200809L
-#include "afv.h"
+#include "afv_internal.h"
 
 #include <errno.h>
 #include <limits.h>

@@ -31,7 +31,7 @@
 ** the order they finish).  Wall times are on a shared machine.
 */
 #define _POSIX_C_SOURCE 200809L
-#include "afv.h"
+#include "afv_internal.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -44,7 +44,7 @@ const char *test_shared_dir(void);
 
 /* Shared fixtures (fixtures.c).  A fixed-seed splitmix64 stream, so every
 ** "random" configuration is the same on every run; uniforms in [0, 1). */
-#include "afv.h"
+#include "afv_internal.h"
 void               test_rng_seed(unsigned long long s);
 unsigned long long test_rng_next(void);
 double             test_rng_uniform(void);
