@@ -64,6 +64,7 @@ int main(void)
   suite_geometry();
   suite_protocol();
   suite_docs();
+  suite_api();
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;
 }

@@ -92,5 +92,6 @@ void suite_sweep(void);
 void suite_geometry(void);
 void suite_protocol(void);
 void suite_docs(void);
+void suite_api(void);
 
 #endif

@@ -1,0 +1,204 @@
+/*
+** test_api.c -- the public header afv.h stands alone (issue 23, "Public
+** API"): the README's C examples compile against afv.h without
+** afv_internal.h, afv.h no longer shows the library's internals (the
+** structs of afv_geom and afv_sim, the OpenMP macros), and the accessors
+** of the opaque types hand out the library's own fields.
+**
+** The compile checks run `cc -fsyntax-only` in a directory that holds a
+** copy of afv.h and nothing else; they SKIP when cc is missing.  Each
+** "must fail" check has a control that compiles the same program against
+** the whole source tree (afv_internal.h in reach), so a failure is the
+** header's doing, not a broken command.
+*/
+#define _POSIX_C_SOURCE 200809L   /* mkdtemp */
+#include "test.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+static char tmp[64];          /* the suite's directory: afv.h alone */
+static int  have_cc;          /* 1 if `cc` runs */
+
+/* Writes text to tmp/name; 1 on success. */
+static int write_file(const char *name, const char *text)
+{
+  char path[128];
+  FILE *fp;
+  snprintf(path, sizeof path, "%s/%s", tmp, name);
+  if (!(fp = fopen(path, "w"))) return 0;
+  fputs(text, fp);
+  return fclose(fp) == 0;
+}
+
+/* The k-th (from 0) ```c block of README.md, into buf; 1 if found. */
+static int readme_block(int k, char *buf, size_t len)
+{
+  FILE *fp = fopen("README.md", "r");
+  char line[512];
+  int on = 0, seen = -1;
+  size_t used = 0;
+  buf[0] = 0;
+  if (!fp) return 0;
+  while (fgets(line, sizeof line, fp)) {
+    if (!on && strcmp(line, "```c\n") == 0) {
+      on = ++seen == k;
+      continue;
+    }
+    if (on && strcmp(line, "```\n") == 0) break;
+    if (on && used + strlen(line) + 1 < len) {
+      strcpy(buf + used, line);
+      used += strlen(line);
+    }
+  }
+  fclose(fp);
+  return on && used > 0;
+}
+
+/* Exit status of cc -std=c99 -pedantic -Wall -Werror -fsyntax-only on
+** tmp/name, with include path inc ("tmp": afv.h alone; ".": the tree). */
+static int syntax_check(const char *name, const char *inc)
+{
+  return test_sh("cc -std=c99 -pedantic -Wall -Werror -fsyntax-only -I%s "
+                 "'%s/%s' 2>/dev/null", strcmp(inc, "tmp") ? inc : tmp, tmp,
+                 name);
+}
+
+static void test_readme_example_needs_only_afv_h(void)
+{
+  static char block[8192];
+  if (!have_cc) { SKIP("cc not found"); return; }
+  CHECK(readme_block(0, block, sizeof block), "README.md has no ```c block");
+  CHECK(write_file("example.c", block), "cannot write example.c");
+  CHECK(syntax_check("example.c", "tmp") == 0, "README's C example does not "
+        "compile against afv.h alone");
+}
+
+/* The quench fragment of the README, given the names it assumes. */
+static void test_readme_quench_needs_only_afv_h(void)
+{
+  static char block[8192], prog[10000];
+  if (!have_cc) { SKIP("cc not found"); return; }
+  CHECK(readme_block(1, block, sizeof block), "README.md has no quench block");
+  CHECK(strstr(block, "afv_sim_step") != NULL, "second ```c block is not "
+        "the quench");
+  snprintf(prog, sizeof prog,
+           "#include <afv.h>\n"
+           "int main(void)\n{\n"
+           "  double r[4] = {0, 0, 1.5, 0}, theta[2] = {0, 0};\n"
+           "  int n = 2;\n  long k;\n  afv_params p;\n"
+           "  afv_box box = {0, 0, 0};\n  afv_params_default(&p);\n"
+           "  {\n%s  }\n  return 0;\n}\n", block);
+  CHECK(write_file("quench.c", prog), "cannot write quench.c");
+  CHECK(syntax_check("quench.c", "tmp") == 0, "README's quench does not "
+        "compile against afv.h alone");
+}
+
+/* Programs that use the library's internals: each must compile against
+** the tree (control) and fail against afv.h alone. */
+static void test_afv_h_hides_internals(void)
+{
+  static const struct { const char *name, *body; } use[] = {
+    {"geom_size.c", "int main(void) { return (int)sizeof(afv_geom); }\n"},
+    {"geom_field.c", "int main(void) { afv_geom *g = afv_geom_new();\n"
+                     "  int n = g->n; afv_geom_delete(g); return n; }\n"},
+    {"sim_field.c", "int main(void) { afv_sim *s = afv_sim_new();\n"
+                    "  s->dyn.v0 = 1; afv_sim_delete(s); return 0; }\n"},
+    {"omp_macro.c", "int main(void) { return AFV_PARALLEL_MIN; }\n"},
+    {"grid_type.c", "int main(void) { afv_grid g; g.nbx = 1; "
+                    "return g.nbx; }\n"},
+  };
+  char text[512];
+  size_t k;
+  if (!have_cc) { SKIP("cc not found"); return; }
+  for (k = 0; k < sizeof use / sizeof use[0]; k++) {
+    snprintf(text, sizeof text, "#include <afv_internal.h>\n%s", use[k].body);
+    CHECK(write_file(use[k].name, text), "cannot write %s", use[k].name);
+    CHECK(syntax_check(use[k].name, ".") == 0, "%s: the control (the tree's "
+          "afv_internal.h) does not compile", use[k].name);
+    snprintf(text, sizeof text, "#include <afv.h>\n%s", use[k].body);
+    CHECK(write_file(use[k].name, text), "cannot write %s", use[k].name);
+    CHECK(syntax_check(use[k].name, "tmp") != 0, "%s compiles against afv.h "
+          "alone: afv.h still shows that internal", use[k].name);
+  }
+}
+
+/* Every accessor returns its own field of the struct in afv_internal.h. */
+static void test_accessors_hand_out_the_fields(void)
+{
+  double r[8] = {0, 0, 1.5, 0, 0.7, 1.2, 6, 6};
+  afv_params p;
+  afv_box b = {0, 0, 0};
+  afv_dyn d;
+  afv_geom *g = afv_geom_new();
+  afv_sim *s = afv_sim_new();
+  const afv_piece *pc;
+  const int *nbr;
+  const double *nd;
+  int i, j, m;
+  CHECK(g && s, "afv_geom_new or afv_sim_new failed");
+  if (!g || !s) { afv_geom_delete(g); afv_sim_delete(s); return; }
+  afv_params_default(&p);
+  afv_dyn_default(&d);
+  d.v0 = 0.3;
+  CHECK(afv_compute(g, 4, r, &p, &b, NULL) == AFV_OK, "afv_compute failed");
+  CHECK(afv_geom_n(g) == g->n && afv_geom_area(g) == g->area
+        && afv_geom_perim(g) == g->perim && afv_geom_arc(g) == g->arc
+        && afv_geom_contacts(g) == g->contacts
+        && afv_geom_energy(g) == g->energy, "a geometry accessor is wrong");
+  for (i = 0; i < 4; i++) {
+    m = afv_geom_pieces(g, i, &pc);
+    CHECK(m == g->n_pieces[i] && pc == g->pieces + g->piece_start[i],
+          "afv_geom_pieces of cell %d", i);
+    m = afv_geom_neighbours(g, i, &nbr, &nd);
+    CHECK(m == g->nbr_end[i] - g->nbr_start[i]
+          && nbr == g->nbr + g->nbr_start[i]
+          && nd == g->nbr_d + 2 * g->nbr_start[i],
+          "afv_geom_neighbours of cell %d", i);
+  }
+  CHECK(afv_geom_neighbours(g, 3, &nbr, NULL) == 0, "cell 3 is isolated");
+  g->bad_i = 7; g->bad_j = 9;
+  afv_geom_bad_pair(g, &i, &j);
+  CHECK(i == 7 && j == 9, "afv_geom_bad_pair gave %d %d", i, j);
+
+  CHECK(afv_sim_init(s, 4, r, NULL, &p, &b, &d) == AFV_OK, "init failed");
+  CHECK(afv_sim_step(s) == AFV_OK, "step failed");
+  CHECK(afv_sim_n(s) == s->n && afv_sim_steps(s) == s->step
+        && afv_sim_time(s) == s->t && afv_sim_positions(s) == s->r
+        && afv_sim_angles(s) == s->theta && afv_sim_forces(s) == s->f
+        && afv_sim_geom(s) == &s->geom && afv_sim_params(s) == &s->par
+        && afv_sim_box(s) == &s->box && afv_sim_dyn(s) == &s->dyn,
+        "a simulation accessor is wrong");
+  s->substeps = 11; s->halvings = 12; s->bad_cell = 2;
+  s->bad_disp = 0.75; s->bad_time = 0.125;
+  CHECK(afv_sim_substeps(s) == 11 && afv_sim_halvings(s) == 12
+        && afv_sim_bad_cell(s) == 2 && afv_sim_bad_disp(s) == 0.75
+        && afv_sim_bad_time(s) == 0.125, "a counter accessor is wrong");
+  afv_sim_set_steps(s, 42);
+  CHECK(s->step == 42, "afv_sim_set_steps did not set the step");
+  afv_geom_delete(g);
+  afv_sim_delete(s);
+  afv_geom_delete(NULL);
+  afv_sim_delete(NULL);
+}
+
+void suite_api(void)
+{
+  char cmd[96];
+  strcpy(tmp, "/tmp/afv_api_XXXXXX");
+  if (!mkdtemp(tmp)) {
+    printf("  cannot create a temporary directory under /tmp: %s\n",
+           strerror(errno));
+    return;
+  }
+  have_cc = test_sh("cc --version >/dev/null 2>&1") == 0;
+  if (test_sh("cp afv.h '%s/afv.h'", tmp) != 0)
+    printf("  cannot copy afv.h into %s\n", tmp);
+  RUN(test_readme_example_needs_only_afv_h);
+  RUN(test_readme_quench_needs_only_afv_h);
+  RUN(test_afv_h_hides_internals);
+  RUN(test_accessors_hand_out_the_fields);
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);   /* mkdtemp's own dir */
+  if (system(cmd) != 0) printf("  note: could not remove %s\n", tmp);
+}
