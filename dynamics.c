@@ -36,7 +36,7 @@
 /* OpenMP (make OPENMP=1, see afv_internal.h): the per-cell loops of a step
 ** touch only their own cell, the noise is drawn per (cell, step), and the only
 ** reductions are a maximum and an or, so every thread count gives the same
-** bits.  The macros are in afv.h; empty in the plain C99 build. */
+** bits.  The macros are in afv_internal.h; empty in the plain C99 build. */
 
 /* ---- one step: the paper's equations (4) and (5) ------------------------ */
 /* Displacement of cell i over a time h: h (mu F_i + v0_i n_i), the

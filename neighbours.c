@@ -169,7 +169,7 @@ void afv_wrap(const afv_box *b, double *x, double *y)
 ** grid_periodic / grid_open (the candidates pass half their search range
 ** (2 + SKIN) l there), so a scan of the 3 x 3 bins around a cell finds
 ** every cell within that range. */
-typedef afv_grid grid;   /* afv.h: nbx, nby, periodic, x0, y0, wx, wy, Lx, Ly */
+typedef afv_grid grid;   /* afv_internal.h: nbx, nby, periodic, x0, y0, wx, wy, Lx, Ly */
 
 /* Bins of side >= 2 half_range dividing the box evenly, at most
 ** BINS_PER_CELL per cell (+ BINS_SLACK): a sparse box gets fewer, wider

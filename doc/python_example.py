@@ -29,24 +29,19 @@ class Box(C.Structure):           # afv_box
     _fields_ = [("periodic", C.c_int), ("Lx", C.c_double), ("Ly", C.c_double)]
 
 
-class Geom(C.Structure):
-    # The public fields at the head of afv_geom, in afv.h's order; the
-    # library's private fields follow them, so room is kept after them.
-    _fields_ = [("n", C.c_int), ("area", DP), ("perim", DP), ("arc", DP),
-                ("contacts", IP), ("piece_start", IP), ("n_pieces", IP),
-                ("pieces", C.c_void_p), ("nbr_start", IP), ("nbr_end", IP),
-                ("nbr", IP), ("nbr_d", DP), ("nbr_rev", IP),
-                ("energy", C.c_double), ("bad_i", C.c_int), ("bad_j", C.c_int),
-                ("private", C.c_char * 4096)]
-
-
 afv = C.CDLL(lib_path)
 afv.afv_params_default.argtypes = [C.POINTER(Params)]
-afv.afv_compute.argtypes = [C.POINTER(Geom), C.c_int, DP, C.POINTER(Params),
+# afv_geom is opaque: a pointer from afv_geom_new, read through its calls
+afv.afv_geom_new.restype = C.c_void_p
+afv.afv_geom_delete.argtypes = [C.c_void_p]
+for name, restype in (("area", DP), ("perim", DP), ("arc", DP),
+                      ("contacts", IP), ("energy", C.c_double)):
+    getattr(afv, "afv_geom_" + name).argtypes = [C.c_void_p]
+    getattr(afv, "afv_geom_" + name).restype = restype
+afv.afv_compute.argtypes = [C.c_void_p, C.c_int, DP, C.POINTER(Params),
                             C.POINTER(Box), DP]
 afv.afv_compute.restype = C.c_int
 afv.afv_strerror.restype = C.c_char_p
-afv.afv_geom_free.argtypes = [C.POINTER(Geom)]
 
 xy = []
 with open(points) as fp:
@@ -58,11 +53,16 @@ n = len(xy) // 2
 
 r = (C.c_double * (2 * n))(*xy)
 f = (C.c_double * (2 * n))()
-p, box, g = Params(), Box(0, 0.0, 0.0), Geom()   # Geom() is zeroed
+p, box, g = Params(), Box(0, 0.0, 0.0), afv.afv_geom_new()
+if not g:
+    sys.exit("afv_geom_new: out of memory")
 afv.afv_params_default(C.byref(p))
-st = afv.afv_compute(C.byref(g), n, r, C.byref(p), C.byref(box), f)
+st = afv.afv_compute(g, n, r, C.byref(p), C.byref(box), f)
 if st != 0:
     sys.exit("afv_compute: " + afv.afv_strerror(st).decode())
+area, perim = afv.afv_geom_area(g), afv.afv_geom_perim(g)
+arc, contacts = afv.afv_geom_arc(g), afv.afv_geom_contacts(g)
+energy_lib = afv.afv_geom_energy(g)
 
 # afv eval prints every number in %.17g, which reads back to the same double
 out = subprocess.run([afv_prog, "eval", points], check=True,
@@ -71,13 +71,13 @@ rows = [line.split() for line in out if not line.startswith("#")]
 energy = float(out[-1].split()[2])
 mismatch = 0
 for i, row in enumerate(rows):
-    mine = [g.area[i], g.perim[i], g.arc[i], g.contacts[i], f[2*i], f[2*i+1]]
+    mine = [area[i], perim[i], arc[i], contacts[i], f[2*i], f[2*i+1]]
     theirs = [float(v) for v in row[3:9]]
     if mine != theirs:
         mismatch += 1
         print("cell %d: ctypes %r, afv eval %r" % (i, mine, theirs))
-ok = len(rows) == n and mismatch == 0 and g.energy == energy
+ok = len(rows) == n and mismatch == 0 and energy_lib == energy
 print("%d cells, E = %.17g: ctypes and afv eval %s" %
-      (n, g.energy, "agree bit for bit" if ok else "DIFFER"))
-afv.afv_geom_free(C.byref(g))
+      (n, energy_lib, "agree bit for bit" if ok else "DIFFER"))
+afv.afv_geom_delete(g)
 sys.exit(0 if ok else 1)
