@@ -153,7 +153,7 @@ int afv_compute(afv_geom *g, int n, const double *r, const afv_params *p,
 /* Energy of one cell from its shape: KA (A-A0)^2 + KP (P-P0)^2 + Lambda L. */
 double afv_cell_energy(const afv_params *p, int i, double A, double P, double L);
 
-/* ---- the geometric steps, for readers and advanced callers ------------- */
+/* ---- cell order -------------------------------------------------------- */
 /* A spatial order of the cells (the cell list's, bins of side >= 2l row by
 ** row): perm[k] = the cell to put k-th.  Numbering cells in this order
 ** keeps neighbours close in memory: large N runs faster than with a random
