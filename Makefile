@@ -14,6 +14,8 @@
 #                   lib/pkgconfig/afv.pc, share/man/man1/afv.1 under
 #                   $(DESTDIR)$(PREFIX) (PREFIX defaults to /usr/local)
 #   make uninstall  removes exactly those files
+#   make -j2 paper SCALE=smoke|quick|full OUT=DIR   reproduce the paper's
+#                   figures and claims table (see "Reproducing the paper")
 #   make clean
 #
 # CC and CFLAGS may be overridden (make CC=clang, make CC=tcc).
@@ -43,12 +45,13 @@ endif
 # afv_internal.h, fastmath.h and rng.h are shared by its files only (not
 # part of the API, afv.h).
 LIB_SRC  = neighbours.c geom.c fastmath.c afv.c dynamics.c substeps.c rng.c \
-           analysis.c svg.c io.c phase.c api.c
+           analysis.c svg.c io.c phase.c api.c fits.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
 .PHONY: all test run bench bench-quick bench-compare fuzz twins \
-        protocol-check shared install uninstall clean FORCE
+        protocol-check shared install uninstall clean FORCE \
+        paper paper-sweeps paper-grid paper-fss
 
 all: afv libafv.a
 
@@ -72,7 +75,7 @@ libafv.a: $(LIB_OBJ)
 	$(AR) rcs $@ $(LIB_OBJ)
 
 # The program: main.c dispatches to the commands (cli.h lists their files).
-CLI_SRC  = main.c cli.c inspect.c run.c report.c sweep.c collect.c
+CLI_SRC  = main.c cli.c inspect.c run.c report.c sweep.c collect.c paper.c
 CLI_OBJ  = $(CLI_SRC:.c=.o)
 
 afv: $(CLI_OBJ) libafv.a .build-flags
@@ -189,6 +192,33 @@ twins: test/twins_fast test/twins_ref
 	./test/twins_fast > test/twins_fast.out
 	./test/twins_ref > test/twins_ref.out
 	./test/twins_fast --compare test/twins_fast.out test/twins_ref.out
+
+# ---- Reproducing the paper --------------------------------------------------
+# make -j2 paper SCALE=smoke|quick|full OUT=DIR: tools/paper_sweeps.sh writes
+# two sweeps (afv sweep) into OUT: grid (the (P0, v0) plane) and fss (the
+# finite-size study); their runners are sub-makes that share make's job
+# slots (-jN: N runs at a time in all), so the two run side by side; then
+# afv collect tables each sweep and afv paper OUT draws the figures
+# (OUT/figures/*.svg) and writes OUT/claims.csv.  A killed make resumes
+# where it stopped.  SCALE=full writes the paper's 1400-job grid: run its
+# runs where there are cores (sbatch OUT/grid/slurm.sh, or make -C OUT/grid
+# -j N), then make paper SCALE=full OUT=DIR again for the figures.
+SCALE ?= quick
+OUT   ?= paper
+
+paper: paper-grid paper-fss
+	st=0; ./afv collect $(OUT)/grid || st=$$?; test $$st -le 1
+	st=0; ./afv collect $(OUT)/fss || st=$$?; test $$st -le 1
+	./afv paper $(OUT)
+
+paper-sweeps: afv
+	sh tools/paper_sweeps.sh $(SCALE) $(OUT) $(CURDIR)/afv
+
+paper-grid: paper-sweeps
+	+$(MAKE) -C $(OUT)/grid
+
+paper-fss: paper-sweeps
+	+$(MAKE) -C $(OUT)/fss
 
 # Evidence for the paper's protocol (test/protocol_check.c): the authors'
 # random start relaxed and run at every P0 and v0 of the paper's range.

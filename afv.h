@@ -749,4 +749,52 @@ typedef struct afv_map {
 } afv_map;
 int afv_svg_map(FILE *out, const afv_map *m);
 
+/* ---- the paper's fits (fits.c) ----------------------------------------- */
+/* Power law p(n) ~ n^exponent fitted to the decay of a cluster-size
+** distribution (csd as afv_analysis.csd, index 1..n): log-binned
+** (afv_csd_log_bins), density per size in each bin at the bin's geometric
+** centre, least squares of log10 density on log10 size over the bins after
+** the densest one through the last one whose sizes are all <= nmax (sizes
+** above nmax, the giant cluster, are left out); empty bins skipped.
+** se = the slope's standard error (NaN from 2 bins).  AFV_EINVAL if fewer
+** than 2 bins are left. */
+typedef struct afv_powerlaw {
+  double exponent, se;   /* slope of log p against log n, its error */
+  int    nbins;          /* bins fitted */
+  int    lo, hi;         /* sizes they cover */
+} afv_powerlaw;
+int afv_csd_powerlaw(const double *csd, int n, int nmax, afv_powerlaw *fit);
+
+/* Where curve a falls below curve b (n points on a common increasing x):
+** the first sign change of ya - yb from > 0 to < 0 among the points where
+** both are finite and differ (points where they are equal, e.g. both 1,
+** take no side), by linear interpolation; 1 if found into *xc. */
+int afv_curves_cross(int n, const double *x, const double *ya,
+                     const double *yb, double *xc);
+
+/* The common crossing of nc curves y[c n + k] (c in increasing P0) on x:
+** x = mean over the pairs a < b that cross (afv_curves_cross: curve a, the
+** lower P0, falls below b); se = jackknife over the curves (leave one out,
+** recompute the mean); pairs = how many crossed.  AFV_EINVAL if none. */
+typedef struct afv_crossing_fit {
+  double x, se;
+  int    pairs;
+} afv_crossing_fit;
+int afv_common_crossing(int nc, int n, const double *x, const double *y,
+                        afv_crossing_fit *out);
+
+/* Scaling collapse (paper, clustering section): the v0* and alpha in
+** [0, 4] that put the curves y[c n + k] (at x[k], P0 = p0[c]) on one curve
+** of s = (x - v0*) / P0^alpha, by minimising the mean squared distance of
+** each point from every other curve interpolated at its s (grid search,
+** coarse then fine: v0* to 0.002, alpha to 0.005); se by jackknife over
+** the curves (nc >= 3, else NaN).  AFV_EINVAL for nc < 2, n < 2, x not
+** increasing or P0 <= 0. */
+typedef struct afv_collapse {
+  double vstar, alpha, se_vstar, se_alpha;
+  double cost;           /* the minimum mean squared distance */
+} afv_collapse;
+int afv_collapse_fit(int nc, int n, const double *x, const double *y,
+                     const double *p0, afv_collapse *out);
+
 #endif /* AFV_H */

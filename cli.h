@@ -9,6 +9,7 @@
 **   report.c   analyze: a run's order parameters and plots
 **   sweep.c    sweep: a grid of runs and its runners (make, parallel, SLURM)
 **   collect.c  collect: a sweep's table, missing jobs, fits and figures
+**   paper.c    paper: the paper's figures and claims table (make paper)
 **
 ** Exit status of every command: 0 success, 1 a check failed, 2 bad input
 ** or options, 3 a run stopped on an unstable step.  Only these files decide
@@ -40,6 +41,7 @@ int cmd_analyze(int argc, char **argv);
 int cmd_meanfield(int argc, char **argv);
 int cmd_sweep(int argc, char **argv);
 int cmd_collect(int argc, char **argv);
+int cmd_paper(int argc, char **argv);
 
 /* argv[0] of the program as started (main.c); afv sweep finds itself by it
 ** where /proc/self/exe is not there. */

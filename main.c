@@ -52,6 +52,7 @@ static const command commands[] = {
   {"meanfield", cmd_meanfield},
   {"sweep", cmd_sweep},
   {"collect", cmd_collect},
+  {"paper", cmd_paper},
 };
 
 const char *program_name = "afv";

@@ -93,5 +93,6 @@ void suite_geometry(void);
 void suite_protocol(void);
 void suite_docs(void);
 void suite_api(void);
+void suite_paper(void);
 
 #endif

@@ -1,0 +1,166 @@
+/*
+** test_paper.c -- the numbers afv paper computes (fits.c): the power law
+** of a log-binned cluster-size distribution, the crossing of two curves
+** and of many, the scaling collapse; each on data whose answer is known.
+** And afv paper's refusal of a folder without the sweeps.
+*/
+#define _POSIX_C_SOURCE 200809L
+#include "afv.h"
+#include "test.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#define NCELLS 400
+
+/* p(s) = s^tau over 1..n, normalised. */
+static void power_csd(double *csd, int n, double tau)
+{
+  double sum = 0;
+  int s;
+  csd[0] = 0;
+  for (s = 1; s <= n; s++) sum += csd[s] = pow(s, tau);
+  for (s = 1; s <= n; s++) csd[s] /= sum;
+}
+
+static void powerlaw_recovers_exponent(void)
+{
+  double csd[NCELLS + 1];
+  afv_powerlaw f;
+  power_csd(csd, NCELLS, -1.5);
+  CHECK(afv_csd_powerlaw(csd, NCELLS, NCELLS / 4, &f) == AFV_OK, "fit");
+  /* Bins 2-3, ..., 32-63: after the densest (s = 1), before 64-127 (which
+  ** ends above 100). */
+  CHECK(f.nbins == 5 && f.lo == 2 && f.hi == 63, "bins %d, %d..%d",
+        f.nbins, f.lo, f.hi);
+  /* The bin mean of s^-1.5 at the geometric centre: exact within 0.05. */
+  CHECK_CLOSE(f.exponent, -1.5, 0, 0.05, "exponent");
+  CHECK(f.se < 0.05, "se %g", f.se);
+  power_csd(csd, NCELLS, -2.5);
+  afv_csd_powerlaw(csd, NCELLS, NCELLS / 4, &f);
+  CHECK_CLOSE(f.exponent, -2.5, 0, 0.08, "exponent -2.5");
+}
+
+/* The fit starts at the densest bin and leaves the giant cluster out. */
+static void powerlaw_window(void)
+{
+  double csd[NCELLS + 1], sum = 0;
+  afv_powerlaw f, g;
+  int s;
+  csd[0] = 0;
+  for (s = 1; s <= NCELLS; s++)
+    sum += csd[s] = s < 8 ? s : 8 * pow(s / 8.0, -1.25);
+  for (s = 1; s <= NCELLS; s++) csd[s] /= sum;
+  csd[280] += 0.3;   /* a giant cluster of 0.7 N */
+  CHECK(afv_csd_powerlaw(csd, NCELLS, NCELLS / 4, &f) == AFV_OK, "fit");
+  CHECK(f.lo >= 8 && f.hi == 63, "window %d..%d", f.lo, f.hi);
+  CHECK_CLOSE(f.exponent, -1.25, 0, 0.1, "decay exponent");
+  /* With the giant cluster inside the window the slope is not the decay's:
+  ** the window matters (and the test would see a window that ignored it). */
+  afv_csd_powerlaw(csd, NCELLS, NCELLS, &g);
+  CHECK(fabs(g.exponent + 1.25) > 0.2, "giant cluster included: %g",
+        g.exponent);
+  /* Too few bins: refused. */
+  CHECK(afv_csd_powerlaw(csd, NCELLS, 1, &f) == AFV_EINVAL, "one bin");
+}
+
+static void two_curves_cross(void)
+{
+  double x[9], a[9], b[9], xc = -1;
+  int k;
+  for (k = 0; k < 9; k++) {
+    x[k] = 0.25 * k;
+    /* Equal (both 1) up to x = 0.5: no side; then a falls faster. */
+    a[k] = x[k] <= 0.5 ? 1 : 1 - 0.5 * (x[k] - 0.5);
+    b[k] = x[k] <= 0.5 ? 1 : 1 - 0.3 * (x[k] - 0.5);
+  }
+  /* a - b = -0.2 (x - 0.5) < 0 after 0.5: a is below, never above: none. */
+  CHECK(!afv_curves_cross(9, x, a, b, &xc), "no crossing, got %g", xc);
+  for (k = 0; k < 9; k++) {
+    a[k] = 0.9 - 0.5 * (x[k] - 1.3);
+    b[k] = 0.9 - 0.2 * (x[k] - 1.3);
+  }
+  a[2] = NAN;   /* a missing point is skipped */
+  CHECK(afv_curves_cross(9, x, a, b, &xc), "crossing found");
+  CHECK_CLOSE(xc, 1.3, 0, 1e-12, "crossing of two lines");
+  CHECK(!afv_curves_cross(9, x, b, a, &xc), "b never falls below a");
+}
+
+static void common_crossing_of_lines(void)
+{
+  enum { NC = 4, NX = 28 };
+  double x[NX], y[NC * NX];
+  afv_crossing_fit f;
+  int c, k;
+  for (k = 0; k < NX; k++) x[k] = 0.1 * k;
+  /* Lines through (1.85, 0.7), steeper for the lower curves (lower P0):
+  ** every pair crosses at 1.85 exactly. */
+  for (c = 0; c < NC; c++)
+    for (k = 0; k < NX; k++)
+      y[c * NX + k] = 0.7 - (0.6 - 0.1 * c) * (x[k] - 1.85);
+  CHECK(afv_common_crossing(NC, NX, x, y, &f) == AFV_OK, "fit");
+  CHECK(f.pairs == NC * (NC - 1) / 2, "pairs %d", f.pairs);
+  CHECK_CLOSE(f.x, 1.85, 0, 1e-9, "common crossing");
+  CHECK_CLOSE(f.se, 0, 0, 1e-9, "jackknife error of exact lines");
+  /* Curve 0 moved: its crossings with the others move, so does the mean
+  ** and its jackknife error is no longer 0. */
+  for (k = 0; k < NX; k++) y[k] = 0.7 - 0.6 * (x[k] - 2.05);
+  afv_common_crossing(NC, NX, x, y, &f);
+  CHECK(f.x > 1.86 && f.se > 0.01, "moved curve: x %g se %g", f.x, f.se);
+}
+
+/* G(s) falls from 1 to 0 around s = -0.02. */
+static double master(double s)
+{
+  return 0.5 * (1 - tanh((s + 0.02) / 0.03));
+}
+
+static void collapse_recovers(void)
+{
+  enum { NC = 5, NX = 55 };
+  double x[NX], y[NC * NX], p0[NC] = {4, 5, 6, 7, 8};
+  afv_collapse f;
+  int c, k;
+  for (k = 0; k < NX; k++) x[k] = 0.05 * k;
+  for (c = 0; c < NC; c++)
+    for (k = 0; k < NX; k++)
+      y[c * NX + k] = master((x[k] - 1.85) / pow(p0[c], 1.5));
+  CHECK(afv_collapse_fit(NC, NX, x, y, p0, &f) == AFV_OK, "fit");
+  CHECK_CLOSE(f.vstar, 1.85, 0, 0.02, "v0*");
+  CHECK_CLOSE(f.alpha, 1.5, 0, 0.05, "alpha");
+  CHECK(f.cost < 1e-4, "cost %g", f.cost);
+  CHECK(isfinite(f.se_vstar) && f.se_vstar < 0.05, "se v0* %g", f.se_vstar);
+  /* Another (v0*, alpha) is found as well. */
+  for (c = 0; c < NC; c++)
+    for (k = 0; k < NX; k++)
+      y[c * NX + k] = master((x[k] - 1.2) / pow(p0[c], 0.8));
+  afv_collapse_fit(NC, NX, x, y, p0, &f);
+  CHECK_CLOSE(f.vstar, 1.2, 0, 0.02, "v0* 1.2");
+  CHECK_CLOSE(f.alpha, 0.8, 0, 0.05, "alpha 0.8");
+  CHECK(afv_collapse_fit(1, NX, x, y, p0, &f) == AFV_EINVAL, "one curve");
+  p0[2] = 0;
+  CHECK(afv_collapse_fit(NC, NX, x, y, p0, &f) == AFV_EINVAL, "P0 = 0");
+}
+
+/* afv paper on a folder without the sweeps: exit status 2, nothing made. */
+static void paper_refuses_missing_sweeps(void)
+{
+  int st;
+  if (access("./afv", X_OK) != 0) { SKIP("./afv not built"); return; }
+  st = system("./afv paper /tmp/afv_paper_test_none_here 2>/dev/null");
+  CHECK(st != -1 && WIFEXITED(st) && WEXITSTATUS(st) == 2, "exit status %d", st);
+  CHECK(access("/tmp/afv_paper_test_none_here", F_OK) != 0,
+        "folder created");
+}
+
+void suite_paper(void)
+{
+  RUN(powerlaw_recovers_exponent);
+  RUN(powerlaw_window);
+  RUN(two_curves_cross);
+  RUN(common_crossing_of_lines);
+  RUN(collapse_recovers);
+  RUN(paper_refuses_missing_sweeps);
+}

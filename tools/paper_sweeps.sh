@@ -1,0 +1,79 @@
+#!/bin/sh
+# tools/paper_sweeps.sh SCALE OUT AFV -- writes the sweeps of `make paper`
+# (afv sweep) into OUT/grid (the (P0, v0) plane, N = 400) and OUT/fss (the
+# finite-size study: N_GC/N against v0 at P0 = 4 and 8 for growing N).
+# A sweep that already exists is kept as it is (its runs resume), unless
+# it was written for another SCALE: then this script stops (exit 2) and
+# names it, so results of two scales never mix.
+#
+# SCALE   grid (P0 x v0, seeds, steps)              finite-size (N x P0 x v0)
+# smoke   P0 4,8 x v0 0.1,1.85 (+ the panels' states), 1 seed ... numbers mean nothing
+# quick   8 x 10, 2 seeds, 3e4 steps                N 400,1600,6400 (see below)
+# full    the paper's: P0 4:8.8:0.2 x v0 0:2.7:0.1, 2 seeds, 1e6 steps
+#
+# Every run starts from afv run's default start (init cluster: the
+# authors' protocol) and relaxes at v0 = 0 before the active steps.
+set -e
+SCALE=${1:?usage: tools/paper_sweeps.sh SCALE OUT AFV}
+OUT=${2:?usage: tools/paper_sweeps.sh SCALE OUT AFV}
+AFV=${3:?usage: tools/paper_sweeps.sh SCALE OUT AFV}
+
+case $SCALE in
+smoke)
+  # Tiny: every figure and claim is produced, the numbers mean nothing.
+  GRID="--P0 4,4.4,5.6,8,8.8 --v0 0.1,0.4,1,1.85,2.6 --seeds 2 --N 100
+        --steps 600 --frame_every 20 --relax_max_steps 400"
+  GRID_ANALYZE="--steady-from 2 --lag 1"
+  FSS="--N 100,200 --P0 4,8 --v0 1.4,1.85 --seeds 1 --steps 400
+       --frame_every 20 --relax_max_steps 400"
+  FSS_ANALYZE="--steady-from 2 --lag 1"
+  ;;
+quick)
+  # N = 400, 8 P0 x 10 v0 x 2 seeds = 160 jobs of 3e4 steps (t = 300),
+  # steady window t >= 100, a frame every time unit, D_s at lag 50.
+  GRID="--P0 4,4.4,4.8,5.6,6.4,7.2,8,8.8
+        --v0 0,0.1,0.4,0.7,1,1.3,1.6,1.85,2.1,2.6 --seeds 2 --N 400
+        --steps 30000 --frame_every 100"
+  GRID_ANALYZE="--steady-from 100 --lag 50"
+  FSS="--N 400,1600,6400 --P0 4,8 --v0 1.4,1.85,2.3 --seeds 1
+       --steps 20000 --frame_every 100"
+  FSS_ANALYZE="--steady-from 100 --lag 50"
+  ;;
+full)
+  # The paper's grid and length (25 x 28 x 2 = 1400 jobs of 1e6 steps):
+  # steady window t >= 1000, D_s at lag 5000 as in the paper.
+  GRID="--P0 4:8.8:0.2 --v0 0:2.7:0.1 --seeds 2 --N 400 --steps 1000000
+        --frame_every 1000 --checkpoint_every 100000"
+  GRID_ANALYZE="--steady-from 1000 --lag 5000"
+  FSS="--N 400,1600,6400 --P0 4,8 --v0 1.4:2.3:0.15 --seeds 2
+       --steps 1000000 --frame_every 1000 --checkpoint_every 100000
+       "
+  FSS_ANALYZE="--steady-from 1000 --lag 5000"
+  ;;
+*)
+  echo "tools/paper_sweeps.sh: SCALE must be smoke, quick or full, not '$SCALE'" >&2
+  exit 2
+  ;;
+esac
+
+# One sweep: written once; kept if it exists for the same scale.
+sweep() {
+  dir=$OUT/$1; shift
+  if [ -d "$dir" ]; then
+    if [ "$(cat "$dir/scale" 2>/dev/null)" != "$SCALE" ]; then
+      echo "tools/paper_sweeps.sh: $dir holds a sweep of scale '$(cat "$dir/scale" 2>/dev/null)', not $SCALE: remove it or choose another OUT" >&2
+      exit 2
+    fi
+    echo "$dir: kept (its runs resume)"
+    return 0
+  fi
+  # shellcheck disable=SC2086
+  "$AFV" sweep --out "$dir" "$@" --sample_every 100 --svg_every 0 --quiet 1
+  echo "$SCALE" > "$dir/scale"
+}
+
+mkdir -p "$OUT"
+# shellcheck disable=SC2086
+sweep grid $GRID $GRID_ANALYZE
+# shellcheck disable=SC2086
+sweep fss $FSS $FSS_ANALYZE
