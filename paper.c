@@ -1299,27 +1299,68 @@ static double max_slope(const fss *F, int in, int ip)
   return best;
 }
 
-static int fss_outputs(const char *out, const fss *F)
+/* The grid's N_GC/N against v0 at P0 = p0 (N = 400, the sweep's start)
+** as extra series of the finite-size figure: the curve, then its error
+** bars; returns the number of series written into s. */
+static int grid_curve(const plane *P, double p0, const char *label,
+                      const char *color, double *buf, afv_plot_series *s)
 {
-  char path[PATH_LEN], tmp[PATH_LEN + 16], (*label)[64];
-  int nc = F->nn * F->np, in, ip, iv, ok;
+  int ip = index_of(P->p0, P->np, p0), iv, m = 0, ns = 1;
+  double *x = buf, *y = buf + P->nv, *bar = buf + 2 * P->nv;
+  if (ip < 0) return 0;
+  for (iv = 0; iv < P->nv; iv++) {
+    double e = at(P, Q_NGC, ip, iv, 1), v = at(P, Q_NGC, ip, iv, 0);
+    if (!isfinite(v)) continue;
+    x[m] = P->v0[iv];
+    y[m] = v;
+    if (isfinite(e) && e > 0) {
+      double *b = bar + 4 * m;
+      b[0] = b[1] = P->v0[iv];
+      b[2] = v - e;
+      b[3] = v + e;
+      memset(&s[ns], 0, sizeof s[ns]);
+      s[ns].x = b; s[ns].y = b + 2; s[ns].n = 2; s[ns].color = color;
+      ns++;
+    }
+    m++;
+  }
+  memset(&s[0], 0, sizeof s[0]);
+  s[0].x = x; s[0].y = y; s[0].n = m; s[0].label = label; s[0].color = color;
+  return ns;
+}
+
+static int fss_outputs(const char *out, const fss *F, const plane *P)
+{
+  char path[PATH_LEN], tmp[PATH_LEN + 16], (*label)[64], glab[2][64];
+  int nc = F->nn * F->np, in, ip, iv, ok, ne = 0, g;
+  static const char *gcol[2] = {"#000000", "#7f7f7f"};
+  double *buf = malloc((size_t)(2 * 6 * P->nv + 1) * sizeof *buf);
+  afv_plot_series *ex = calloc((size_t)(2 * (P->nv + 1)), sizeof *ex);
   afv_plot pl;
   curveset cs;
   FILE *fp;
   label = malloc((size_t)(nc + 1) * sizeof *label);
-  if (!label) return 0;
+  if (!label || !buf || !ex) { free(label); free(buf); free(ex); return 0; }
   for (in = 0; in < F->nn; in++)
     for (ip = 0; ip < F->np; ip++)
       snprintf(label[in * F->np + ip], 64, "N = %g, P0 = %g", F->N[in],
                F->p0[ip]);
+  /* The lowest and highest P0 of the study as the grid has them. */
+  for (g = 0; g < 2 && F->np > 0; g++) {
+    double p0 = F->p0[g ? F->np - 1 : 0];
+    snprintf(glab[g], 64, "grid N = 400 (cluster start), P0 = %g", p0);
+    ne += grid_curve(P, p0, glab[g], gcol[g], buf + g * 6 * P->nv, ex + ne);
+  }
   memset(&pl, 0, sizeof pl);
-  pl.title = "Finite size: N_GC/N against v0 (mean +- sem over seeds)";
+  pl.title = "Finite size: N_GC/N against v0 (fss sweep; black/grey: grid)";
   pl.xlabel = "v0 (l/time)";
   pl.ylabel = "N_GC/N";
   cs.nc = nc; cs.n = F->nv; cs.xper = 0; cs.x = F->v0; cs.y = F->mean;
   cs.err = F->sem; cs.label = label;
-  ok = plot_curves(out, "fss_ngc_vs_v0.svg", &pl, &cs, NULL, 0);
+  ok = plot_curves(out, "fss_ngc_vs_v0.svg", &pl, &cs, ex, ne);
   free(label);
+  free(buf);
+  free(ex);
   if (!ok) return 0;
   /* fss.csv: every state point, then per N the crossing of the lowest and
   ** highest P0 curves and the steepest slope of each. */
@@ -1396,7 +1437,7 @@ int cmd_paper(int argc, char **argv)
   C = calloc(1, sizeof *C);
   ok = C && cluster_figures(out, &P, C) && fluctuation_figures(out, &P, C)
        && confluency_figures(out, &P, C) && dynamics_figures(out, &P, C)
-       && summary_figures(out, &P, C) && fss_outputs(out, &F)
+       && summary_figures(out, &P, C) && fss_outputs(out, &F, &P)
        && claims_write(out, C);
   if (ok) printf("afv paper: %s/figures, %s/claims.csv (%d claims), "
                  "%s/fss.csv\n", out, out, C->n, out);
