@@ -218,8 +218,9 @@ static void collapse_search(int nc, int n, const double *x, const double *y,
   v = best[0];
   a = best[1];
   if (isfinite(best[2]))
-    collapse_grid(nc, n, x, y, p, use, s, v - 0.05, v + 0.05, 0.002,
-                  a > 0.1 ? a - 0.1 : 0, a + 0.1, 0.005, best);
+    collapse_grid(nc, n, x, y, p, use, s, fmax(v - 0.05, x[0]),
+                  fmin(v + 0.05, x[n - 1]), 0.002, a > 0.1 ? a - 0.1 : 0,
+                  fmin(a + 0.1, COLLAPSE_AMAX), 0.005, best);
   *vstar = best[0];
   *alpha = best[1];
   *cost = best[2];
