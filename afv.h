@@ -552,10 +552,8 @@ typedef struct afv_clusters {
   double *omega_c;      /* omega_c[c] = V3 / max(Ec - N + 1 - wraps, 1) */
   int    *contact;      /* per piece q of the geom: 1 if a contacting edge */
   int    *partner;      /* per piece: the same edge in the other cell, -1 */
-  /* private: capacities and work space */
-  int     cap_pairs, cap_junctions, cap_cells, cap_pieces;
-  int    *parent, *root_label, *vparent;
-  double *off;
+  struct afv_clusters_work *work;  /* the library's own: capacities and
+                        ** work space (allocated by afv_clusters_compute) */
 } afv_clusters;
 
 /* Clusters, Omega and junctions of the configuration r whose geometry g

@@ -59,6 +59,14 @@
 #define MSD_BETA_MIN_LAGS 3
 
 /* ---- buffers ----------------------------------------------------------- */
+/* The private part of an afv_clusters (afv.h keeps it opaque): the
+** capacities of its arrays and the union-find's work space. */
+struct afv_clusters_work {
+  int     cap_pairs, cap_junctions, cap_cells, cap_pieces;
+  int    *parent, *root_label, *vparent;
+  double *off;          /* offset of each cell from its union-find parent */
+};
+
 static int grow(void **ptr, int *cap, int need, size_t elem)
 {
   void *q;
@@ -77,7 +85,7 @@ static int grow(void **ptr, int *cap, int need, size_t elem)
 /* Grows several arrays of one capacity; each gets its own copy of cap. */
 static int grow_cells(afv_clusters *c, int need)
 {
-  int cap = c->cap_cells, k;
+  int cap = c->work->cap_cells, k;
   void **arr[9];
   size_t size[9];
   arr[0] = (void **)&c->label;   size[0] = sizeof(int);
@@ -86,30 +94,30 @@ static int grow_cells(afv_clusters *c, int need)
   arr[3] = (void **)&c->v3;      size[3] = sizeof(int);
   arr[4] = (void **)&c->wraps;   size[4] = sizeof(int);
   arr[5] = (void **)&c->omega_c; size[5] = sizeof(double);
-  arr[6] = (void **)&c->parent;  size[6] = sizeof(int);
-  arr[7] = (void **)&c->off;     size[7] = 2 * sizeof(double);
-  arr[8] = (void **)&c->root_label; size[8] = sizeof(int);
+  arr[6] = (void **)&c->work->parent;  size[6] = sizeof(int);
+  arr[7] = (void **)&c->work->off;     size[7] = 2 * sizeof(double);
+  arr[8] = (void **)&c->work->root_label; size[8] = sizeof(int);
   if (need <= cap) return AFV_OK;
   for (k = 0; k < 9; k++) {
     int cc = cap;
     if (grow(arr[k], &cc, need, size[k])) return AFV_ENOMEM;
-    if (k == 8) c->cap_cells = cc;
+    if (k == 8) c->work->cap_cells = cc;
   }
   return AFV_OK;
 }
 
 static int grow_pieces(afv_clusters *c, int need)
 {
-  int cap = c->cap_pieces, k;
+  int cap = c->work->cap_pieces, k;
   void **arr[3];
   arr[0] = (void **)&c->partner;
   arr[1] = (void **)&c->contact;
-  arr[2] = (void **)&c->vparent;
+  arr[2] = (void **)&c->work->vparent;
   if (need <= cap) return AFV_OK;
   for (k = 0; k < 3; k++) {
     int cc = cap;
     if (grow(arr[k], &cc, need, sizeof(int))) return AFV_ENOMEM;
-    if (k == 2) c->cap_pieces = cc;
+    if (k == 2) c->work->cap_pieces = cc;
   }
   return AFV_OK;
 }
@@ -118,8 +126,12 @@ void afv_clusters_free(afv_clusters *c)
 {
   free(c->pairs); free(c->junction); free(c->label); free(c->size);
   free(c->ec); free(c->v3); free(c->wraps); free(c->omega_c);
-  free(c->partner); free(c->contact); free(c->parent); free(c->off);
-  free(c->root_label); free(c->vparent);
+  free(c->partner); free(c->contact);
+  if (c->work) {
+    free(c->work->parent); free(c->work->off);
+    free(c->work->root_label); free(c->work->vparent);
+    free(c->work);
+  }
   memset(c, 0, sizeof *c);
 }
 
@@ -157,7 +169,7 @@ static int collect_pairs(afv_clusters *c, const afv_geom *g)
     for (k = g->piece_start[i]; k < g->piece_start[i] + g->n_pieces[i]; k++) {
       int j = g->pieces[k].nbr;
       if (!c->contact[k] || j < i) continue;   /* the lower index records it */
-      if (grow((void **)&c->pairs, &c->cap_pairs, m + 1, 2 * sizeof(int)))
+      if (grow((void **)&c->pairs, &c->work->cap_pairs, m + 1, 2 * sizeof(int)))
         return AFV_ENOMEM;
       c->pairs[2*m] = i;
       c->pairs[2*m+1] = j;
@@ -183,12 +195,12 @@ static int collect_pairs(afv_clusters *c, const afv_geom *g)
 ** cluster winding around the periodic box. */
 static int find(afv_clusters *c, int i)
 {
-  int p = c->parent[i], root;
+  int p = c->work->parent[i], root;
   if (p == i) return i;
   root = find(c, p);                 /* depth O(log N): union by size */
-  c->off[2*i] += c->off[2*p];        /* off[p] is now relative to root */
-  c->off[2*i+1] += c->off[2*p+1];
-  c->parent[i] = root;
+  c->work->off[2*i] += c->work->off[2*p];        /* off[p] is now relative to root */
+  c->work->off[2*i+1] += c->work->off[2*p+1];
+  c->work->parent[i] = root;
   return root;
 }
 
@@ -198,8 +210,8 @@ static int find(afv_clusters *c, int i)
 static void join(afv_clusters *c, int i, int j, double dx, double dy, double l)
 {
   int a = find(c, i), b = find(c, j);
-  double mx = c->off[2*i] + dx - c->off[2*j];  /* pos(b) - pos(a) */
-  double my = c->off[2*i+1] + dy - c->off[2*j+1];
+  double mx = c->work->off[2*i] + dx - c->work->off[2*j];  /* pos(b) - pos(a) */
+  double my = c->work->off[2*i+1] + dy - c->work->off[2*j+1];
   if (a == b) {
     if (mx * mx + my * my > l * l) c->wraps[a] = 1;
     return;
@@ -211,9 +223,9 @@ static void join(afv_clusters *c, int i, int j, double dx, double dy, double l)
     mx = -mx;
     my = -my;
   }
-  c->parent[b] = a;
-  c->off[2*b] = mx;
-  c->off[2*b+1] = my;
+  c->work->parent[b] = a;
+  c->work->off[2*b] = mx;
+  c->work->off[2*b+1] = my;
   c->size[a] += c->size[b];
   c->wraps[a] |= c->wraps[b];
 }
@@ -222,10 +234,10 @@ static void find_clusters(afv_clusters *c, const afv_geom *g, double l)
 {
   int i, k, n = g->n;
   for (i = 0; i < n; i++) {
-    c->parent[i] = i;
+    c->work->parent[i] = i;
     c->size[i] = 1;
     c->wraps[i] = 0;
-    c->off[2*i] = c->off[2*i+1] = 0;
+    c->work->off[2*i] = c->work->off[2*i+1] = 0;
   }
   for (i = 0; i < n; i++)
     for (k = g->piece_start[i]; k < g->piece_start[i] + g->n_pieces[i]; k++) {
@@ -240,20 +252,20 @@ static void find_clusters(afv_clusters *c, const afv_geom *g, double l)
 static void label_clusters(afv_clusters *c, int n)
 {
   int i, m = 0;
-  for (i = 0; i < n; i++) c->root_label[i] = -1;
+  for (i = 0; i < n; i++) c->work->root_label[i] = -1;
   for (i = 0; i < n; i++) {
     int r = find(c, i);
-    if (c->root_label[r] < 0) c->root_label[r] = m++;
-    c->label[i] = c->root_label[r];
+    if (c->work->root_label[r] < 0) c->work->root_label[r] = m++;
+    c->label[i] = c->work->root_label[r];
   }
   /* size/wraps of root r go to slot root_label[r]; labels are assigned in
   ** increasing order of first cell, so root_label[r] <= r: a forward pass
   ** overwrites only slots already read */
   for (i = 0; i < n; i++)
-    if (c->parent[i] == i) {
+    if (c->work->parent[i] == i) {
       int s = c->size[i], w = c->wraps[i];
-      c->size[c->root_label[i]] = s;
-      c->wraps[c->root_label[i]] = w;
+      c->size[c->work->root_label[i]] = s;
+      c->wraps[c->work->root_label[i]] = w;
     }
   c->count = m;
   c->giant = 0;
@@ -301,13 +313,13 @@ static void join_vertices(afv_clusters *c, const afv_geom *g)
   int i, q;
   for (i = 0; i < g->n; i++)
     for (q = g->piece_start[i]; q < g->piece_start[i] + g->n_pieces[i]; q++)
-      c->vparent[q] = q;
+      c->work->vparent[q] = q;
   for (i = 0; i < g->n; i++)
     for (q = g->piece_start[i]; q < g->piece_start[i] + g->n_pieces[i]; q++) {
       int nq = next_piece(g, i, q);
       if (g->pieces[q].nbr < 0) continue;
-      if (c->partner[q] >= 0) vjoin(c->vparent, nq, c->partner[q]);
-      if (!c->contact[q]) vjoin(c->vparent, q, nq);
+      if (c->partner[q] >= 0) vjoin(c->work->vparent, nq, c->partner[q]);
+      if (!c->contact[q]) vjoin(c->work->vparent, q, nq);
     }
 }
 
@@ -322,13 +334,13 @@ static int count_junctions(afv_clusters *c, const afv_geom *g,
     for (q = g->piece_start[i]; q < g->piece_start[i] + g->n_pieces[i]; q++) {
       int corner = g->pieces[q].nbr >= 0
                    && g->pieces[prev_piece(g, i, q)].nbr >= 0;
-      if (!corner) c->contact[vfind(c->vparent, q)] |= 2;
+      if (!corner) c->contact[vfind(c->work->vparent, q)] |= 2;
     }
   for (i = 0; i < g->n; i++)
     for (q = g->piece_start[i]; q < g->piece_start[i] + g->n_pieces[i]; q++) {
       double x, y;
-      if (vfind(c->vparent, q) != q || (c->contact[q] & 2)) continue;
-      if (grow((void **)&c->junction, &c->cap_junctions, m + 1,
+      if (vfind(c->work->vparent, q) != q || (c->contact[q] & 2)) continue;
+      if (grow((void **)&c->junction, &c->work->cap_junctions, m + 1,
                2 * sizeof(double)))
         return AFV_ENOMEM;
       x = r[2*i] + g->pieces[q].x;
@@ -373,6 +385,7 @@ int afv_clusters_compute(afv_clusters *c, const afv_geom *g, const double *r,
   int n = g->n, k, st;
   int npieces = n > 0 ? g->piece_start[n - 1] + g->n_pieces[n - 1] : 0;
   if (!(l > 0)) return AFV_EINVAL;
+  if (!c->work && !(c->work = calloc(1, sizeof *c->work))) return AFV_ENOMEM;
   if (grow_cells(c, n + 1) || grow_pieces(c, npieces + 1)) return AFV_ENOMEM;
   c->n = n;
   match_edges(c, g, l);

@@ -124,6 +124,31 @@ static void test_afv_h_hides_internals(void)
   }
 }
 
+/* afv_clusters keeps its results public and its work space opaque: a
+** program reading a result compiles against afv.h alone, one reaching
+** the union-find's work space (a capacity, the parents) does not. */
+static void test_clusters_work_space_hidden(void)
+{
+  static const char *const reads_result =
+    "#include <afv.h>\nint main(void) { afv_clusters c = {0};\n"
+    "  return c.count + c.giant + (c.label != 0); }\n";
+  static const char *const reads_work[] = {
+    "#include <afv.h>\nint main(void) { afv_clusters c = {0};\n"
+    "  return c.cap_cells; }\n",
+    "#include <afv.h>\nint main(void) { afv_clusters c = {0};\n"
+    "  return c.parent != 0; }\n"};
+  size_t k;
+  if (!have_cc) { SKIP("cc not found"); return; }
+  CHECK(write_file("clusters_result.c", reads_result), "cannot write");
+  CHECK(syntax_check("clusters_result.c", "tmp") == 0, "a program reading "
+        "afv_clusters' results does not compile against afv.h alone");
+  for (k = 0; k < sizeof reads_work / sizeof reads_work[0]; k++) {
+    CHECK(write_file("clusters_work.c", reads_work[k]), "cannot write");
+    CHECK(syntax_check("clusters_work.c", "tmp") != 0, "afv.h still shows "
+          "afv_clusters' work space: %s", reads_work[k]);
+  }
+}
+
 /* Every accessor returns its own field of the struct in afv_internal.h. */
 static void test_accessors_hand_out_the_fields(void)
 {
@@ -198,6 +223,7 @@ void suite_api(void)
   RUN(test_readme_example_needs_only_afv_h);
   RUN(test_readme_quench_needs_only_afv_h);
   RUN(test_afv_h_hides_internals);
+  RUN(test_clusters_work_space_hidden);
   RUN(test_accessors_hand_out_the_fields);
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);   /* mkdtemp's own dir */
   if (system(cmd) != 0) printf("  note: could not remove %s\n", tmp);
