@@ -41,14 +41,7 @@
 #define PI 3.14159265358979323846
 #define MAX_CELLS 12
 
-#define REQUIRE(cond)                                                     \
-  do {                                                                    \
-    if (!(cond)) {                                                        \
-      fprintf(stderr, "%s:%d: property failed: %s\n", __FILE__, __LINE__, \
-              #cond);                                                     \
-      abort();                                                            \
-    }                                                                     \
-  } while (0)
+#include "require.h"   /* REQUIRE(cond) */
 
 /* The next byte of the input, 0 past its end. */
 typedef struct reader {

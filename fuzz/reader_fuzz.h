@@ -16,14 +16,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define REQUIRE(cond)                                                     \
-  do {                                                                    \
-    if (!(cond)) {                                                        \
-      fprintf(stderr, "%s:%d: property failed: %s\n", __FILE__, __LINE__, \
-              #cond);                                                     \
-      abort();                                                            \
-    }                                                                     \
-  } while (0)
+#include "require.h"   /* REQUIRE(cond) */
 
 static char fuzz_dir[64];
 

@@ -11,7 +11,6 @@
 #include "test.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -20,19 +19,7 @@
 
 static char tmpdir[64];             /* the suite's directory */
 
-/* Runs a shell command built from fmt ("%s" arguments as given), from the
-** repository root; its exit status, -1 if it did not exit normally. */
-static int shell(const char *fmt, ...)
-{
-  char cmd[2048];
-  va_list ap;
-  int st;
-  va_start(ap, fmt);
-  vsnprintf(cmd, sizeof cmd, fmt, ap);
-  va_end(ap);
-  st = system(cmd);
-  return st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-}
+#define shell test_sh   /* fixtures.c: a shell command's exit status */
 
 /* tmpdir/name. */
 static const char *in_tmp(char *buf, size_t len, const char *name)
