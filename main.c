@@ -10,6 +10,7 @@
 **   afv meanfield [options]       the hexagonal mean-field E/M point P0*
 **   afv sweep --out DIR [options] a grid of runs and its runners
 **   afv collect DIR               a sweep's table, fits and figures
+**   afv paper DIR                 the paper's figures and claims (make paper)
 **
 ** Exit status: 0 success, 1 a check failed, 2 bad input or options,
 ** 3 a run stopped on an unstable step.
@@ -33,6 +34,7 @@ static const char *usage_text =
   "  meanfield       the hexagonal mean-field E/M point P0*\n"
   "  sweep           a grid of runs (make, GNU parallel or SLURM runs it)\n"
   "  collect DIR     a sweep's table, phase labels, fits and figures\n"
+  "  paper DIR       the paper's figures and claims table (make paper)\n"
   "\n"
   "Run 'afv COMMAND --help' for the options of a command (afv run --help\n"
   "lists every simulation key with its default, unit and meaning).\n";

@@ -94,9 +94,16 @@ static void test_cli_help(void)
   static const char *opts[] = {"--l", "--A0", "--P0", "--KA", "--KP",
                                "--Lambda", "--box", "--cap"};
   int k;
+  static const char *commands[] = {"eval", "check", "run", "draw",
+                                   "analyze", "meanfield", "sweep",
+                                   "collect", "paper"};
+  char line[32];
   CHECK(afv("--help") == 0, "afv --help: exit status not 0");
-  CHECK(strstr(out, "eval") && strstr(out, "check"), "afv --help does not "
-        "list eval and check:\n%s", out);
+  for (k = 0; k < (int)(sizeof commands / sizeof commands[0]); k++) {
+    snprintf(line, sizeof line, "\n  %s ", commands[k]);
+    CHECK(strstr(out, line) != NULL, "afv --help does not list the command "
+          "%s:\n%s", commands[k], out);
+  }
   CHECK(afv("eval --help") == 0, "afv eval --help: exit status not 0");
   for (k = 0; k < 8; k++) {
     const char *at = strstr(out, opts[k]);
