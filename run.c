@@ -1786,8 +1786,10 @@ static int run_resume(run_state *R, const run_args *a)
   return run_loop(R);
 }
 
-/* 1 if the run in dir has reached its steps (its checkpoint is at the end);
-** -1 if params.txt or the checkpoint cannot be read (message printed). */
+/* 1 if the run in dir has reached its steps (its checkpoint is at the end)
+** and written final.svg, its last output (a run killed between the two is
+** resumed, at no step, to write it); -1 if params.txt or the checkpoint
+** cannot be read (message printed). */
 static int run_finished(const char *dir)
 {
   char path[RUN_PATH_MAX + 32], err[2 * RUN_PATH_MAX];
@@ -1801,7 +1803,8 @@ static int run_finished(const char *dir)
   snprintf(path, sizeof path, "%s/checkpoint.txt", dir);
   if (afv_checkpoint_read(path, &ck, err, sizeof err) != AFV_OK)
     return -bad_input(err);
-  done = ck.step >= cfg.steps;
+  snprintf(path, sizeof path, "%s/final.svg", dir);
+  done = ck.step >= cfg.steps && access(path, F_OK) == 0;
   afv_checkpoint_free(&ck);
   return done;
 }

@@ -439,7 +439,7 @@ static void msd_beta_window(void)
 ** window, the lag and its origins. */
 static void analyze_window_and_run_continue(void)
 {
-  static char buf[TEXT_MAX], before[TEXT_MAX];
+  static char buf[TEXT_MAX], before[TEXT_MAX], svg[TEXT_MAX];
   if (!have_afv()) return;
   CHECK(afv("run --out %s/a/b/r --N 30 --v0 0 --steps 400 --frame_every 50 "
             "--svg_every 0 --quiet") == 0, "run into new parents: %s",
@@ -450,6 +450,18 @@ static void analyze_window_and_run_continue(void)
         err_text);
   CHECK(!strcmp(read_rel("a/b/r/trajectory.dat", buf), before),
         "--continue changed a finished run");
+  /* a run killed after its last checkpoint, before final.svg (its last
+  ** output) was in place, is finished by --continue: final.svg written,
+  ** the same bytes (CI's kill test once caught a job left without it) */
+  read_rel("a/b/r/final.svg", svg);
+  shell("rm %s/a/b/r/final.svg", base);
+  CHECK(afv("run --out %s/a/b/r --N 30 --v0 0 --steps 400 --frame_every 50 "
+            "--svg_every 0 --quiet --continue") == 0, "--continue: %s",
+        err_text);
+  CHECK(exists("a/b/r/final.svg")
+        && !strcmp(read_rel("a/b/r/final.svg", buf), svg)
+        && !strcmp(read_rel("a/b/r/trajectory.dat", buf), before),
+        "--continue of a run killed before final.svg: not finished alike");
   /* a run killed before its first checkpoint starts again, same bytes */
   shell("rm %s/a/b/r/checkpoint.txt", base);
   CHECK(afv("run --out %s/a/b/r --N 30 --v0 0 --steps 400 --frame_every 50 "
