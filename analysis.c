@@ -929,12 +929,14 @@ static int write_one(const char *dir, const char *name, writer_fn fn,
 int afv_analysis_write(const afv_analysis *a, const char *dir, char *err,
                        size_t errlen)
 {
-  static const char *names[] = {"summary.txt", "msd.csv", "csd.csv",
-                                "csd_binned.csv", "series.csv"};
+  /* summary.txt last: once it is in place, every file is (a sweep's job
+  ** counts as done by it, and a job killed before it is run again) */
+  static const char *names[] = {"msd.csv", "csd.csv", "csd_binned.csv",
+                                "series.csv", "summary.txt"};
   writer_fn fns[5];
   int k, st;
-  fns[0] = write_summary; fns[1] = write_msd; fns[2] = write_csd;
-  fns[3] = write_csd_binned; fns[4] = write_series;
+  fns[0] = write_msd; fns[1] = write_csd; fns[2] = write_csd_binned;
+  fns[3] = write_series; fns[4] = write_summary;
   for (k = 0; k < 5; k++)
     if ((st = write_one(dir, names[k], fns[k], a, err, errlen)) != AFV_OK)
       return st;

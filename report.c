@@ -143,9 +143,11 @@ static int analyze_write(const char *dir, const afv_analysis *a)
             strerror(errno));
     return EXIT_BAD_INPUT;
   }
+  /* the plots first: afv_analysis_write writes summary.txt last, the
+  ** sign that the analysis is complete */
+  if (analyze_plots(out, a) != 0) return EXIT_BAD_INPUT;
   if (afv_analysis_write(a, out, err, sizeof err) != AFV_OK)
     return bad_input(err);
-  if (analyze_plots(out, a) != 0) return EXIT_BAD_INPUT;
   printf("frames %d (steady from %d)\nngc_frac_mean %.6g\nn_clusters_mean "
          "%.6g\nomega_mean %.6g\nt1_final %g\nD_s %.6g\nD_eff %.6g\n"
          "tau_NGC %.6g\nt1_rate %.6g\nmsd_beta %.6g\nwritten: %s/\n",

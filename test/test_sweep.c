@@ -499,6 +499,18 @@ static void analyze_window_and_run_continue(void)
         && strstr(buf, "\nsteady_frames 7\n") && strstr(buf, "\nD_s_lag 2\n")
         && strstr(buf, "\nD_s_origins 3\n") && strstr(buf, "\nt1_rate ")
         && strstr(buf, "\nmsd_beta "), "summary.txt:\n%s", buf);
+  /* summary.txt is written last (a sweep's job is done when it is there):
+  ** an analysis that cannot write csd.csv, or a plot, leaves none */
+  shell("rm -rf %s/a/b/r/analysis && mkdir -p %s/a/b/r/analysis/csd.csv",
+        base);
+  CHECK(afv("analyze %s/a/b/r --steady-from 1 --lag 2") == 2
+        && !exists("a/b/r/analysis/summary.txt"), "summary.txt written "
+        "although csd.csv could not be");
+  shell("rm -rf %s/a/b/r/analysis && mkdir -p %s/a/b/r/analysis/msd.svg",
+        base);
+  CHECK(afv("analyze %s/a/b/r --steady-from 1 --lag 2") == 2
+        && !exists("a/b/r/analysis/summary.txt"), "summary.txt written "
+        "although msd.svg could not be");
 }
 
 void suite_sweep(void)
