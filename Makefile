@@ -235,7 +235,7 @@ protocol-check: test/protocol_check
 # PREFIX is what afv.pc records.
 PREFIX  ?= /usr/local
 DESTDIR ?=
-VERSION  = 0.1.0
+VERSION := $(shell sed -n 's/^\#define AFV_VERSION "\(.*\)"/\1/p' afv.h)
 BINDIR   = $(DESTDIR)$(PREFIX)/bin
 LIBDIR   = $(DESTDIR)$(PREFIX)/lib
 INCDIR   = $(DESTDIR)$(PREFIX)/include

@@ -23,6 +23,14 @@
 #include <stdint.h>
 #include <stdio.h>
 
+/* ---- version ------------------------------------------------------------ */
+/* The library's version (semantic versioning); the program prints it with
+** `afv --version`, and the Makefile reads it from here. */
+#define AFV_VERSION_MAJOR 0
+#define AFV_VERSION_MINOR 2
+#define AFV_VERSION_PATCH 0
+#define AFV_VERSION "0.2.0"
+
 /* ---- status codes ------------------------------------------------------ */
 #define AFV_OK           0  /* success */
 #define AFV_ENOMEM       1  /* an allocation failed */

@@ -15,6 +15,7 @@
 ** Exit status: 0 success, 1 a check failed, 2 bad input or options,
 ** 3 a run stopped on an unstable step.
 */
+#include "afv.h"
 #include "cli.h"
 
 #include <stdio.h>
@@ -35,6 +36,8 @@ static const char *usage_text =
   "  sweep           a grid of runs (make, GNU parallel or SLURM runs it)\n"
   "  collect DIR     a sweep's table, phase labels, fits and figures\n"
   "  paper DIR       the paper's figures and claims table (make paper)\n"
+  "\n"
+  "  version         print afv's version (also afv --version)\n"
   "\n"
   "Run 'afv COMMAND --help' for the options of a command (afv run --help\n"
   "lists every simulation key with its default, unit and meaning).\n";
@@ -68,6 +71,10 @@ int main(int argc, char **argv)
     fputs(usage_text, argc < 2 ? stderr : stdout);
     if (argc >= 2) printf("\nOptions of eval, check and draw:\n%s", model_help);
     return argc < 2 ? EXIT_BAD_INPUT : 0;
+  }
+  if (strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "version") == 0) {
+    printf("afv %s\n", AFV_VERSION);
+    return 0;
   }
   for (c = 0; c < sizeof commands / sizeof commands[0]; c++)
     if (strcmp(argv[1], commands[c].name) == 0)
