@@ -851,7 +851,8 @@ size_t afv_struct_size(const char *name);
 afv_dyn *afv_dyn_new(void);
 void     afv_dyn_delete(afv_dyn *d);      /* NULL is allowed */
 /* The scalar fields: "mu", "v0", "Dr", "dt", "max_move", "seed" (an
-** integer in [0, 2^64) as a double; others AFV_EINVAL). */
+** integer in [0, 2^64) as a double; others AFV_EINVAL), "integrator"
+** (AFV_EULER or AFV_SUBSTEPS, as a double). */
 int afv_dyn_set(afv_dyn *d, const char *name, double value);
 int afv_dyn_get(const afv_dyn *d, const char *name, double *value);
 /* Points v0_i ("v0") or Dr_i ("Dr") at n values the caller keeps (NULL:

@@ -145,7 +145,8 @@ _RELAX_NAMES = ("iterations", "time", "max_force", "energy0", "energy",
                 "at_kink", "refused")
 _RELAX_INTS = ("iterations", "substeps", "halvings")
 _RELAX_FLAGS = ("converged", "at_kink", "refused")
-_DYN_NAMES = ("mu", "v0", "Dr", "dt", "max_move", "seed")
+_DYN_NAMES = ("mu", "v0", "Dr", "dt", "max_move", "seed", "integrator")
+_INTEGRATORS = {"euler": 0, "substeps": 1}      # AFV_EULER, AFV_SUBSTEPS
 
 
 class AfvError(Exception):
@@ -415,8 +416,10 @@ def meanfield_p0(Lambda=0.2, A0=math.pi, KP=1.0):
 class Simulation(object):
     """A running simulation (afv_sim): the cells at r (N x 2), angles theta
     (N; default all 0), params, box as for compute(), and the dynamics'
-    values mu, v0, Dr, dt, max_move, seed (defaults of afv_dyn_default:
-    1, 0, 0.1, 0.01, 0.05, 1); v0 and Dr may be one per cell.
+    values mu, v0, Dr, dt, max_move, seed, integrator ("euler" or
+    "substeps", in a library that has it) with afv_dyn_default's defaults
+    (mu 1, v0 0, Dr 0.1, dt 0.01, max_move 0.05, seed 1); v0 and Dr may be
+    one per cell.
 
     step(k) takes k steps; relax() relaxes at zero activity.  Between steps
     set(v0=...) changes the dynamics (a quench), set_params(P0=...) the
@@ -459,6 +462,8 @@ class Simulation(object):
                 _check(_lib.afv_dyn_set_cells(d, name.encode(), arr.ptr),
                        "dynamics " + name)
                 continue
+            if name == "integrator" and value in _INTEGRATORS:
+                value = _INTEGRATORS[value]
             if name in ("v0", "Dr"):
                 _lib.afv_dyn_set_cells(d, name.encode(), None)
                 self._cells.pop(name, None)
@@ -466,11 +471,12 @@ class Simulation(object):
                    "dynamics %s = %r" % (name, value))
 
     def set(self, **dyn):
-        """Changes mu, v0, Dr, dt, max_move or seed before the next step."""
+        """Changes the dynamics' values (as in Simulation()) before the
+        next step."""
         self._set_dyn(_lib.afv_sim_dyn(self._sim), dyn)
 
     def get(self, name):
-        """The dynamics' value name (mu, v0, Dr, dt, max_move, seed)."""
+        """The dynamics' value name (as in Simulation())."""
         v = C.c_double()
         _check(_lib.afv_dyn_get(_lib.afv_sim_dyn(self._sim), name.encode(),
                                 C.byref(v)), "dynamics " + name)
