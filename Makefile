@@ -298,4 +298,4 @@ clean:
 	  python/check_driver \
 	  test/protocol_check tools/convergence_plot .build-flags
 	rm -f test/twins_fast test/twins_ref test/twins_fast.out test/twins_ref.out
-	rm -rf fuzz/build
+	rm -rf fuzz/build python/__pycache__
