@@ -94,6 +94,8 @@ for _name, _type in (("area", _DP), ("perim", _DP), ("arc", _DP),
                      ("contacts", _IP)):
     _declare("afv_geom_" + _name, _type, _VP)
 _declare("afv_geom_energy", C.c_double, _VP)
+_declare("afv_geom_bad_pair", None, _VP, _IP, _IP)
+_ECOINCIDENT = 5                   # AFV_ECOINCIDENT
 _declare("afv_compute", C.c_int, _VP, C.c_int, _DP, _PP, _BP, _DP)
 _declare("afv_order_parameters", C.c_int, _VP, _DP, C.c_double, _BP, _DP, _IP)
 _declare("afv_svg_save", C.c_int, C.c_char_p, _VP, C.c_int, _DP, _DP, _PP,
@@ -258,8 +260,22 @@ class Params(object):
                 setattr(c, name + "_i", d.ptr)
                 value = 0.0
             setattr(c, name, float(value))
-        _check(_lib.afv_params_check(C.byref(c), n), "Params")
+        st = _lib.afv_params_check(C.byref(c), n)
+        if st != 0:
+            raise AfvError(st, "Params: " + self._first_bad(c, n))
         return c, keep
+
+    def _first_bad(self, c, n):
+        """The name of the first value afv_params_check refuses in c."""
+        for name in self._SCALARS:
+            one = _CParams()
+            _lib.afv_params_default(C.byref(one))
+            setattr(one, name, getattr(c, name))
+            if name in self._PER_CELL:
+                setattr(one, name + "_i", getattr(c, name + "_i"))
+            if _lib.afv_params_check(C.byref(one), n) != 0:
+                return "%s = %r" % (name, getattr(self, name))
+        return "the combination of values"
 
 
 def _params(p, n):
@@ -306,9 +322,14 @@ class _Geom(object):
         if not self.g:
             raise MemoryError("afv_geom_new")
         self.f, fptr = _empty(2 * self.n)
-        _check(_lib.afv_compute(self.g, self.n, self.r.ptr,
-                                C.byref(self.params), C.byref(self.box),
-                                fptr), "afv_compute")
+        st = _lib.afv_compute(self.g, self.n, self.r.ptr, C.byref(self.params),
+                              C.byref(self.box), fptr)
+        if st == _ECOINCIDENT:
+            i, j = C.c_int(), C.c_int()
+            _lib.afv_geom_bad_pair(self.g, C.byref(i), C.byref(j))
+            raise AfvError(st, "afv_compute: cells %d and %d" % (i.value,
+                                                                j.value))
+        _check(st, "afv_compute")
         self.fptr = fptr
 
     def __del__(self):

@@ -207,22 +207,28 @@ def arrays_with_numpy_lists_without():
 
 @test
 def bad_input_is_refused():
+    # (what, call, what the message must name)
     refusals = [
-        ("odd count", lambda: afv.compute([0, 0, 1])),
-        ("unknown parameter", lambda: afv.Params(P1=3)),
+        ("odd count", lambda: afv.compute([0, 0, 1]), "odd"),
+        ("unknown parameter", lambda: afv.Params(P1=3), "'P1'"),
         ("per-cell length", lambda: afv.compute(
-            [[0, 0], [1, 1]], afv.Params(P0=[4, 5, 6]))),
-        ("l = 0", lambda: afv.compute([[0, 0]], afv.Params(l=0))),
-        ("coincident", lambda: afv.compute([[0, 0], [0, 0]])),
-        ("unknown dynamics key", lambda: afv.Simulation([[0, 0]], v1=2)),
-        ("seed 0.5", lambda: afv.Simulation([[0, 0]], seed=0.5)),
+            [[0, 0], [1, 1]], afv.Params(P0=[4, 5, 6])), "Params.P0"),
+        ("l = 0", lambda: afv.compute([[0, 0]], afv.Params(l=0)), "l = 0"),
+        ("KA < 0", lambda: afv.compute([[0, 0]], afv.Params(KA=-1)),
+         "KA = -1"),
+        ("coincident", lambda: afv.compute([[0, 0], [3, 0], [3, 0]]),
+         "cells 1 and 2"),
+        ("unknown dynamics key", lambda: afv.Simulation([[0, 0]], v1=2),
+         "'v1'"),
+        ("seed 0.5", lambda: afv.Simulation([[0, 0]], seed=0.5), "seed"),
     ]
-    for what, call in refusals:
+    for what, call, named in refusals:
         try:
             call()
         except (afv.AfvError, ValueError, TypeError) as e:
-            if not str(e):
-                fail(what + ": refused without a message")
+            if named not in str(e):
+                fail("%s: the message %r does not name %r" % (what, str(e),
+                                                             named))
             continue
         fail(what + ": accepted")
 
