@@ -170,7 +170,7 @@ def _flat(values):
     """values (any nesting of numbers, or an array) as a flat list."""
     out = []
     for v in values:
-        if isinstance(v, (list, tuple)) or hasattr(v, "__len__"):
+        if not isinstance(v, str) and hasattr(v, "__len__"):
             out.extend(_flat(v))
         else:
             out.append(float(v))

@@ -343,6 +343,57 @@ static void test_svg_save_is_svg_write(void)
   afv_geom_delete(g);
 }
 
+/* The first line of file that starts with prefix, the rest of it (without
+** its newline) into buf; 1 if found. */
+static int line_after(const char *file, const char *prefix, char *buf,
+                      size_t len)
+{
+  FILE *fp = fopen(file, "r");
+  char line[512];
+  size_t n = strlen(prefix);
+  int found = 0;
+  if (!fp) return 0;
+  while (!found && fgets(line, sizeof line, fp))
+    if (strncmp(line, prefix, n) == 0) {
+      line[strcspn(line, "\r\n")] = 0;
+      snprintf(buf, len, "%s", line + n);
+      found = 1;
+    }
+  fclose(fp);
+  return found;
+}
+
+/* CITATION.cff cites this version, and CHANGELOG.md's newest entry is it
+** (its first heading line after the title is the version alone). */
+static void test_version_in_citation_and_changelog(void)
+{
+  char got[128] = "";
+  FILE *fp;
+  char line[512];
+  int k = 0;
+  CHECK(line_after("CITATION.cff", "version: ", got, sizeof got)
+        && strcmp(got, AFV_VERSION) == 0,
+        "CITATION.cff: version '%s', afv.h: %s", got, AFV_VERSION);
+  got[0] = 0;
+  if ((fp = fopen("CHANGELOG.md", "r"))) {
+    /* the first line underlined with '-' after the title */
+    char prev[512] = "";
+    while (fgets(line, sizeof line, fp)) {
+      if (++k > 2 && line[0] == '-' && prev[0]) {
+        prev[strcspn(prev, "\r\n")] = 0;
+        snprintf(got, sizeof got, "%s", prev);
+        break;
+      }
+      snprintf(prev, sizeof prev, "%s", line);
+    }
+    fclose(fp);
+  }
+  CHECK(strcmp(got, AFV_VERSION) == 0,
+        "CHANGELOG.md's newest entry is '%s', afv.h: %s", got, AFV_VERSION);
+  CHECK(line_after("LICENSE", "MIT License", got, sizeof got),
+        "LICENSE is not the MIT licence");
+}
+
 void suite_api(void)
 {
   char cmd[96];
@@ -363,6 +414,7 @@ void suite_api(void)
   RUN(test_bindings_by_name);
   RUN(test_order_parameters_are_the_clusters);
   RUN(test_svg_save_is_svg_write);
+  RUN(test_version_in_citation_and_changelog);
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);   /* mkdtemp's own dir */
   if (system(cmd) != 0) printf("  note: could not remove %s\n", tmp);
 }
