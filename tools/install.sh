@@ -120,7 +120,7 @@ uninstall_all() {
   done
   # deepest first: dir lines by path length, longest first; then ROOT's
   # own ("up 0") and its parents' upwards
-  printf '%s\n' "$list" | awk '$1 == "dir" { print length($2), $2 }' \
+  printf '%s\n' "$list" | awk '$1 == "dir" { p = substr($0, 5); print length(p), p }' \
     | sort -rn | while read -r _ path; do remove_dir "$ROOT/$path"; done
   printf '%s\n' "$list" | awk '$1 == "up" { print $2 }' | sort -n \
     | while read -r k; do remove_dir "$(up_dir "$k")"; done
