@@ -129,13 +129,11 @@ void afv_dyn_delete(afv_dyn *d) { free(d); }
 int afv_dyn_set(afv_dyn *d, const char *name, double value)
 {
   double *field;
-#ifdef AFV_SUBSTEPS   /* a library with afv_dyn.integrator */
   if (!strcmp(name, "integrator")) {
     if (value != AFV_EULER && value != AFV_SUBSTEPS) return AFV_EINVAL;
     d->integrator = (int)value;
     return AFV_OK;
   }
-#endif
   if (!strcmp(name, "seed")) {
     if (!(value >= 0 && value < SEED_LIMIT) || value != floor(value))
       return AFV_EINVAL;
@@ -150,12 +148,10 @@ int afv_dyn_set(afv_dyn *d, const char *name, double value)
 int afv_dyn_get(const afv_dyn *d, const char *name, double *value)
 {
   double *field;
-#ifdef AFV_SUBSTEPS
   if (!strcmp(name, "integrator")) {
     *value = d->integrator;
     return AFV_OK;
   }
-#endif
   if (!strcmp(name, "seed")) {
     *value = (double)d->seed;
     return AFV_OK;

@@ -488,7 +488,13 @@ class Simulation(object):
             if name in ("v0", "Dr"):
                 _lib.afv_dyn_set_cells(d, name.encode(), None)
                 self._cells.pop(name, None)
-            _check(_lib.afv_dyn_set(d, name.encode(), float(value)),
+            try:
+                number = float(value)
+            except (TypeError, ValueError):
+                raise ValueError("Simulation: %s = %r is not a number%s" % (
+                    name, value, " (nor euler or substeps)"
+                    if name == "integrator" else ""))
+            _check(_lib.afv_dyn_set(d, name.encode(), number),
                    "dynamics %s = %r" % (name, value))
 
     def set(self, **dyn):

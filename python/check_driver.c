@@ -14,8 +14,9 @@
 **          12 x 12 box, angles afv_init_angles(seed 7), dyn defaults with
 **          seed 11; afv_relax(tol 1e-4, 3000 steps); v0 = 0.5 for 30
 **          steps; v0 per cell (0.2 + 0.05 i) for 20 steps; P0 = 5.5 and
-**          afv_sim_refresh, 20 steps; positions, angles, forces, energy,
-**          time, steps, order parameters; a picture.
+**          afv_sim_refresh, 20 steps; the sub-step integrator, 20 steps;
+**          positions, angles, forces, energy, time, steps, order
+**          parameters; a picture.
 */
 #include <afv.h>
 #include <stdio.h>
@@ -114,6 +115,8 @@ static void simulation(const char *dir)
   run(s, 20);
   afv_sim_params(s)->P0 = 5.5;
   if (afv_sim_refresh(s)) exit(1);
+  run(s, 20);
+  afv_sim_dyn(s)->integrator = AFV_SUBSTEPS;
   run(s, 20);
   print_array("sim.positions", afv_sim_positions(s), 2 * N);
   print_array("sim.angles", afv_sim_angles(s), N);

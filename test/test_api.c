@@ -224,7 +224,8 @@ static void test_bindings_by_name(void)
   afv_dyn_default(&def);
   CHECK(d->mu == def.mu && d->v0 == def.v0 && d->Dr == def.Dr
         && d->dt == def.dt && d->max_move == def.max_move
-        && d->seed == def.seed && !d->v0_i && !d->Dr_i,
+        && d->seed == def.seed && d->integrator == def.integrator
+        && !d->v0_i && !d->Dr_i,
         "afv_dyn_new is not afv_dyn_default");
   fields[0] = &d->mu; fields[1] = &d->v0; fields[2] = &d->Dr;
   fields[3] = &d->dt; fields[4] = &d->max_move;
@@ -241,6 +242,12 @@ static void test_bindings_by_name(void)
         && afv_dyn_set(d, "seed", 18446744073709551616.0) == AFV_EINVAL
         && afv_dyn_set(d, "seed", 0.0 / 0.0) == AFV_EINVAL
         && d->seed == 9007199254740992ULL, "a bad seed was accepted");
+  CHECK(afv_dyn_set(d, "integrator", AFV_SUBSTEPS) == AFV_OK
+        && d->integrator == AFV_SUBSTEPS
+        && afv_dyn_get(d, "integrator", &v) == AFV_OK && v == AFV_SUBSTEPS
+        && afv_dyn_set(d, "integrator", 2) == AFV_EINVAL
+        && afv_dyn_set(d, "integrator", 0.5) == AFV_EINVAL
+        && d->integrator == AFV_SUBSTEPS, "integrator by name");
   CHECK(afv_dyn_set(d, "v1", 1) == AFV_EINVAL
         && afv_dyn_get(d, "seeds", &v) == AFV_EINVAL,
         "an unknown name was accepted");
