@@ -21,9 +21,6 @@
 #
 # CC and CFLAGS may be overridden (make CC=clang, make CC=tcc).
 # OPENMP=1 adds -fopenmp (optional; the default build is plain C99).
-# REFERENCE=1 builds the reference mode (-DAFV_REFERENCE, doc/reference.md):
-# the C library's atan2, sin and cos, a plain neighbour search, a plain
-# loop for the noise; the same model to rounding, slower.
 
 # -O3 and -fno-math-errno (sqrt inline, without the errno branch; afv never
 # reads errno) take 2-4% fewer instructions per step than -O2 (callgrind)
@@ -35,11 +32,6 @@ LDLIBS  = -lm
 ifeq ($(OPENMP),1)
 CFLAGS  += -fopenmp
 LDLIBS  += -fopenmp
-endif
-# (override: also appended to a CFLAGS given on the command line; after
-# the OpenMP lines, which an override would silence)
-ifeq ($(REFERENCE),1)
-override CFLAGS += -DAFV_REFERENCE
 endif
 
 # The library, one file per idea (doc/reference.md has the reading order);
@@ -58,7 +50,7 @@ all: afv libafv.a
 
 # Every object and program depends on .build-flags, which holds the
 # compiler and flags of the last build and is rewritten only when they
-# change: switching CC, CFLAGS, OPENMP or REFERENCE rebuilds everything.  (Else the
+# change: switching CC, CFLAGS or OPENMP rebuilds everything.  (Else the
 # builds mix: after a serial build, make OPENMP=1 test linked the serial
 # library into an OpenMP test program; the other way round, the serial
 # programs failed to link the OpenMP library.)

@@ -98,6 +98,12 @@ struct afv_geom {
 
 void afv_geom_free(afv_geom *g);
 
+/* The reference build (make REFERENCE=1) is gone: reference/afv_plain.c
+** is the plain path (doc/design.md).  dynamics.c and substeps.c still test
+** this constant in `if (AFV_REFERENCE_MODE)`; always 0, it compiles those
+** branches away.  Remove it with them. */
+#define AFV_REFERENCE_MODE 0
+
 /* ---- the geometric steps (geom.c, neighbours.c) ------------------------ */
 /* Checks the positions, fills the neighbour lists and reserves the piece
 ** and work space: what afv_cell_shape needs.  (afv_geometry = this, then
@@ -107,7 +113,7 @@ int  afv_geometry_prepare(afv_geom *g, int n, const double *r, double l,
 /* Fills g's neighbour lists: every centre closer than 2l, sorted by
 ** direction (counter-clockwise from +x), filtered from candidates that a
 ** cell list refreshes only when cells have moved (neighbours.c, Verlet skin);
-** in the reference build, found in a cell list built at every call. */
+** (the plain path to read is reference/afv_plain.c). */
 int  afv_neighbours(afv_geom *g, int n, const double *r, double l,
                     const afv_box *b);
 /* The cells that may now lie within R of the point (x, y), from the cell
