@@ -123,7 +123,7 @@ int  afv_neighbours(afv_geom *g, int n, const double *r, double l,
 ** from which no cell has since moved more than `moved`.  Cost: the cells
 ** in the bins within about R + cand_moved + moved, not O(N) (cand_moved,
 ** the largest move since the rebuild, is at most 0.15 l unless some
-** cells have moved farther: geom.c, MOVERS). */
+** cells have moved farther: neighbours.c, MOVERS). */
 int  afv_cells_around(const afv_geom *g, double x, double y, double R,
                       double moved, int *out);
 

@@ -967,14 +967,6 @@ static inline void fill_edge_pair(afv_geom *g, int s, int t, double l)
   f[3] = e[3];
 }
 
-/* The pairs of cell i with its smaller neighbours j < i: for the slot s of
-** j in the list of i, nbr_rev[s] = t, the slot of i in the list of j, and
-** nbr_rev[t] = s; the edge cache of both slots (fill_edge_pair); and zero
-** in both gradient slots, where afv_cell_shape_gradient adds.  The lists
-** are exactly symmetric (fold is odd, so d^2 has the same bits both ways),
-** so the reverse slot exists.  Each pair is linked once, from its larger
-** cell, which writes both directions: every entry has exactly one writer.
-** j's list must be filtered already. */
 /* The slot of cell i in the list of j, where i sits at displacement
 ** (x, y) from j: in a long list (more than LONG_LIST slots) a binary
 ** search by comes_after (the list is sorted by it); else, or if that
@@ -1021,6 +1013,14 @@ static COLD void link_long_cell(afv_geom *g, int i, double l)
   }
 }
 
+/* The pairs of cell i with its smaller neighbours j < i: for the slot s of
+** j in the list of i, nbr_rev[s] = t, the slot of i in the list of j, and
+** nbr_rev[t] = s; the edge cache of both slots (fill_edge_pair); and zero
+** in both gradient slots, where afv_cell_shape_gradient adds.  The lists
+** are exactly symmetric (fold is odd, so d^2 has the same bits both ways),
+** so the reverse slot exists.  Each pair is linked once, from its larger
+** cell, which writes both directions: every entry has exactly one writer.
+** j's list must be filtered already. */
 static void link_cell(afv_geom *g, int i, double l)
 {
   int s, t;
