@@ -28,6 +28,18 @@
 **   d th_i/dt = eta_i,  <eta_i(t) eta_j(t')> = 2 Dr delta_ij delta(t - t')   (5)
 **
 ** (the paper's equation numbers).  Lengths are in units of l.
+** Where (3) comes from (paper, Eq. (1) and the lines after it): cortical
+** tensions lambda_c on the contact edges and lambda_n on the arcs, and
+** elastic area and perimeter terms.  Completing the square gives (3) with
+**     P0 = -lambda_c / (2 KP l),   Lambda = (lambda_n - lambda_c) / KA:
+** a large P0 means contacts pull outward (soft, "mesenchymal" cells), a
+** positive Lambda makes an arc cost more than a contact, so cells stick.
+** The force on a centre is F_i = -grad_i E (after Eq. (3)); v0 n_i is the
+** cell's own crawling, along a polarity n_i that diffuses in angle (5).
+** The paper's parameters: KA = KP = 1 (k_P = KP/KA = 1), A0 = pi (the
+** area of a free cell), Lambda = 0.2, Dr = 0.1, mu = 1, dt = 0.01, and
+** N = 400 cells at packing fraction phi = N pi l^2 / L^2 = 0.5 in a
+** periodic box of side L; the knobs are P0 (4 to 8.8) and v0 (0 to 2.7).
 **
 ** THE FILE, in reading order:
 **   1. parameters and the tissue                      (struct model, tissue)
@@ -45,6 +57,21 @@
 **  10. the giant cluster N_GC/N, and main
 ** Compile with -DAFV_PLAIN_NO_MAIN to use the functions from another
 ** program (the twin check does).
+**
+** WHAT THE LIBRARY DOES DIFFERENTLY, and why (the same numbers to 1e-12):
+**   - neighbours: a cell list and Verlet candidates, O(N) per step instead
+**     of O(N^2) (neighbours.c);
+**   - the boundary: neighbours sorted by direction, so the kept chords
+**     come out in boundary order and the arcs are the gaps between them
+**     (geom.c); here the arcs come from the union of the left-out angles;
+**   - the forces: each cell writes only its own G_ij and each force is
+**     gathered from both cells' G (afv.c, "gather" form), so cells can be
+**     computed on threads; G_ij is split along u and t so that centres
+**     1e-16 l apart still get the right force;
+**   - the step: a cell the force would move more than max_move l takes
+**     its step in pieces (substeps.c); max_move = 0 is this file's step;
+**   - the noise: Philox per (cell, step), the same for any thread count;
+**   - atan2, sin, cos: its own arithmetic, the same bits on every machine.
 */
 #include <math.h>
 #include <stdio.h>
@@ -154,8 +181,14 @@ static void separation(const tissue *T, int i, int j, double *dx, double *dy)
 }
 
 /* Every pair (i, j) closer than 2l, by trying all pairs: O(N^2), the
-** plainest search (the library uses a cell list).  Returns 0, or -1 if
-** two centres coincide or a cell has more than MAX_NBR neighbours. */
+** plainest search (the library uses a cell list).  Why 2l is enough: the
+** bisector of a pair at distance d lies d/2 from each centre, and d/2 >= l
+** puts it outside the open disk, where it cuts nothing.  In a periodic
+** box each pair counts once, at its nearest image; that is right while
+** the box is wider than 4l (then no cell meets two images of another
+** within 2l; the library refuses smaller boxes).  Returns 0, or -1 if two
+** centres coincide (their bisector is undefined) or a cell has more than
+** MAX_NBR neighbours. */
 static int find_neighbours(tissue *T, double l)
 {
   int i, j;
@@ -226,6 +259,10 @@ static chord chord_of(double Dx, double Dy, double l)
 ** c = t_a.u_b and rhs = h_b - h_a u_a.u_b: an upper bound on tau if
 ** c > 0, a lower bound if c < 0.  Parallel lines (c = 0): the half-plane
 ** holds the whole line or none of it. */
+/* An end cut by b's line is a triple junction: the point as far from r_i
+** as from r_a and r_b, the centre of the circle through the three
+** centres.  An end left at tau = -+s lies on the circle: an arc meets the
+** edge there. */
 static void clip(chord *a, const chord *b, int b_index)
 {
   double c = a->tx * b->ux + a->ty * b->uy;
@@ -243,8 +280,14 @@ static void clip(chord *a, const chord *b, int b_index)
 
 /* The total angle of the circle |x| = l that lies in every half-plane,
 ** i.e. the arcs of the cell.  The half-plane of chord k leaves out of the
-** circle the angles within w_k = atan2(s_k, h_k) of u_k's direction; the
-** arcs are what is left of 2 pi after the union of these intervals. */
+** circle the angles within w_k = atan2(s_k, h_k) of u_k's direction (the
+** chord's ends, h u +- s t, lie at exactly these angles); the arcs are
+** what is left of 2 pi after the union of these intervals.  Example: two
+** cells at distance d = 1.2 l: w = atan2(0.8, 0.6) = 0.927, so each keeps
+** an arc of 2 pi - 1.855 = 4.43 (L = 4.43 l), and their shared edge is
+** the whole chord, 2s = 1.6 l long.  The union is measured after sorting
+** the intervals by their start (qsort); an interval that crosses angle 0
+** is split in two. */
 static int by_start(const void *a, const void *b)
 {
   double x = *(const double *)a, y = *(const double *)b;
@@ -285,7 +328,14 @@ static double arc_angle(const chord *c, int m)
 ** integral of x cross dx around the boundary: an edge at distance h from
 ** r_i adds h ell / 2 (a triangle of height h), an arc of angle phi adds
 ** l^2 phi / 2 (a sector).  The perimeter is the edges' lengths plus the
-** arcs' l phi, and the arc length L is l phi. */
+** arcs' l phi, and the arc length L is l phi.  None of these sums needs
+** the pieces in boundary order (the library sorts its neighbours by
+** direction to walk the boundary; here nothing is sorted but the arcs'
+** intervals).  The cell is convex and holds r_i (r_i is nearer to itself
+** than to any r_j), so every triangle and sector is counted with a
+** positive sign.  A neighbour closer than 2l whose chord is clipped away
+** entirely (another neighbour's half-plane hides it) has no edge: it
+** shapes nothing and is no contact. */
 static int cell_shape(tissue *T, int i, double l, chord *c)
 {
   int m = T->n_nbr[i], a, b;
@@ -294,6 +344,8 @@ static int cell_shape(tissue *T, int i, double l, chord *c)
     const double *D = T->sep + 2 * (i * MAX_NBR + a);
     c[a] = chord_of(D[0], D[1], l);
   }
+  /* every chord by every other half-plane: O(m^2) for m neighbours, about
+  ** 36 clips for a cell of a tissue */
   for (a = 0; a < m; a++)
     for (b = 0; b < m; b++)
       if (b != a) clip(&c[a], &c[b], b);
@@ -303,7 +355,11 @@ static int cell_shape(tissue *T, int i, double l, chord *c)
     A += 0.5 * c[a].h * ell;
     P += ell;
   }
-  phi = arc_angle(c, m);
+  phi = arc_angle(c, m);       /* 2 pi for a cell without neighbours */
+  /* Worked example, the lens (two cells 1.2 l apart, l = 1): each has the
+  ** edge 2s = 1.6 at h = 0.6 and phi = 4.428595, so
+  **   A = 0.6 * 1.6 / 2 + 4.428595 / 2 = 2.694297,
+  **   P = 1.6 + 4.428595 = 6.028595,   L = 4.428595. */
   T->A[i] = A + 0.5 * l * l * phi;
   T->P[i] = P + l * phi;
   T->L[i] = l * phi;
@@ -365,7 +421,19 @@ static double cell_energy(const model *M, double A, double P, double L)
 **     gives alpha (e.D) = (D - V).dr, so
 **       (dV/dD)^T w = (D - V) (e.w) / (e.D),    e = t_k.
 **     Both pieces at a junction are edges, so only P changes there.
-** Every formula is checked against central differences of E (section 6). */
+** Every formula is checked against central differences of E (section 6).
+**
+** Where the chain rule is steep.  As a contact is about to break
+** (d -> 2l) the edge's length 2s -> 0 like (2l - d)^(1/2), and its ends
+** race along the circle: ds/dd = -d/(4s) diverges.  So does the force,
+** like (2l - d)^(-1/2), yet E stays continuous (the divergence is
+** integrable).  An Euler step that lands a pair just inside 2l can throw
+** it far apart; the paper's Euler step does so, and so does this file.
+** (The library can follow such a step in sub-steps instead, max_move.)
+** At a triple junction exactly on the circle E has a kink: moving a cell
+** outward opens an arc there and moving it inward does not, so the two
+** one-sided derivatives differ and F is not defined; a random tissue
+** meets that with probability zero. */
 
 /* (dV/dD)^T w for an arc end of chord c, (V1). */
 static void arc_end_pull(const chord *c, double sigma, double l, double wx,
@@ -399,6 +467,12 @@ static void cell_forces(tissue *T, int i, const model *M, const chord *c)
   double G[2 * MAX_NBR];
   int m = T->n_nbr[i], a;
   memset(G, 0, sizeof G);
+  /* Walk the edges.  Edge a runs counter-clockwise from V0 (tau0) to V1
+  ** (tau1).  At V0 the boundary arrives from an arc (if V0 is on the
+  ** circle) or from another edge (a junction); at V1 it leaves along an
+  ** arc or along the edge of e->to.  Every junction is the end V1 of
+  ** exactly one edge, so handling junctions at V1 alone counts each once;
+  ** every arc end is V0 or V1 of its own edge. */
   for (a = 0; a < m; a++) {
     const chord *e = &c[a];
     double ell, mid, x0, y0, x1, y1;
@@ -412,6 +486,10 @@ static void cell_forces(tissue *T, int i, const model *M, const chord *c)
     y0 = e->h * e->uy + e->tau0 * e->ty;
     x1 = e->h * e->ux + e->tau1 * e->tx;    /* and its end V1 */
     y1 = e->h * e->uy + e->tau1 * e->ty;
+    /* The circle's counter-clockwise tangent at a point V on it is R V / l
+    ** = (-V_y, V_x) / l.  The weights w below are wP (t_in - t_out) for P
+    ** plus wL times t_in (an arc arrives) or -t_out (an arc leaves) for L,
+    ** as in the rule above. */
     if (e->from < 0) {
       /* (V1) at V0: the arc arrives (tangent R V0 / l), the edge leaves */
       double ax = -y0 / l, ay = x0 / l;
@@ -434,6 +512,8 @@ static void cell_forces(tissue *T, int i, const model *M, const chord *c)
       junction_pull(f, x1, y1, e->tx, e->ty, wx, wy, &G[2*b], &G[2*b+1]);
     }
   }
+  /* (F): G_ia is de_i/dr_a; it pushes a by -G_ia and, since de_i/dr_i
+  ** = -sum_a G_ia, pushes i by +G_ia (Newton's third law, pair by pair) */
   for (a = 0; a < m; a++) {                 /* (F) */
     int j = T->nbr[i * MAX_NBR + a];
     T->F[2*i] += G[2*a];
@@ -465,8 +545,14 @@ static int compute(tissue *T, const model *M, int forces)
 ** ====================================================================== */
 /* Each force component against the central difference
 **     -(E(r + h e_q) - E(r - h e_q)) / (2h),
-** which is off by O(h^2) (and by rounding of order eps E / h).  Returns
-** the largest difference, relative to max(max |F|, 1); F stays that of r. */
+** which is off by O(h^2 E''') from truncation and by about eps E / h from
+** rounding (eps = 2.2e-16): h = 1e-6 l balances the two for E of order
+** 100 and gives a few 1e-8 of max |F| in a relaxed tissue.  Near a
+** contact about to break E''' grows like (2l - d)^(-5/2), and there the
+** difference quotient, not the analytic force, is what is off.  The whole
+** tissue's E is recomputed for every component: O(N^3) with the all-pairs
+** search, fine for the tens of cells it is meant for.  Returns the largest
+** difference, relative to max(max |F|, 1); F stays that of r. */
 static double fd_check(tissue *T, const model *M, double h)
 {
   double *F = malloc(2 * (size_t)T->n * sizeof(double) + 1);
@@ -500,7 +586,11 @@ static double fd_check(tissue *T, const model *M, double h)
 ** 7. Random numbers
 ** ====================================================================== */
 /* splitmix64 (Steele, Lea and Flood 2014): a 64-bit state advanced by a
-** constant, then mixed.  Good enough for noise, and four lines long. */
+** constant, then mixed.  Good enough for noise, and four lines long; one
+** seed gives one run, on every machine whose libm rounds alike.  (The
+** library draws the noise of cell i at step s from a counter-based
+** generator, Philox, so that its runs do not depend on the order in which
+** threads draw; a single sequence is plainer.) */
 typedef struct rng {
   unsigned long long state;
 } rng;
@@ -529,10 +619,14 @@ static double rng_normal(rng *g)
 /* ======================================================================
 ** 8. The Euler step: Eqs. (4) and (5)
 ** ====================================================================== */
-/* One step of dt, Euler-Maruyama, as the paper integrates:
+/* One step of dt, Euler-Maruyama, as the paper integrates ("10^6
+** integration steps with a step size dt = 0.01 using Euler's method"):
 **     r_i  <- r_i + dt (mu F_i + v0 n_i),    n_i = (cos th_i, sin th_i)  (4)
 **     th_i <- th_i + sqrt(2 Dr dt) xi_i,     xi_i ~ N(0, 1)              (5)
 ** both from the state at the start of the step, then F at the new r.
+** Why sqrt(2 Dr dt): over a time dt the white noise eta_i of (5), with
+** <eta_i(t) eta_i(t')> = 2 Dr delta(t - t'), adds up to a normal angle of
+** variance 2 Dr dt; the polarity forgets its direction in a time 1/Dr.
 ** Every cell moves by the whole step: no sub-steps and no refusal of a
 ** large move (the library's sub-steps, which follow a contact about to
 ** break in pieces, are not the paper's).  Centres are never wrapped, so
@@ -562,7 +656,13 @@ static double box_side(int n, double phi, double l)
 }
 
 /* The start: N centres uniform in a square of side 0.3 L centred in the
-** box, and polarity angles uniform in [0, 2 pi). */
+** box, and polarity angles uniform in [0, 2 pi).  The paper: "We
+** initialize systems as one large connected cluster and relax it to
+** steady state at zero temperature ... We then turn on v0".  At N = 400
+** and phi = 0.5, L = 50.1 l and the square's side is 15 l: 1.8 centres
+** per l^2, far denser than a tissue of cells of area pi (0.32 per l^2),
+** so the relaxation first spreads the cluster out; being random, a few
+** pairs start nearly on top of each other and are pushed apart hard. */
 static void start_square(tissue *T, rng *g)
 {
   double side = 0.3 * T->Lx, x0 = 0.5 * (T->Lx - side);
@@ -575,8 +675,11 @@ static void start_square(tissue *T, rng *g)
   for (i = 0; i < T->n; i++) T->theta[i] = 2 * PI * rng_uniform(g);
 }
 
-/* Relaxation: Euler steps at v0 = 0 and Dr = 0 (overdamped descent of E)
-** until max |F| <= tol or `steps` steps.  Returns the steps taken, or -1. */
+/* Relaxation: Euler steps at v0 = 0 and Dr = 0 (overdamped descent of E:
+** dr_i/dt = mu F_i = -mu grad_i E, so E can only decrease, to first order
+** in dt) until max |F| <= tol or `steps` steps.  Returns the steps taken,
+** or -1.  (The library's afv_relax also stops when E no longer decreases
+** because the tissue sits at a kink of E.) */
 static int relax(tissue *T, const model *M, const motion *mo, int steps,
                  double tol, rng *g)
 {
@@ -600,10 +703,18 @@ static int relax(tissue *T, const model *M, const motion *mo, int steps,
 /* ======================================================================
 ** 10. The giant cluster, and main
 ** ====================================================================== */
-/* Two cells are in contact if they share an edge longer than 1e-9 l (the
-** library's AFV_CONTACT_TOL): seen from either cell.  Clusters are the
-** connected parts of the contact graph (union-find); N_GC is the size of
-** the largest.  (The paper calls a tissue clustered when N_GC/N > 0.99.) */
+/* The paper's first order parameter: "two cells belong to the same
+** contiguous cluster if they share a contacting edge"; the giant cluster
+** is the largest, and N_GC/N its share of the cells.  Two cells are in
+** contact here if they share an edge longer than 1e-9 l (the library's
+** AFV_CONTACT_TOL), seen from either cell.  (The paper adds "or
+** equivalently, when the distance between their centers is less than
+** 2l"; not quite: a pair closer than 2l can be hidden from each other by a
+** third cell, as in section 3.)  Clusters are the connected parts of the
+** contact graph, by union-find: each cell points towards the root of its
+** cluster, and a contact joins two roots.  The paper finds N_GC/N = 1 at
+** small v0 and a dispersal as v0 grows, the curves of all P0 crossing
+** near v0* = 1.85. */
 static int root_of(int *parent, int i)
 {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -642,7 +753,11 @@ static double giant_cluster_fraction(const tissue *T, double l)
 ** phi = 0.5: the random square, relaxed (at most 2000 steps, until
 ** max |F| <= 1e-3), the forces checked against finite differences, then
 ** `steps` (default 5000) active steps at v0, printing the time, E and
-** N_GC/N every 500 steps. */
+** N_GC/N every 500 steps.  What to expect: at P0 = 4.8 and v0 = 0.5 the
+** relaxed cluster stays whole (N_GC/N = 1) and E fluctuates about its
+** relaxed value; at v0 = 2.6 it breaks up and N_GC/N falls.  The paper's
+** runs are 400 cells for 10^6 steps: about an hour here, where the
+** library (afv run) takes a few minutes. */
 int main(int argc, char **argv)
 {
   model M = {1, 1, PI, 1, 4.8, 0.2};     /* l, KA, A0, KP, P0, Lambda */
@@ -677,6 +792,8 @@ int main(int argc, char **argv)
          mo.v0, mo.Dr, mo.dt);
   printf("# relaxed in %d steps; forces against finite differences: %.2g "
          "of max |F|\n", relaxed, fd);
+  /* one line per 500 steps: the time t = k dt, E (Eq. (3),
+  ** summed over all cells) and the giant cluster's share of the cells */
   printf("%10s %16s %8s\n", "t", "E", "N_GC/N");
   for (k = 0; k <= steps; k++) {
     if (k % 500 == 0)
