@@ -23,9 +23,10 @@
 ** circular arcs of radius l (where no neighbour is near).  With A_i its
 ** area, P_i its perimeter and L_i its arc length (the free boundary):
 **
-**   E = sum_i KA (A_i - A0)^2 + KP (P_i - P0)^2 + Lambda L_i          (3)
-**   dr_i/dt = mu F_i + v0 n_i,  F_i = -dE/dr_i,  n_i = (cos th_i, sin th_i)  (4)
-**   d th_i/dt = eta_i,  <eta_i(t) eta_j(t')> = 2 Dr delta_ij delta(t - t')   (5)
+**   E = sum_i KA (A_i - A0)^2 + KP (P_i - P0)^2 + Lambda L_i            (3)
+**   dr_i/dt = mu F_i + v0 n_i,   F_i = -dE/dr_i,
+**                                n_i = (cos th_i, sin th_i)              (4)
+**   d th_i/dt = eta_i,  <eta_i(t) eta_j(t')> = 2 Dr delta_ij delta(t-t')  (5)
 **
 ** (the paper's equation numbers).  Lengths are in units of l.
 ** Where (3) comes from (paper, Eq. (1) and the lines after it): cortical
@@ -228,7 +229,7 @@ typedef struct chord {
   double Dx, Dy, d;      /* D = r_k - r_i and d = |D| */
   double ux, uy, tx, ty; /* u = D/d and t = (-u_y, u_x) */
   double h, s;           /* the line x.u = h; half-chord s */
-  double tau0, tau1;     /* the kept part of the chord (an edge if tau0 < tau1) */
+  double tau0, tau1;     /* the kept part (an edge if tau0 < tau1) */
   int from, to;          /* the neighbour (index into the chords) whose
                          ** line cut it at tau0, at tau1; -1: the circle */
 } chord;
@@ -737,7 +738,8 @@ static double giant_cluster_fraction(const tissue *T, double l)
   for (i = 0; i < T->n; i++)
     for (k = 0; k < T->n_nbr[i]; k++)
       if (T->edge_len[i * MAX_NBR + k] > 1e-9 * l) {
-        int a = root_of(parent, i), b = root_of(parent, T->nbr[i * MAX_NBR + k]);
+        int a = root_of(parent, i);
+        int b = root_of(parent, T->nbr[i * MAX_NBR + k]);
         if (a != b) parent[a] = b;
       }
   for (i = 0; i < T->n; i++) {

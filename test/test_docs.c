@@ -606,9 +606,9 @@ static void test_parameter_change_needs_refresh(void)
   afv_sim_free(&fresh);
 }
 
-/* ---- every name in the docs exists in the tree ---------------------------- */
-/* README.md, doc/ (its .md files) and doc/afv.1 name functions, constants, keys and
-** files; a rename leaves them behind.  Checked:
+/* ---- every name in the docs exists in the tree -------------------------- */
+/* README.md, doc/ (its .md files) and doc/afv.1 name functions, constants,
+** keys and files; a rename leaves them behind.  Checked:
 **   - a `backticked` span of a .md file that is a C identifier with an
 **     underscore (a function, a constant, a key, a figure: afv_compute,
 **     AFV_CONTACT_TOL, relax_tol, fig2a_ngc_vs_v0; "()" after it allowed)
