@@ -201,8 +201,9 @@ twins: test/twins_fast test/twins_ref
 # afv collect tables each sweep and afv paper OUT draws the figures
 # (OUT/figures/*.svg) and writes OUT/claims.csv.  A killed make resumes
 # where it stopped.  SCALE=full writes the paper's 1400-job grid: run its
-# runs where there are cores (sbatch OUT/grid/slurm.sh, or make -C OUT/grid
+# runs where there are cores (sh OUT/grid/slurm.sh, or make -C OUT/grid
 # -j N), then make paper SCALE=full OUT=DIR again for the figures.
+# make paper-sweeps SCALE=... OUT=DIR writes the sweeps and runs nothing.
 SCALE ?= quick
 OUT   ?= paper
 

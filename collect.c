@@ -1201,11 +1201,13 @@ static void report_beta(const sweep_table *T)
     none += p->lack_beta == p->n;
     some += p->lack_beta > 0 && p->lack_beta < p->n;
   }
-  if (none || some)
+  if (none)
     printf("msd_beta: nan at %d of %d state points (dynamic_phase "
-           "undefined there), from some seeds only at %d: their steady "
-           "window is too short for it (see afv analyze --help)\n", none,
-           tabled, some);
+           "undefined there): their steady window is too short for it (see "
+           "afv analyze --help)\n", none, tabled);
+  if (some)
+    printf("msd_beta: nan from some seeds at %d of %d state points (their "
+           "means are over the other seeds)\n", some, tabled);
 }
 
 int cmd_collect(int argc, char **argv)

@@ -118,7 +118,8 @@ static void sweep_grid_ranges_and_lists(void)
   int n = 0;
   if (!have_afv()) return;
   CHECK(afv("sweep --out %s/g1 --P0 4:5:0.5 --v0 0.1:0.3:0.1 --seeds 2 "
-            "--steps 10 --Dr 0.2 --per-task 5") == 0, "sweep: %s", err_text);
+            "--steps 10 --frame_every 5 --Dr 0.2 --per-task 5") == 0,
+        "sweep: %s", err_text);
   read_rel("g1/points.csv", buf);
   {
     const char *head = "id,P0,v0,seed\n0001,4,0.1,1\n0002,4,0.1,2\n"
@@ -145,9 +146,9 @@ static void sweep_grid_ranges_and_lists(void)
   }
   CHECK(n == 18, "%d job lines read", n);
   read_rel("g1/slurm.sh", buf);
-  CHECK(strstr(buf, "#SBATCH --array=0-3\n") && strstr(buf, "per_task=5\n"),
-        "slurm.sh: 18 jobs, 5 per task: want array 0-3");
-  CHECK(afv("sweep --out %s/g2 --P0 4:8.8:0.2 --seed 7,9") == 0, "%s",
+  CHECK(strstr(buf, "\ntasks=4\n") && strstr(buf, "per_task=5\n"),
+        "slurm.sh: 18 jobs, 5 per task: want 4 tasks");
+  CHECK(afv("sweep --out %s/g2 --P0 4:8.8:0.2 --seed 7,9 --N 30") == 0, "%s",
         err_text);
   read_rel("g2/points.csv", buf);
   CHECK(count_lines(buf) == 1 + 25 * 2 && strstr(buf, ",8.8,9\n")
@@ -165,6 +166,22 @@ static void sweep_bad_values(void)
     "--N 0", "--N 50,0", "--bogus 1", "--box square", "--steps 1.5",
     "--seeds 0", "--seeds 2 --seed 1,2", "--P0 4 --P0 5", "--lag 0",
     "--seed -1", "--phi 0,0.5", "--P0", "--KA 1,1e300",
+    /* repeated state points (issue 31): as text, as numbers, at the 10
+    ** digits of a range */
+    "--seed 1,1", "--seed 1,01", "--P0 4,4.0,4.00",
+    "--P0 4:4.000000001:1e-10",
+    /* a newline or a space in a value would split jobs.txt */
+    "--P0 '\n4'", "--v0 ' 0.5'", "--v0 0.5,'1 '",
+    /* an analysis the runs cannot give (issue 30): a window past the end,
+    ** a lag longer than the window or shorter than a frame, no frames */
+    "--steps 2000 --steady-from 1000 --lag 5000",
+    "--steps 2000 --frame_every 100 --lag 50",
+    "--steps 2000 --frame_every 100 --lag 0.2",
+    "--steps 2000 --frame_every 100 --P0 4,8 --steps 1000,100 "
+    "--steady-from 0.5",
+    "--frame_every 0",
+    /* SLURM resources */
+    "--account 'a b'", "--mem 4X", "--time abc", "--array-max 0",
   };
   char args[256];
   int k;
@@ -176,9 +193,104 @@ static void sweep_bad_values(void)
           "'%s': stderr not one line: %s", bad[k], err_text);
     CHECK(!exists("bad"), "'%s': DIR created", bad[k]);
   }
+  CHECK(system("ls -d /tmp/afv_sweep_test_*/bad* >/dev/null 2>&1") != 0,
+        "a refused sweep left a folder");
+  /* a path the runners cannot use is refused before any folder exists */
+  CHECK(afv("sweep --out '%s/x y/s' --P0 4") == 2 && !exists("x y")
+        && count_lines(err_text) == 1, "a path with a space: %s", err_text);
   CHECK(afv("sweep --P0 4") == 2 && strstr(err_text, "--out"),
         "no --out: %s", err_text);
   CHECK(afv("sweep --out %s/g1 --P0 4") == 2 || exists("g1"), "existing DIR");
+}
+
+/* A stand-in for sbatch in DIR/bin: records its arguments in
+** bin/sbatch.log, then runs the array's tasks one after the other in
+** --chdir with the environment SLURM gives them. */
+static void fake_sbatch(void)
+{
+  write_rel("bin/sbatch", "#!/bin/sh\n"
+            "echo \"$*\" >> \"$(dirname \"$0\")/sbatch.log\"\n"
+            "for a in \"$@\"; do\n"
+            "  case $a in\n"
+            "    --chdir=*) dir=${a#--chdir=} ;;\n"
+            "    --array=0-*) last=${a#--array=0-} ;;\n"
+            "    --export=ALL,AFV_TASK_OFFSET=*) "
+            "off=${a#--export=ALL,AFV_TASK_OFFSET=} ;;\n"
+            "  esac\n"
+            "  script=$a\n"
+            "done\n"
+            "t=0\n"
+            "while [ \"$t\" -le \"$last\" ]; do\n"
+            "  (cd \"$dir\" && SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=$t "
+            "AFV_TASK_OFFSET=$off sh \"$script\") || exit 1\n"
+            "  t=$((t + 1))\n"
+            "done\n");
+  shell("chmod +x %s/bin/sbatch%.0s", base);
+}
+
+/* slurm.sh (issue 30): submitted from another directory, it splits the
+** tasks into arrays of at most --array-max, passes sbatch options on,
+** runs the jobs in the sweep's folder (paths relative to it) and holds
+** the resources given; without --time it holds and prints an estimate.
+** Then a new analysis of the finished sweep (--reanalyze): checked
+** against the runs, nothing rerun, collect flags the old summaries, make
+** analyses again and collect tables the new analysis. */
+static void sweep_slurm_and_reanalyze(void)
+{
+  static char buf[TEXT_MAX], log[TEXT_MAX], runlog[TEXT_MAX];
+  char cmd[512];
+  if (!have_afv()) return;
+  shell("mkdir -p %s/bin%.0s", base);
+  fake_sbatch();
+  CHECK(afv("sweep --out %s/sl --P0 4,8 --seeds 3 --N 10 --steps 20 "
+            "--frame_every 10 --svg_every 0 --steady-from 0 --lag 0.1 "
+            "--per-task 2 --array-max 2 --account acc --partition part "
+            "--mem 500M --time 0:05:00") == 0, "%s", err_text);
+  read_rel("sl/slurm.sh", buf);
+  CHECK(strstr(buf, "#SBATCH --account=acc\n")
+        && strstr(buf, "#SBATCH --partition=part\n")
+        && strstr(buf, "#SBATCH --mem=500M\n")
+        && strstr(buf, "#SBATCH --time=0:05:00\n"), "resources:\n%s", buf);
+  snprintf(cmd, sizeof cmd, "cd / && PATH=%s/bin:$PATH sh %s/sl/slurm.sh "
+           "--qos=test >/dev/null", base, base);
+  CHECK(system(cmd) == 0, "%s failed", cmd);
+  read_rel("bin/sbatch.log", log);
+  CHECK(count_lines(log) == 2 && strstr(log, "--array=0-1 "
+        "--export=ALL,AFV_TASK_OFFSET=0 --qos=test")
+        && strstr(log, "--array=0-0 --export=ALL,AFV_TASK_OFFSET=2 "
+        "--qos=test"), "6 jobs, 2 per task, arrays of 2 tasks: want arrays "
+        "0-1 and 0-0 (offset 2):\n%s", log);
+  CHECK(afv("collect %s/sl") == 0, "the jobs through slurm.sh: %s",
+        err_text);
+  read_rel("sl/runs/0006/log.txt", runlog);
+  /* without --time: an estimate, printed and in slurm.sh */
+  CHECK(afv("sweep --out %s/sl2 --N 400 --steps 100000") == 0, "%s",
+        err_text);
+  read_rel("stdout", buf);
+  CHECK(strstr(buf, "--time 0:") && strstr(buf, "estimated"), "no estimate "
+        "printed:\n%s", buf);
+  read_rel("sl2/slurm.sh", buf);
+  CHECK(strstr(buf, "--time is estimated") && strstr(buf, "400 cells x "
+        "(100000 steps"), "slurm.sh without the estimate:\n%.2000s", buf);
+  /* a new analysis: refused if the runs cannot give it, nothing changed */
+  read_rel("sl/analysis.txt", buf);
+  CHECK(afv("sweep --reanalyze %s/sl --steady-from 0.15") == 2
+        && count_lines(err_text) == 1 && strstr(err_text, "--steady-from"),
+        "a window of one frame: %s", err_text);
+  CHECK(!strcmp(read_rel("sl/analysis.txt", log), buf), "a refused "
+        "--reanalyze changed analysis.txt");
+  CHECK(afv("sweep --reanalyze %s/sl --steady-from 0.1") == 0, "%s",
+        err_text);
+  CHECK(afv("collect %s/sl") == 1 && strstr(err_text, "analysed before "
+        "analysis.txt"), "old analyses tabled after --reanalyze: %s",
+        err_text);
+  shell("make -s -C %s/sl >/dev/null 2>&1%.0s", base);
+  CHECK(afv("collect %s/sl") == 0, "after the new analysis: %s", err_text);
+  read_rel("sl/runs/0001/analysis/summary.txt", buf);
+  CHECK(strstr(buf, "\nsteady_from 0.1\n") != NULL, "not the new window:\n%s",
+        buf);
+  CHECK(!strcmp(read_rel("sl/runs/0006/log.txt", buf), runlog),
+        "the new analysis ran a simulation again");
 }
 
 /* ---- collect ------------------------------------------------------------------ */
@@ -645,6 +757,7 @@ void suite_sweep(void)
   }
   RUN(sweep_grid_ranges_and_lists);
   RUN(sweep_bad_values);
+  RUN(sweep_slurm_and_reanalyze);
   RUN(collect_known_summaries);
   RUN(collect_verifies_jobs);
   RUN(boundary_fit_recovers);
