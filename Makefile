@@ -162,9 +162,10 @@ fuzz/build/%.o: %.c afv.h afv_internal.h fastmath.h rng.h cli.h
 fuzz/build/libafv_fuzz.a: $(FUZZ_OBJ)
 	$(AR) rcs $@ $(FUZZ_OBJ)
 
-# (run.c: the config harness includes it)
+# (run.c: the config and collect harnesses include it; collect.c: the
+# collect harness)
 fuzz/build/fuzz_%: fuzz/fuzz_%.c fuzz/build/libafv_fuzz.a $(wildcard fuzz/*.h) \
-                   run.c cli.h afv.h
+                   run.c collect.c cli.h afv.h
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -I. -o $@ $< \
 	  fuzz/build/libafv_fuzz.a -lm
 
