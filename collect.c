@@ -566,8 +566,10 @@ static int finished_ok(const sweep_table *T, job *J, double steps,
   snprintf(path, sizeof path, "%s/runs/%s/final.svg", T->dir, J->id);
   if (at < (long long)steps || stat(path, &sb) != 0)
     return job_fails(J, JOB_DAMAGED, "the run is at step %lld of %.0f%s "
-                     "(unfinished: run the runner again)", at, steps,
-                     at < (long long)steps ? "" : ", without final.svg");
+                     "(unfinished, yet analysed: remove runs/%s/analysis "
+                     "and run the runner again)", at, steps,
+                     at < (long long)steps ? "" : ", without final.svg",
+                     J->id);
   if (frames != want)
     return job_fails(J, JOB_DAMAGED, "analysed %ld frames of the finished "
                      "run's %ld (analysed before it finished: remove "

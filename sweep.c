@@ -1026,7 +1026,7 @@ static int reanalyze(const sweep_opts *o)
   snprintf(path, sizeof path, "%s/analysis.txt", o->reanalyze);
   if (strlen(o->reanalyze) > PATH_MAX - 128 || stat(path, &sb) != 0)
     return fprintf(stderr, "afv sweep: --reanalyze %s: no analysis.txt: not "
-                   "a sweep (or one written by an afv sweep before 0.3)\n",
+                   "a sweep (or one written by an older afv sweep)\n",
                    o->reanalyze), EXIT_BAD_INPUT;
   if (o->steady_from) whole_double(o->steady_from, &from);
   if (o->lag) whole_double(o->lag, &lag);

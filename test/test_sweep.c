@@ -482,7 +482,8 @@ static void collect_verifies_jobs(void)
   /* a run stopped at step 20 of 40 and analysed by hand */
   fake_job("0004", "4", "1", "2", 1.00, 1, 0.5, 3e-9, 30, 0.4, 1.1);
   shell("sed -i 's/^steps .*/steps 40/' %s/c/runs/0004/params.txt%.0s", base);
-  expect_damaged("unfinished run", "0004", "at step 20 of 40 (unfinished");
+  expect_damaged("unfinished run", "0004", "at step 20 of 40 (unfinished, "
+                 "yet analysed: remove runs/0004/analysis");
   /* an analysis of 2 of its 3 frames */
   fake_job("0004", "4", "1", "2", 1.00, 1, 0.5, 3e-9, 30, 0.4, 1.1);
   shell("sed -i 's/^frames 3/frames 2/' %s/c/runs/0004/analysis/summary.txt"
