@@ -456,11 +456,15 @@ static const char *kv_get(const kv_file *F, const char *key)
   return NULL;
 }
 
-/* 1 if two values of a key agree: equal numbers, or equal text. */
-static int same_value(const char *a, const char *b)
+/* 1 if a run's value (params.txt) and a sweep's value of key agree:
+** equal numbers, or equal text; a run given a cells file records its own
+** copy, cells.txt. */
+static int same_value(const char *key, const char *run, const char *sweep)
 {
-  double x = number_of(a), y = number_of(b);
-  return !isnan(x) && !isnan(y) ? x == y : !strcmp(a, b);
+  double x = number_of(run), y = number_of(sweep);
+  if (!strcmp(key, "cells") && !strcmp(run, "cells.txt"))
+    return strcmp(sweep, "none") != 0;
+  return !isnan(x) && !isnan(y) ? x == y : !strcmp(run, sweep);
 }
 
 /* Order parameters collect requires finite (the others may be nan: D_eff
@@ -520,7 +524,7 @@ static int params_ok(const sweep_table *T, job *J, int j, double *steps,
   for (k = 0; k <= T->nkeys; k++) {
     const char *key = k < T->nkeys ? T->key[k] : "seed";
     const char *want = k < T->nkeys ? VAL(T, j, k) : J->seed;
-    if (!(v = kv_get(&P, key)) || !same_value(v, want))
+    if (!(v = kv_get(&P, key)) || !same_value(key, v, want))
       return job_fails(J, JOB_DAMAGED, "params.txt has %s %s, points.csv %s "
                        "(not this job's run)", key, v ? v : "(none)", want);
   }
@@ -529,7 +533,7 @@ static int params_ok(const sweep_table *T, job *J, int j, double *steps,
     return job_fails(J, JOB_DAMAGED, "jobs/%s.conf: %s", J->id, why);
   for (k = 0; st > 0 && k < C.n; k++)
     if (strcmp(C.key[k], "version") && strcmp(C.key[k], "commit")
-        && (!(v = kv_get(&P, C.key[k])) || !same_value(v, C.val[k])))
+        && (!(v = kv_get(&P, C.key[k])) || !same_value(C.key[k], v, C.val[k])))
       return job_fails(J, JOB_DAMAGED, "params.txt has %s %s, jobs/%s.conf "
                        "%s (not this job's run)", C.key[k], v ? v : "(none)",
                        J->id, C.val[k]);

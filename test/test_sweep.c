@@ -293,6 +293,20 @@ static void sweep_slurm_and_reanalyze(void)
         "the new analysis ran a simulation again");
 }
 
+/* A sweep of cells files: each run records its copy (cells.txt) in
+** params.txt, and collect verifies it against the file the sweep names. */
+static void sweep_of_cells_files(void)
+{
+  if (!have_afv()) return;
+  write_rel("five.txt", "# x y\n1 1\n3 1\n1 3\n3 3\n5 5\n");
+  write_rel("four.txt", "# x y\n1 1\n3 1\n1 3\n3 3\n");
+  CHECK(afv("sweep --out %s/cf --cells %s/five.txt,%s/four.txt --box open "
+            "--steps 20 --frame_every 10 --svg_every 0 --quiet 1") == 0, "%s",
+        err_text);
+  shell("make -s -C %s/cf >/dev/null 2>&1%.0s", base);
+  CHECK(afv("collect %s/cf") == 0, "a sweep of cells files: %s", err_text);
+}
+
 /* ---- collect ------------------------------------------------------------------ */
 /* A finished run of 10 cells and 20 steps (3 frames) in c/template: the
 ** run of every fake job. */
@@ -759,6 +773,7 @@ void suite_sweep(void)
   RUN(sweep_grid_ranges_and_lists);
   RUN(sweep_bad_values);
   RUN(sweep_slurm_and_reanalyze);
+  RUN(sweep_of_cells_files);
   RUN(collect_known_summaries);
   RUN(collect_verifies_jobs);
   RUN(boundary_fit_recovers);
