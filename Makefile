@@ -174,9 +174,10 @@ fuzz/build/%.o: %.c afv.h afv_internal.h fastmath.h rng.h cli.h
 fuzz/build/libafv_fuzz.a: $(FUZZ_OBJ)
 	$(AR) rcs $@ $(FUZZ_OBJ)
 
-# (run.c: the config harness includes it)
+# (run.c: the config and collect harnesses include it; collect.c: the
+# collect harness)
 fuzz/build/fuzz_%: fuzz/fuzz_%.c fuzz/build/libafv_fuzz.a $(wildcard fuzz/*.h) \
-                   run.c cli.h afv.h
+                   run.c collect.c cli.h afv.h
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -I. -o $@ $< \
 	  fuzz/build/libafv_fuzz.a -lm
 
@@ -213,8 +214,9 @@ twins: test/twins
 # afv collect tables each sweep and afv paper OUT draws the figures
 # (OUT/figures/*.svg) and writes OUT/claims.csv.  A killed make resumes
 # where it stopped.  SCALE=full writes the paper's 1400-job grid: run its
-# runs where there are cores (sbatch OUT/grid/slurm.sh, or make -C OUT/grid
+# runs where there are cores (sh OUT/grid/slurm.sh, or make -C OUT/grid
 # -j N), then make paper SCALE=full OUT=DIR again for the figures.
+# make paper-sweeps SCALE=... OUT=DIR writes the sweeps and runs nothing.
 SCALE ?= quick
 OUT   ?= paper
 
