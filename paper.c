@@ -345,6 +345,40 @@ static void read_scale(const char *out)
   smoke = !strcmp(word, "smoke");
 }
 
+/* How the grid's runs were integrated, from the first job's keys
+** (OUT/grid/jobs/0001.conf: integrator, dt, cap, max_move), e.g.
+** "integrator euler, dt 0.01, exact force"; every claim's note ends with
+** it, since N_GC/N and what depends on it move with dt
+** (doc/reproduction/convergence.md). */
+static char integration[128] = "integration not recorded";
+
+static void read_integration(const char *out)
+{
+  char path[PATH_LEN], line[256], key[64], val[64];
+  char integ[64] = "substeps", dt[64] = "?", cap[64] = "0", mm[64] = "?";
+  FILE *fp;
+  snprintf(path, sizeof path, "%s/grid/jobs/0001.conf", out);
+  if (!(fp = fopen(path, "r"))) return;
+  while (fgets(line, sizeof line, fp))
+    if (sscanf(line, "%63s %63s", key, val) == 2) {
+      if (!strcmp(key, "integrator")) snprintf(integ, sizeof integ, "%s", val);
+      else if (!strcmp(key, "dt")) snprintf(dt, sizeof dt, "%s", val);
+      else if (!strcmp(key, "cap")) snprintf(cap, sizeof cap, "%s", val);
+      else if (!strcmp(key, "max_move")) snprintf(mm, sizeof mm, "%s", val);
+    }
+  fclose(fp);
+  if (!strcmp(integ, "substeps"))
+    snprintf(integration, sizeof integration, "integrator substeps, dt %s, "
+             "max_move %s", dt, mm);
+  else
+    snprintf(integration, sizeof integration, "integrator %s, dt %s, %s",
+             integ, dt, strtod(cap, NULL) > 0 ? "cap" : "exact force");
+  if (strtod(cap, NULL) > 0) {
+    size_t m = strlen(integration);
+    snprintf(integration + m, sizeof integration - m, " %s", cap);
+  }
+}
+
 /* nc curves y[c n + k] against x[k] (or x[c n + k] if xper), labelled,
 ** with error bars y +- err (err may be NULL) as unlabelled two-point
 ** series of the curve's colour; extra series (e.g. a threshold line)
@@ -698,8 +732,10 @@ static int claims_write(const char *out, const claims *C)
     put_field(fp, c->name);
     fputc(',', fp);
     put_field(fp, c->paper);
+    char note[sizeof c->note + sizeof integration + 8];
     fprintf(fp, ",%.6g,%.6g,%s,", c->afv, c->afv_err, agree_text(c));
-    put_field(fp, c->note);
+    snprintf(note, sizeof note, "%s [%s]", c->note, integration);
+    put_field(fp, note);
     fputc('\n', fp);
   }
   return afv_atomic_commit(fp, tmp, path) == AFV_OK;
@@ -1547,6 +1583,7 @@ int cmd_paper(int argc, char **argv)
   out = argv[1];
   if (strlen(out) > RUN_PATH_MAX - 64) return bad_input("paper: OUT too long");
   read_scale(out);
+  read_integration(out);
   if (!plane_read(out, &P)) { plane_free(&P); return EXIT_BAD_INPUT; }
   if (!fss_read(out, &F)) { plane_free(&P); return EXIT_BAD_INPUT; }
   snprintf(path, sizeof path, "%s/figures", out);
