@@ -452,8 +452,8 @@ typedef struct run_state {
                            ** reduced if the cluster would not fit the
                            ** box); 0 for other starts */
   obs_analysis an;         /* analysis columns of observables.csv */
-  int lock_fd;             /* DIR/lock while this process holds the run
-                           ** directory's lock, else -1 */
+  int lock_fd;             /* DIR/observables.csv while this process holds
+                           ** the run directory's lock, else -1 */
   char io_path[RUN_PATH_MAX + 96];  /* the file whose writing failed */
   int io_errno;            /* and why (errno then) */
 } run_state;
@@ -1305,8 +1305,9 @@ static const char *run_usage =
   "trajectory.xyz).  --resume continues from the\n"
   "last checkpoint, to the run's steps or MORE steps past the checkpoint;\n"
   "it checks every file first and changes none if one does not match.\n"
-  "One process at a time writes in DIR (a lock on DIR/lock, which ends\n"
-  "with the process); another is refused, naming it.  DIR may exist, but\n"
+  "One process at a time writes in DIR (a lock on DIR/observables.csv,\n"
+  "the run's data, which ends with the process); another is refused,\n"
+  "naming it.  DIR may exist, but\n"
   "a fresh run refuses one with a checkpoint.txt (a run that stopped\n"
   "before its first checkpoint is replaced).  --continue makes the command\n"
   "idempotent (the jobs of afv sweep): a new run if DIR holds none (or one\n"
@@ -1439,18 +1440,26 @@ static int make_parents(const char *dir)
 
 /* ---- one writer per run directory -------------------------------------- */
 /* A run holds a POSIX record lock (fcntl, a write lock on the whole file)
-** on DIR/lock from before its first check of DIR's files to its end, so a
-** second `afv run` on DIR (fresh or --resume) is refused at once, naming
-** the holder's process id (F_GETLK).  The kernel drops the lock when the
-** process ends, however it ends (SIGKILL included): no stale lock is ever
-** left to clean up.  The file itself stays (empty); only the lock on it
-** counts.  1 if this process now holds the lock (R->lock_fd), else 0 with
-** a message. */
+** on DIR/observables.csv, the run's own data file, from before its first
+** check of DIR's files to its end, so a second `afv run` on DIR (fresh or
+** --resume) is refused at once, naming the holder's process id (F_GETLK).
+** The kernel drops the lock when the process ends, however it ends
+** (SIGKILL included): no stale lock is ever left to clean up.  The lock is
+** on a file a user has no reason to delete or replace while the run
+** lives (deleting it deletes the results), not on an empty file of its
+** own that invites cleaning (a deleted lock file let a second writer in).
+** observables.csv keeps its inode for the whole run: a fresh run opens it
+** with O_TRUNC, a resume cuts it back with truncate(2), and nothing else
+** replaces it.  fcntl locks belong to the process and the file: closing
+** any descriptor of observables.csv before the end would drop the lock,
+** so within a run the file is read only through R->lock_fd. */
+#define LOCK_FILE "observables.csv"
+
 static int report_in_use(const char *dir, long pid)
 {
-  fprintf(stderr, "afv run: %s is in use by process %ld (it holds %s/lock): "
-          "a run directory has one writer at a time; wait for that run to "
-          "end, or stop it\n", dir, pid, dir);
+  fprintf(stderr, "afv run: %s is in use by process %ld (it holds the lock "
+          "on %s/" LOCK_FILE "): a run directory has one writer at a time; "
+          "wait for that run to end, or stop it\n", dir, pid, dir);
   return EXIT_BAD_INPUT;
 }
 
@@ -1462,8 +1471,8 @@ static long lock_holder(const char *dir)
   char path[RUN_PATH_MAX + 32];
   struct flock fl;
   int fd;
-  snprintf(path, sizeof path, "%s/lock", dir);
-  if ((fd = open(path, O_RDWR)) < 0) return 0;
+  snprintf(path, sizeof path, "%s/" LOCK_FILE, dir);
+  if ((fd = open(path, O_RDWR | O_NOFOLLOW)) < 0) return 0;
   memset(&fl, 0, sizeof fl);
   fl.l_type = F_WRLCK;
   fl.l_whence = SEEK_SET;
@@ -1472,16 +1481,38 @@ static long lock_holder(const char *dir)
   return fl.l_type == F_UNLCK ? 0 : (long)fl.l_pid;
 }
 
-static int lock_run_dir(run_state *R)
+/* Opens DIR's lock file: created if missing only for a fresh run (create
+** = 1; a resume changes nothing before its checks pass), never through a
+** symbolic link (a dangling one would make afv create its target), and
+** only a regular file.  The descriptor, or -1 with a message. */
+static int open_lock_file(const char *path, int create)
+{
+  struct stat sb;
+  int fd = open(path, O_RDWR | O_NOFOLLOW | (create ? O_CREAT : 0), 0666);
+  if (fd < 0) {
+    fprintf(stderr, "afv run: %s: cannot open%s: %s\n", path,
+            create ? "" : " (a run directory has it from its start)",
+            errno == ELOOP ? "a symbolic link (afv writes only its own "
+            "files)" : strerror(errno));
+    return -1;
+  }
+  if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+    fprintf(stderr, "afv run: %s: not a regular file\n", path);
+    close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+/* Takes DIR's lock (create: see open_lock_file).  1 if this process now
+** holds it (R->lock_fd), else 0 with a message. */
+static int lock_run_dir(run_state *R, int create)
 {
   char path[RUN_PATH_MAX + 32];
   struct flock fl;
   int fd, tries;
-  snprintf(path, sizeof path, "%s/lock", R->dir);
-  if ((fd = open(path, O_RDWR | O_CREAT, 0666)) < 0) {
-    fprintf(stderr, "afv run: %s: cannot open: %s\n", path, strerror(errno));
-    return 0;
-  }
+  snprintf(path, sizeof path, "%s/" LOCK_FILE, R->dir);
+  if ((fd = open_lock_file(path, create)) < 0) return 0;
   for (tries = 0; tries < 100; tries++) {
     memset(&fl, 0, sizeof fl);
     fl.l_type = F_WRLCK;
@@ -1562,7 +1593,7 @@ static int make_out_dir(run_state *R)
     fprintf(stderr, "afv run: cannot create %s: %s\n", dir, strerror(errno));
     return 0;
   }
-  if (!lock_run_dir(R) || holds_run(R)) return 0;
+  if (!lock_run_dir(R, 1) || holds_run(R)) return 0;
   clear_unfinished_run(dir);
   return 1;
 }
@@ -1766,7 +1797,7 @@ static int run_resume(run_state *R, const run_args *a)
             "directory)\n", path, strerror(errno));
     return EXIT_BAD_INPUT;
   }
-  if (!lock_run_dir(R)) return EXIT_BAD_INPUT;
+  if (!lock_run_dir(R, 0)) return EXIT_BAD_INPUT;
   memset(&ck, 0, sizeof ck);
   st = resume_checks(R, a, more, &ck, &new_steps);
   /* all checked: from here on files change (params.txt atomically) */

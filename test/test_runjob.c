@@ -173,6 +173,29 @@ static int exit_status(pid_t pid)
 #define FAST "--N 64 --P0 4.5 --v0 0.3 --sample_every 5 --frame_every 10 " \
              "--checkpoint_every 5 --svg_every 0 --quiet"
 
+/* Starts a long run of FAST's system into root/sub (out receives the
+** path) and waits for its first checkpoint; returns the writer's pid and
+** puts "process PID" into want. */
+static pid_t start_live_writer(const char *sub, char *out, size_t outlen,
+                               char *want, size_t wantlen)
+{
+  const char *argv[] = {"afv", "run", "--N", "64", "--P0", "4.5", "--v0",
+                        "0.3", "--sample_every", "5", "--frame_every", "10",
+                        "--checkpoint_every", "5", "--svg_every", "0",
+                        "--quiet", "--steps", "100000000", "--out", out, NULL};
+  char ckpt[96];
+  pid_t pid;
+  int waited;
+  snprintf(out, outlen, "%s/%s", root, sub);
+  snprintf(ckpt, sizeof ckpt, "%s/checkpoint.txt", sub);
+  pid = start_afv(argv, "writer.txt", NULL);
+  for (waited = 0; waited < 20000 && !exists(ckpt); waited += 5)
+    sleep_ms(5);
+  CHECK(exists(ckpt), "the writer never checkpointed");
+  snprintf(want, wantlen, "process %ld", (long)pid);
+  return pid;
+}
+
 /* ---- one writer per run directory --------------------------------------- */
 /* While a run writes in DIR, a resume and a fresh run on DIR are refused at
 ** once (exit 2, naming the writer's pid) and leave it alone; SIGKILLed,
@@ -182,18 +205,8 @@ static int exit_status(pid_t pid)
 static void test_second_writer_refused(void)
 {
   char out[512], want[64], *e;
-  const char *argv[] = {"afv", "run", "--N", "64", "--P0", "4.5", "--v0",
-                        "0.3", "--sample_every", "5", "--frame_every", "10",
-                        "--checkpoint_every", "5", "--svg_every", "0",
-                        "--quiet", "--steps", "100000000", "--out", out, NULL};
-  pid_t pid;
-  int waited, st;
-  snprintf(out, sizeof out, "%s/w", root);
-  pid = start_afv(argv, "writer.txt", NULL);
-  for (waited = 0; waited < 20000 && !exists("w/checkpoint.txt"); waited += 5)
-    sleep_ms(5);
-  CHECK(exists("w/checkpoint.txt"), "the writer never checkpointed");
-  snprintf(want, sizeof want, "process %ld", (long)pid);
+  pid_t pid = start_live_writer("w", out, sizeof out, want, sizeof want);
+  int st;
   st = test_sh("./afv run --resume %s --steps 10 --quiet 2> %s/err.txt", out,
               root);
   e = last_err();
@@ -222,6 +235,41 @@ static void test_second_writer_refused(void)
         "differs from one straight run");
   CHECK(same_file("w", "w_ref", "checkpoint.txt"), "checkpoint.txt differs "
         "from one straight run");
+}
+
+/* The lock cannot be cleaned away: with a run live in DIR, deleting
+** DIR/lock (the empty file the code before locked, which stayed after
+** every run) and putting a symbolic link in its place leaves a resume
+** refused (the code before: the resume exited 0 beside the live run,
+** rewrote params.txt's steps and tore trajectory.dat).  A dangling
+** symbolic link in a fresh run's directory never makes afv create its
+** target (the code before created the target of DIR/lock). */
+static void test_lock_survives_cleaning(void)
+{
+  char out[512], want[64], *e;
+  pid_t pid = start_live_writer("lk", out, sizeof out, want, sizeof want);
+  int st;
+  test_sh("rm -f %s/lock && ln -s %s/lock_target %s/lock", out, root, out);
+  st = test_sh("./afv run --resume %s --steps 10 --quiet 2> %s/err.txt", out,
+               root);
+  e = last_err();
+  CHECK(st == 2 && strstr(e, want), "resume beside a live writer whose "
+        "lock file was cleaned: exit %d, want 2 naming %s: %s", st, want, e);
+  free(e);
+  kill(pid, SIGKILL);
+  exit_status(pid);
+  CHECK(!exists("lock_target"), "afv created the target of a link");
+  /* fresh runs into directories holding dangling links */
+  CHECK(test_sh("mkdir -p %s/lk2 && ln -s %s/lock_target2 %s/lk2/lock && "
+                "./afv run " FAST " --steps 10 --out %s/lk2 2> %s/err.txt",
+                root, root, root, root, root) == 0, "a fresh run beside a "
+        "stray link");
+  CHECK(!exists("lock_target2"), "afv created the target of DIR/lock");
+  st = test_sh("mkdir -p %s/lk3 && ln -s %s/obs_target %s/lk3/observables.csv"
+               " && ./afv run " FAST " --steps 10 --out %s/lk3 2> %s/err.txt",
+               root, root, root, root, root);
+  CHECK(st == 2 && !exists("obs_target"), "a link at observables.csv: exit "
+        "%d, want 2, and its target not made", st);
 }
 
 /* 1 if the stderr a refused run left in root/name says why, rightly: the
@@ -505,6 +553,7 @@ void suite_runjob(void)
   test_sh("rm -rf %s && mkdir -p %s", root, root);
   RUN(test_second_writer_refused);
   RUN(test_concurrent_fresh_runs);
+  RUN(test_lock_survives_cleaning);
   RUN(test_failed_resume_changes_nothing);
   RUN(test_uncomputable_parameters_refused);
   RUN(test_unfinished_run_rerunnable);
