@@ -1078,6 +1078,213 @@ static int recorded_sizes_hold(const run_state *R, const afv_checkpoint *ck,
   return 1;
 }
 
+/* ---- a checkpoint agrees with the files it describes ------------------- */
+/* A checkpoint is trusted only when it agrees with its files, checked
+** before any byte changes: its time is step x dt (the run sets t so), and
+** each append-only file, cut at the recorded size, ends with the record
+** of the last output step at or before the checkpoint's step: the
+** observables.csv row of that step and time (the header alone without
+** samples), the whole trajectory.dat frame of that step and time (the
+** header line alone without frames), and the trajectory.xyz frame of that
+** step.  When the row is of the checkpoint's own step, its energy must
+** equal the checkpointed state's, bit for bit (%.17g reads back exactly):
+** a checksum of the state.  A checkpoint that fails any of this (edited,
+** or of another run) would have cut the files to a wrong place or
+** continued a different state. */
+
+/* Reads bytes [from, to) of fd into buf (to - from <= cap - 1, NUL
+** added).  1 if all were read. */
+static int read_span(int fd, long long from, long long to, char *buf,
+                     size_t cap)
+{
+  size_t want = (size_t)(to - from), got = 0;
+  if (to < from || want >= cap) return 0;
+  while (got < want) {
+    ssize_t m = pread(fd, buf + got, want - got, (off_t)(from + (long long)got));
+    if (m <= 0) return 0;
+    got += (size_t)m;
+  }
+  buf[want] = 0;
+  return 1;
+}
+
+/* The start of the k-th line (k >= 1) before end, which must follow a
+** newline: -1 if the file does not end a line at end or has fewer lines.
+** Reads backwards in blocks, so a frame costs its own size. */
+static long long line_back(int fd, long long end, long long k)
+{
+  char buf[65536];
+  long long pos = end - 1, seen = 0;
+  if (end <= 0 || !read_span(fd, end - 1, end, buf, sizeof buf)
+      || buf[0] != '\n')
+    return -1;
+  while (pos > 0) {
+    long long from = pos - (long long)sizeof buf + 1 > 0
+                     ? pos - (long long)sizeof buf + 1 : 0;
+    long long j;
+    if (!read_span(fd, from, pos, buf, sizeof buf)) return -1;
+    for (j = pos - 1; j >= from; j--)
+      if (buf[j - from] == '\n' && ++seen == k) return j + 1;
+    pos = from;
+  }
+  return seen == k - 1 ? 0 : -1;
+}
+
+/* The line of fd starting at start (at most cap - 1 bytes, without its
+** newline) into buf; 1 if read. */
+static int line_at(int fd, long long start, long long end, char *buf,
+                   size_t cap)
+{
+  long long to = end - start < (long long)cap - 1 ? end : start +
+                 (long long)cap - 1;
+  char *nl;
+  if (!read_span(fd, start, to, buf, cap)) return 0;
+  if ((nl = strchr(buf, '\n'))) *nl = 0;
+  return 1;
+}
+
+/* The last output step at or before step for an interval (0: none). */
+static long long last_due(long long step, long long every)
+{
+  return every > 0 ? step / every * every : -1;
+}
+
+typedef struct ckpt_trust {
+  const run_state *R;
+  const afv_checkpoint *ck;
+  char *err;
+  size_t errlen;
+  double energy;       /* observables' energy at the checkpoint's step */
+  int has_energy;      /* 1 if the last row is of the checkpoint's step */
+} ckpt_trust;
+
+/* "checkpoint.txt:LINE: bytes FILE B: the file there WHY: not ..." */
+static int untrusted(ckpt_trust *T, int k, const char *why)
+{
+  afv_errorf(T->err, T->errlen, "%s/checkpoint.txt:%d: bytes %s %lld: %s "
+             "there %s: the checkpoint does not describe these files (edited,"
+             " or another run's); nothing was changed", T->R->dir,
+             AFV_CKPT_BYTES_LINE + k, afv_checkpoint_files[k],
+             T->ck->bytes[k], afv_checkpoint_files[k], why);
+  return 0;
+}
+
+/* observables.csv (read through the lock's descriptor: closing another
+** would drop the lock): its last line before the recorded size. */
+static int obs_agrees(ckpt_trust *T)
+{
+  const run_state *R = T->R;
+  long long end = T->ck->bytes[OUT_OBS], due_step = last_due(T->ck->step,
+                  R->cfg.sample_every), start = line_back(R->lock_fd, end, 1);
+  char line[4096], why[160];
+  long long step;
+  double t, e;
+  if (start < 0 || !line_at(R->lock_fd, start, end, line, sizeof line))
+    return untrusted(T, OUT_OBS, "does not end a line");
+  if (due_step < 0)
+    return start == 0 && strncmp(line, "step,", 5) == 0
+           ? 1 : untrusted(T, OUT_OBS, "is not the header alone "
+                           "(sample_every 0)");
+  if (sscanf(line, "%lld,%lf,%lf,", &step, &t, &e) != 3 || step != due_step
+      || t != (double)step * R->cfg.dt) {
+    snprintf(why, sizeof why, "does not end with the row of step %lld "
+             "(t = %.17g)", due_step, (double)due_step * R->cfg.dt);
+    return untrusted(T, OUT_OBS, why);
+  }
+  T->has_energy = step == T->ck->step;
+  T->energy = e;
+  return 1;
+}
+
+/* The header line "# step S time T" of the frame of lines lines that
+** ends at end, in file k (fd), checked against the last frame step. */
+static int frame_agrees(ckpt_trust *T, int k, int fd, long long lines,
+                        const char *fmt, int with_time)
+{
+  const run_state *R = T->R;
+  long long end = T->ck->bytes[k], due_step = last_due(T->ck->step,
+                  R->cfg.frame_every), start, step = -1;
+  char line[4096], why[160];
+  double t = -1;
+  if (due_step < 0) {   /* no frames: the header line alone */
+    start = line_back(fd, end, 1);
+    return start == 0 || (k == OUT_XYZ && end == 0)
+           ? 1 : untrusted(T, k, "is not the header alone (frame_every 0)");
+  }
+  start = line_back(fd, end, lines);
+  if (start < 0 || !line_at(fd, start, end, line, sizeof line)
+      || sscanf(line, fmt, &step, &t) < 1 || step != due_step
+      || (with_time && t != (double)step * R->cfg.dt)) {
+    snprintf(why, sizeof why, "does not end with the whole frame of step "
+             "%lld", due_step);
+    return untrusted(T, k, why);
+  }
+  return 1;
+}
+
+/* trajectory.dat: a frame is its header, N rows and two blank lines;
+** trajectory.xyz: the count line, a comment with Step=S and N rows. */
+static int frames_agree(ckpt_trust *T)
+{
+  const run_state *R = T->R;
+  char path[RUN_PATH_MAX + 32], tail[4];
+  int ok, fd;
+  long long n = R->cfg.N, end = T->ck->bytes[OUT_TRAJ];
+  snprintf(path, sizeof path, "%s/%s", R->dir, afv_checkpoint_files[OUT_TRAJ]);
+  if ((fd = open(path, O_RDONLY)) < 0)
+    return untrusted(T, OUT_TRAJ, "cannot be read");
+  ok = last_due(T->ck->step, R->cfg.frame_every) < 0
+       || (end >= 3 && read_span(fd, end - 3, end, tail, sizeof tail)
+           && strcmp(tail, "\n\n\n") == 0);
+  ok = ok ? frame_agrees(T, OUT_TRAJ, fd, n + 3, "# step %lld time %lf", 1)
+       : untrusted(T, OUT_TRAJ, "does not end a frame");
+  close(fd);
+  if (!ok || !R->cfg.xyz) return ok;
+  snprintf(path, sizeof path, "%s/%s", R->dir, afv_checkpoint_files[OUT_XYZ]);
+  if ((fd = open(path, O_RDONLY)) < 0)
+    return untrusted(T, OUT_XYZ, "cannot be read");
+  {   /* the comment line: "... Properties=... Time=T Step=S" */
+    long long start = line_back(fd, T->ck->bytes[OUT_XYZ], n + 1);
+    char line[4096], *at;
+    long long step = -1, due_step = last_due(T->ck->step, R->cfg.frame_every);
+    if (due_step < 0)
+      ok = T->ck->bytes[OUT_XYZ] == 0
+           || untrusted(T, OUT_XYZ, "holds frames (frame_every 0)");
+    else if (start < 0 || !line_at(fd, start, T->ck->bytes[OUT_XYZ], line,
+                                   sizeof line)
+             || !(at = strstr(line, "Step=")) || sscanf(at, "Step=%lld",
+                                                        &step) != 1
+             || step != due_step) {
+      char why[96];
+      snprintf(why, sizeof why, "does not end with the whole frame of step "
+               "%lld", due_step);
+      ok = untrusted(T, OUT_XYZ, why);
+    }
+  }
+  close(fd);
+  return ok;
+}
+
+/* The checkpoint's clock and each file's last record (above).  1, or 0
+** with the reason in err. */
+static int checkpoint_agrees(const run_state *R, const afv_checkpoint *ck,
+                             ckpt_trust *T, char *err, size_t errlen)
+{
+  memset(T, 0, sizeof *T);
+  T->R = R;
+  T->ck = ck;
+  T->err = err;
+  T->errlen = errlen;
+  if (ck->t != (double)ck->step * R->cfg.dt) {
+    afv_errorf(err, errlen, "%s/checkpoint.txt:4: time %.17g, but step %lld "
+               "x dt %g is %.17g: the checkpoint does not describe this run "
+               "(edited, or another run's); nothing was changed", R->dir,
+               ck->t, ck->step, R->cfg.dt, (double)ck->step * R->cfg.dt);
+    return 0;
+  }
+  return obs_agrees(T) && frames_agree(T);
+}
+
 /* Opens the append-only files: fresh (with headers) or cut back to the
 ** sizes of the checkpoint (recorded_sizes_hold checked them) and appended
 ** to. */
@@ -1304,7 +1511,10 @@ static const char *run_usage =
   "log.txt, t1_reference.txt (C(0) for the t1 column) (and cells.txt,\n"
   "trajectory.xyz).  --resume continues from the\n"
   "last checkpoint, to the run's steps or MORE steps past the checkpoint;\n"
-  "it checks every file first and changes none if one does not match.\n"
+  "it checks every file first and changes none if one does not match\n"
+  "(the checkpoint must agree with the files: time = step x dt, each file\n"
+  "ending with the row or frame of the last output step, that row's\n"
+  "energy the state's).\n"
   "One process at a time writes in DIR (a lock on DIR/observables.csv,\n"
   "the run's data, which ends with the process); another is refused,\n"
   "naming it.  DIR may exist, but\n"
@@ -1695,7 +1905,8 @@ static int resume_params(run_state *R, const run_args *a, int *set,
 ** then has the new count).  0, or an exit status with the message
 ** printed. */
 static int resume_checkpoint(run_state *R, long long more, const char *ckpt,
-                             afv_checkpoint *ck, int *new_steps)
+                             afv_checkpoint *ck, int *new_steps,
+                             ckpt_trust *T)
 {
   char err[2 * RUN_PATH_MAX];
   if (access(ckpt, F_OK) != 0) {
@@ -1725,7 +1936,9 @@ static int resume_checkpoint(run_state *R, long long more, const char *ckpt,
   }
   *new_steps = more >= 0 && R->cfg.steps != ck->step + more;
   if (more >= 0) R->cfg.steps = ck->step + more;
-  if (!recorded_sizes_hold(R, ck, err, sizeof err)) return bad_input(err);
+  if (!recorded_sizes_hold(R, ck, err, sizeof err)
+      || !checkpoint_agrees(R, ck, T, err, sizeof err))
+    return bad_input(err);
   return 0;
 }
 
@@ -1733,7 +1946,8 @@ static int resume_checkpoint(run_state *R, long long more, const char *ckpt,
 ** run can compute with (run_computable), and the T1 reference.  0, or an
 ** exit status with the message printed. */
 static int resume_state(run_state *R, const afv_checkpoint *ck,
-                        const char *ckpt, const int *set, const char *params)
+                        const char *ckpt, const int *set, const char *params,
+                        const ckpt_trust *T)
 {
   char err[2 * RUN_PATH_MAX];
   afv_params p;
@@ -1755,6 +1969,14 @@ static int resume_state(run_state *R, const afv_checkpoint *ck,
     locate_error(err, sizeof err, set, params);  /* a key: its line */
     return bad_input(err);
   }
+  if (T->has_energy && T->energy != R->sim.geom.energy) {
+    fprintf(stderr, "afv run: %s: its state has the energy %.17g under "
+            "params.txt, but observables.csv's row of step %lld has %.17g: "
+            "the checkpoint and params.txt do not describe these files "
+            "(edited, or another run's); nothing was changed\n", ckpt,
+            R->sim.geom.energy, ck->step, T->energy);
+    return EXIT_BAD_INPUT;
+  }
   if (!obs_t1_reference(&R->an, &R->sim, R->dir, 1)) return EXIT_BAD_INPUT;
   return 0;
 }
@@ -1769,13 +1991,15 @@ static int resume_checks(run_state *R, const run_args *a, long long more,
 {
   char params[RUN_PATH_MAX + 32], ckpt[RUN_PATH_MAX + 32];
   int set[N_RUN_KEYS], st;
+  ckpt_trust T;
   memset(set, 0, sizeof set);
+  memset(&T, 0, sizeof T);
   snprintf(params, sizeof params, "%s/params.txt", R->dir);
   snprintf(ckpt, sizeof ckpt, "%s/checkpoint.txt", R->dir);
   if ((st = resume_params(R, a, set, params)) != 0
-      || (st = resume_checkpoint(R, more, ckpt, ck, new_steps)) != 0)
+      || (st = resume_checkpoint(R, more, ckpt, ck, new_steps, &T)) != 0)
     return st;
-  return resume_state(R, ck, ckpt, set, params);
+  return resume_state(R, ck, ckpt, set, params, &T);
 }
 
 static int run_resume(run_state *R, const run_args *a)

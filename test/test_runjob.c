@@ -374,7 +374,23 @@ static void test_failed_resume_changes_nothing(void)
      "--steps 50", "params.txt:6: KA: 1e+200"},
     /* cell 5's angle (line 14 of the checkpoint) not finite */
     {"awk 'NR == 14 { $3 = \"inf\" } { print }' checkpoint.txt > c.tmp && "
-     "mv c.tmp checkpoint.txt", "--steps 50", "checkpoint.txt"}};
+     "mv c.tmp checkpoint.txt", "--steps 50", "checkpoint.txt"},
+    /* well-formed checkpoints that do not describe the files (the code
+    ** before cut trajectory.dat to nothing, glued a frame onto a line,
+    ** and appended frames after later ones) */
+    {"awk '/^bytes trajectory.dat/ { $3 = 0 } { print }' checkpoint.txt > "
+     "c.tmp && mv c.tmp checkpoint.txt", "", "bytes trajectory.dat 0"},
+    {"awk '/^bytes trajectory.dat/ { $3 -= 5 } { print }' checkpoint.txt > "
+     "c.tmp && mv c.tmp checkpoint.txt", "--steps 50", "bytes trajectory.dat"},
+    {"awk '/^bytes observables.csv/ { $3 -= 9 } { print }' checkpoint.txt > "
+     "c.tmp && mv c.tmp checkpoint.txt", "", "bytes observables.csv"},
+    {"awk '/^step/ { $2 = 90 } { print }' checkpoint.txt > c.tmp && "
+     "mv c.tmp checkpoint.txt", "--steps 50", "checkpoint.txt:4: time"},
+    {"awk '/^step/ { $2 = 90 } /^time/ { $2 = \"0x1.ccccccccccccdp-1\" } "
+     "{ print }' checkpoint.txt > c.tmp && mv c.tmp checkpoint.txt",
+     "--steps 50", "row of step 90"},
+    {"awk 'NR == 12 { $1 = \"0x1p+3\" } { print }' checkpoint.txt > c.tmp "
+     "&& mv c.tmp checkpoint.txt", "--steps 50", "energy"}};
   size_t c;
   CHECK(test_sh("./afv run " FAST " --xyz 1 --steps 100 --out %s/base",
                root) == 0, "the base run");
