@@ -8,6 +8,7 @@
 ** error message; afv.h's accessors would do, at about 100 call sites. */
 #include "afv_internal.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <float.h>
 #include <fcntl.h>
@@ -74,10 +75,11 @@ static const run_key run_keys[] = {
      "length); must be > 0"),
   RK("KA", K_REAL, KA, "1", "energy/l^4", "area modulus; must be >= 0"),
   RK("KP", K_REAL, KP, "1", "energy/l^2", "perimeter modulus; must be >= 0"),
-  RK("A0", K_REAL, A0, "3.1415926535897931", "l^2", "preferred area (pi l^2); any finite "
-     "number"),
+  RK("A0", K_REAL, A0, "3.1415926535897931", "l^2", "preferred area (the "
+     "default is pi, a disk of radius 1; it does not follow l); must be > 0 "
+     "(where KA > 0; any number where KA = 0)"),
   RK("P0", K_REAL, P0, "4.8", "l", "preferred perimeter (main knob); "
-     "any finite number"),
+     "must be > 0 (where KP > 0; any number where KP = 0)"),
   RK("Lambda", K_REAL, Lambda, "0.2", "energy/l", "extra tension of the "
      "free (arc) boundary; any finite number"),
   RK("cap", K_REAL, cap, "0", "l", "contact cap delta: near detachment "
@@ -182,21 +184,27 @@ static int set_key(run_cfg *cfg, const run_key *K, const char *text,
                    const char *base, char *err, size_t errlen)
 {
   char *p = (char *)cfg + K->off, *end;
+  const char *why = NULL;
+  double x;
   errno = 0;
   switch (K->kind) {
   case K_REAL:
-    *(double *)p = strtod(text, &end);
-    if (end == text || *end || errno == ERANGE || !isfinite(*(double *)p))
-      break;
+    if ((why = real_problem(text, (double *)p)) != NULL) break;
     return 1;
   case K_INT:
-    *(long long *)p = strtoll(text, &end, 10);
-    if (end == text || *end || errno == ERANGE) break;
+    if ((why = integral_problem(text, LLONG_MIN, LLONG_MAX,
+                                (long long *)p)) != NULL) break;
     return 1;
-  case K_SEED:
+  case K_SEED:   /* digits (the whole 0 .. 2^64-1), or an integral real */
     *(unsigned long long *)p = strtoull(text, &end, 10);
-    if (end == text || *end || errno == ERANGE || strchr(text, '-')) break;
-    return 1;
+    if (end != text && !*end && errno != ERANGE && !strchr(text, '-'))
+      return 1;
+    if (!real_problem(text, &x) && x == floor(x) && x >= 0
+        && x < 18446744073709551616.0) {
+      *(unsigned long long *)p = (unsigned long long)x;
+      return 1;
+    }
+    break;
   case K_BOOL:
     if (strcmp(text, "0") && strcmp(text, "1")) break;
     *(int *)p = text[0] == '1';
@@ -211,10 +219,12 @@ static int set_key(run_cfg *cfg, const run_key *K, const char *text,
                RUN_PATH_MAX - 1);
     return 0;
   }
+  if (why) {
+    afv_errorf(err, errlen, "%s: '%s' %s", K->name, text, why);
+    return 0;
+  }
   afv_errorf(err, errlen, "%s: '%s' is not %s", K->name, text,
-             K->kind == K_REAL ? "a finite number"
-             : K->kind == K_INT ? "an integer"
-             : K->kind == K_SEED ? "an integer in 0 .. 2^64-1"
+             K->kind == K_SEED ? "an integer in 0 .. 2^64-1"
              : K->kind == K_BOOL ? "0 or 1" : "one of the choices");
   if (K->kind == K_WORD && err) {
     size_t m = strlen(err);
@@ -305,6 +315,80 @@ static void locate_error(char *err, size_t errlen, const int *set,
   afv_errorf(err, errlen, "%s:%d: %s", path, set[K - run_keys], copy);
 }
 
+/* The value of key (column col of the cells file, if it has one, else
+** the run's) for cell i, and its label for a message. */
+static double cell_value(const afv_cells *cl, int col, double run_value,
+                         int i, const char *key, char *label, size_t len)
+{
+  if (cl->has[col]) {
+    snprintf(label, len, "%s (cells file, cell %d)", key, i);
+    return cl->col[col][i];
+  }
+  snprintf(label, len, "%s", key);
+  return run_value;
+}
+
+/* The targets the relaxation pulls to must be reachable: a cell's area
+** and perimeter are positive, so A0 <= 0 (with KA > 0) or P0 <= 0 (with
+** KP > 0) drives every cell to shrink without end, and the relaxation
+** crawls through ever more crowded, ever slower steps for its whole
+** relax_max_steps (afv run --N 50 --P0 0 sat silent for minutes). */
+static int targets_positive(const run_cfg *c, const afv_cells *cl,
+                            char *err, size_t errlen)
+{
+  static const struct { const char *target, *modulus; int tcol, mcol; }
+    pairs[2] = {{"A0", "KA", AFV_COL_A0, AFV_COL_KA},
+                {"P0", "KP", AFV_COL_P0, AFV_COL_KP}};
+  int n = cl->n > 0 ? cl->n : 1, i, k;
+  for (k = 0; k < 2; k++)
+    for (i = 0; i < n; i++) {
+      char tl[64], ml[64];
+      double t = cell_value(cl, pairs[k].tcol, k ? c->P0 : c->A0, i,
+                            pairs[k].target, tl, sizeof tl);
+      double m = cell_value(cl, pairs[k].mcol, k ? c->KP : c->KA, i,
+                            pairs[k].modulus, ml, sizeof ml);
+      if (m > 0 && !(t > 0)) {
+        afv_errorf(err, errlen, "%s: must be > 0 where %s > 0 (got %g): a "
+                   "cell's %s is positive, and a target of %g would shrink "
+                   "every cell without end", tl, ml, t, k ? "perimeter"
+                   : "area", t);
+        return 0;
+      }
+    }
+  return 1;
+}
+
+/* Every active step moves a cell by v0 dt of self-propulsion alone, and
+** a step that moves a cell more than AFV_MAX_STEP_DISP l is refused
+** (dynamics.c, too_fast): with |v0| dt beyond that, the very first step
+** would stop the run, so it is refused before anything is made. */
+static int steps_meaningful(const run_cfg *c, const int *set,
+                            const afv_cells *cl, char *err, size_t errlen)
+{
+  if (c->steps == 0) return 1;   /* a run of no step moves nothing */
+  int n = cl->n > 0 ? cl->n : 1, i;
+  int dt_named = set[find_key("dt") - run_keys] && !cl->has[AFV_COL_V0]
+                 && !set[find_key("v0") - run_keys];
+  for (i = 0; i < n; i++) {
+    char label[64];
+    double v0 = cell_value(cl, AFV_COL_V0, c->v0, i, "v0", label,
+                           sizeof label);
+    if (!(fabs(v0) * c->dt > AFV_MAX_STEP_DISP * c->l)) continue;
+    if (dt_named)   /* the key the user gave */
+      afv_errorf(err, errlen, "dt: %g: a step's self-propulsion |v0| dt = "
+                 "%g l (v0 = %g) exceeds %g l, the most a step may move a "
+                 "cell: every step would be refused; lower dt", c->dt,
+                 fabs(v0) * c->dt / c->l, v0, AFV_MAX_STEP_DISP);
+    else
+      afv_errorf(err, errlen, "%s: %g: a step's self-propulsion |v0| dt = "
+                 "%g l (dt = %g) exceeds %g l, the most a step may move a "
+                 "cell: every step would be refused; lower v0 or dt", label,
+                 v0, fabs(v0) * c->dt / c->l, c->dt, AFV_MAX_STEP_DISP);
+    return 0;
+  }
+  return 1;
+}
+
 /* Range checks, one message naming the key.  Reads the cells file (cl). */
 static int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
                         size_t errlen)
@@ -349,11 +433,18 @@ static int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
   if (c->frame_every < 0) BAD("frame_every: must be >= 0");
   if (c->checkpoint_every < 0) BAD("checkpoint_every: must be >= 0");
   if (c->svg_every < 0) BAD("svg_every: must be >= 0");
+  if (!(c->l * c->l >= DBL_MIN && isfinite(c->l * c->l)))
+    BAD("l: %g: l^2 = %g %s the range of doubles; the geometry computes "
+        "with l^2 (areas)", c->l, c->l * c->l, c->l < 1 ? "underflows" :
+        "overflows");
+  if (!isfinite(box_side(c)))
+    BAD("phi: %g: the box side L = sqrt(N pi l^2/phi) overflows", c->phi);
   if (strcmp(c->box, "periodic") == 0 && box_side(c) < 4 * c->l)
     BAD("phi: the box side L = sqrt(N pi l^2/phi) = %.17g is smaller than "
         "4l = %.17g (minimum image); use more cells or a smaller phi",
         box_side(c), 4 * c->l);
-  return 1;
+  return targets_positive(c, cl, err, errlen)
+         && steps_meaningful(c, set, cl, err, errlen);
 #undef BAD
 }
 
@@ -1373,10 +1464,10 @@ static void log_relax(run_state *R, const afv_relax_report *rep)
   else if (rep->refused)
     run_log(R, "relaxation: stopped at step %ld, which it cannot take: cell "
             "%d would move %g l (> %g l) even in a time %g (forces too large "
-            "for dt = %g: check KA, KP, Lambda); relax_tol %g NOT reached, "
-            "the run goes on from here\n", rep->iterations + 1,
+            "for mu = %g, dt = %g: check mu, KA, KP, Lambda); relax_tol %g "
+            "NOT reached, the run goes on from here\n", rep->iterations + 1,
             R->sim.bad_cell, R->sim.bad_disp, AFV_MAX_STEP_DISP,
-            R->sim.bad_time, R->sim.dyn.dt, R->cfg.relax_tol);
+            R->sim.bad_time, R->sim.dyn.mu, R->sim.dyn.dt, R->cfg.relax_tol);
   else
     run_log(R, "relaxation: NOT reached within relax_max_steps %lld: max "
             "|F| %.3e > relax_tol %g, no kink shown (last window: mean "
@@ -1404,6 +1495,29 @@ static int relax_start(run_state *R)
   return AFV_OK;
 }
 
+/* The end of a stop message: where the run can go on from.  A run whose
+** last checkpoint is at step 0 (or that has none yet) would stop the same
+** way from it (a run depends on its seed and parameters only), so that
+** checkpoint is removed: DIR then holds a run that stopped before its
+** first checkpoint, which a fresh run, with other parameters, replaces
+** (before, such a directory was dead: a retry was refused as "already
+** holds a run" and a resume stopped again). */
+static const char *resume_point(const run_state *R, char *buf, size_t len)
+{
+  char path[RUN_PATH_MAX + 32];
+  if (R->ckpt_step > 0) {
+    snprintf(buf, len, "last good checkpoint: %s/checkpoint.txt (step %lld)",
+             R->dir, R->ckpt_step);
+    return buf;
+  }
+  snprintf(path, sizeof path, "%s/checkpoint.txt", R->dir);
+  remove(path);
+  snprintf(buf, len, "no checkpoint kept (from its start the run would stop "
+           "the same way): afv run --out %s with other parameters replaces "
+           "this run", R->dir);
+  return buf;
+}
+
 /* The state became non-finite (a step failed on it, or it was about to be
 ** written): names the cells and what of them; nothing of it is written.
 ** Exit status 3, like an unstable step: the last checkpoint resumes. */
@@ -1414,10 +1528,10 @@ static int report_nonfinite(run_state *R)
   if (state_finite(s, what, sizeof what))
     snprintf(what, sizeof what, "a step made a position NaN or infinite "
              "(and was undone)");
+  char where[RUN_PATH_MAX + 256];
   fprintf(stderr, "%safv run: step %lld (t = %g): %s; not written, the run "
-          "stops; last good checkpoint: %s/checkpoint.txt (step %lld)\n",
-          R->progress ? "\n" : "", s->step, s->t, what, R->dir,
-          R->ckpt_step);
+          "stops; %s\n", R->progress ? "\n" : "", s->step, s->t, what,
+          resume_point(R, where, sizeof where));
   if (R->log) fprintf(R->log, "stopped at step %lld: %s\n", s->step, what);
   return EXIT_UNSTABLE;
 }
@@ -1430,8 +1544,8 @@ static const char *unstable_reason(const afv_sim *s, double max_move)
     return "the time step is too large for plain Euler steps (max_move 0; "
            "max_move 0.05 takes such steps in pieces)";
   if (s->bad_time < s->dyn.dt)
-    return "the forces are too large for any time step, even in the "
-           "smallest half of dt (check KA, KP, Lambda, P0)";
+    return "the moves mu dt F are too large for any time step, even in "
+           "the smallest half of dt (check mu, then KA, KP, Lambda, P0)";
   return "self-propulsion alone, v0 dt, exceeds that: the time step is too "
          "large";
 }
@@ -1440,7 +1554,7 @@ static const char *unstable_reason(const afv_sim *s, double max_move)
 static int run_loop(run_state *R)
 {
   afv_sim *s = &R->sim;
-  char what[512];
+  char what[512], where[RUN_PATH_MAX + 256];
   int st = AFV_OK;
   R->start_step = s->step;
   R->wall0 = R->last_progress = wall_seconds();
@@ -1452,11 +1566,11 @@ static int run_loop(run_state *R)
   if (st == AFV_EUNSTABLE) {
     int i = s->bad_cell;
     fprintf(stderr, "%safv run: step %lld (t = %g): cell %d would move %g l "
-            "(> %g l) in a time %g: %s; last good checkpoint: "
-            "%s/checkpoint.txt (step %lld)\n",
+            "(> %g l) in a time %g: %s; %s\n",
             R->progress ? "\n" : "", s->step + 1, s->t, i, s->bad_disp,
             AFV_MAX_STEP_DISP, s->bad_time,
-            unstable_reason(s, R->cfg.max_move), R->dir, R->ckpt_step);
+            unstable_reason(s, R->cfg.max_move),
+            resume_point(R, where, sizeof where));
     if (R->log) fprintf(R->log, "stopped: unstable step %lld, cell %d\n",
                         s->step + 1, i);
     return EXIT_UNSTABLE;
@@ -1466,10 +1580,10 @@ static int run_loop(run_state *R)
     st = AFV_ENONFINITE;   /* the final checkpoint would record it */
   if (st == AFV_ECOINCIDENT) {   /* after a step */
     fprintf(stderr, "%safv run: step %lld: %s (cells %d and %d): the time "
-            "step dt = %g is probably too large; last good checkpoint: "
-            "%s/checkpoint.txt (step %lld)\n", R->progress ? "\n" : "",
-            s->step, afv_strerror(st), s->geom.bad_i, s->geom.bad_j,
-            s->dyn.dt, R->dir, R->ckpt_step);
+            "step dt = %g is probably too large; %s\n",
+            R->progress ? "\n" : "", s->step, afv_strerror(st),
+            s->geom.bad_i, s->geom.bad_j, s->dyn.dt,
+            resume_point(R, where, sizeof where));
     return EXIT_UNSTABLE;
   }
   if (st == AFV_ENONFINITE) return report_nonfinite(R);
@@ -1519,7 +1633,10 @@ static const char *run_usage =
   "the run's data, which ends with the process); another is refused,\n"
   "naming it.  DIR may exist, but\n"
   "a fresh run refuses one with a checkpoint.txt (a run that stopped\n"
-  "before its first checkpoint is replaced).  --continue makes the command\n"
+  "before its first checkpoint is replaced) and one holding files of a\n"
+  "run's names without afv's params.txt (a user's own log.txt, say).  A\n"
+  "run that stops (exit 3) from its step-0 checkpoint keeps none: from it\n"
+  "the run would stop the same way, and a fresh run may use DIR.  --continue makes the command\n"
   "idempotent (the jobs of afv sweep): a new run if DIR holds none (or one\n"
   "that stopped before its first checkpoint), a resumed one if DIR holds\n"
   "an unfinished run, nothing if it is finished.  Missing parent folders\n"
@@ -1539,6 +1656,23 @@ static void run_help(void)
            run_keys[k].unit);
     print_wrapped(run_keys[k].help);
   }
+}
+
+/* "--out --resume ... --N --phi ...": every option of afv run, for the
+** nearest one to an unknown option. */
+static const char *run_option_names(void)
+{
+  static char names[2048];
+  size_t m;
+  int k;
+  if (names[0]) return names;
+  snprintf(names, sizeof names, "--out --resume --config --continue "
+           "--quiet --help");
+  for (k = 0; k < N_RUN_KEYS; k++) {
+    m = strlen(names);
+    snprintf(names + m, sizeof names - m, " --%s", run_keys[k].name);
+  }
+  return names;
 }
 
 /* Command-line arguments of afv run. */
@@ -1575,8 +1709,7 @@ static int scan_args(int argc, char **argv, run_args *a)
     if (strncmp(o, "--", 2) != 0
         || (!find_key(o + 2) && strcmp(o, "--out") && strcmp(o, "--resume")
             && strcmp(o, "--config"))) {
-      fprintf(stderr, "afv run: unknown option '%s' (see afv run --help)\n",
-              o);
+      unknown_option(o, run_option_names());
       return 0;
     }
     if (k + 1 >= argc || strncmp(argv[k + 1], "--", 2) == 0) {
@@ -1775,19 +1908,87 @@ static int holds_run(const run_state *R)
   return 1;
 }
 
+/* 1 if name is a snapshot's, snap_DIGITS.svg. */
+static int is_snapshot(const char *name)
+{
+  size_t m = strlen(name);
+  return strncmp(name, "snap_", 5) == 0 && m > 9
+         && strcmp(name + m - 4, ".svg") == 0
+         && strspn(name + 5, "0123456789") == m - 9;
+}
+
 /* Files a run that stopped before its first checkpoint may have left and
 ** a fresh run does not always rewrite (the others it rewrites). */
 static void clear_unfinished_run(const char *dir)
 {
   static const char *const left[] = {"log.txt", "cells.txt",
-                                      "trajectory.xyz", "snap_000000000.svg",
-                                      "final.svg"};
-  char path[RUN_PATH_MAX + 32];
+                                      "trajectory.xyz", "final.svg"};
+  char path[RUN_PATH_MAX + 300];
   size_t k;
+  DIR *d;
+  struct dirent *e;
   for (k = 0; k < sizeof left / sizeof left[0]; k++) {
     snprintf(path, sizeof path, "%s/%s", dir, left[k]);
     remove(path);
   }
+  if (!(d = opendir(dir))) return;
+  while ((e = readdir(d)) != NULL)   /* its snapshots, of any step */
+    if (is_snapshot(e->d_name)) {
+      snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+      remove(path);
+    }
+  closedir(d);
+}
+
+/* The files afv run writes in DIR (besides snap_*.svg). */
+static const char *const run_files[] = {
+  "params.txt", "checkpoint.txt", "trajectory.dat", LOCK_FILE,
+  "trajectory.xyz", "log.txt", "t1_reference.txt", "cells.txt", "final.svg"};
+
+/* 1 (with a message) if DIR holds files of a run's names that afv did not
+** write: a params.txt that is not afv's, or any of run_files, or a
+** snapshot, without a params.txt.  A fresh run would overwrite them
+** (before, a user's own log.txt and trajectory.dat were, without a
+** word).  An empty observables.csv is the lock of a run being started
+** (it writes params.txt next), not a user's file. */
+static int foreign_files(const char *dir)
+{
+  char path[RUN_PATH_MAX + 300], line[64] = "";
+  struct stat sb;
+  size_t k;
+  FILE *fp;
+  DIR *d;
+  struct dirent *e;
+  const char *found = NULL;
+  snprintf(path, sizeof path, "%s/params.txt", dir);
+  if (lstat(path, &sb) == 0) {
+    if ((fp = fopen(path, "r"))) {
+      if (!fgets(line, sizeof line, fp)) line[0] = 0;
+      fclose(fp);
+    }
+    if (strncmp(line, "# afv run parameters", 20) == 0) return 0;
+    fprintf(stderr, "afv run: %s is not afv's (it does not start with '# afv "
+            "run parameters'): afv run writes only into a new or empty "
+            "directory or a run directory of its own; choose another "
+            "--out\n", path);
+    return 1;
+  }
+  for (k = 0; !found && k < sizeof run_files / sizeof run_files[0]; k++) {
+    snprintf(path, sizeof path, "%s/%s", dir, run_files[k]);
+    if (lstat(path, &sb) == 0 && !(strcmp(run_files[k], LOCK_FILE) == 0
+                                   && S_ISREG(sb.st_mode) && sb.st_size == 0))
+      found = run_files[k];
+  }
+  if (!found && (d = opendir(dir))) {
+    while (!found && (e = readdir(d)) != NULL)
+      if (is_snapshot(e->d_name)) found = "a snapshot snap_*.svg";
+    closedir(d);
+  }
+  if (!found) return 0;
+  fprintf(stderr, "afv run: %s holds %s but no params.txt: not a run "
+          "directory of afv, and a run would overwrite it; choose another "
+          "--out, or move that file away\n", dir, found);
+  return 1;
 }
 
 /* Creates DIR for a fresh run and takes its lock.  DIR may exist, but must
@@ -1797,7 +1998,8 @@ static void clear_unfinished_run(const char *dir)
 static int make_out_dir(run_state *R)
 {
   const char *dir = R->dir;
-  if (holds_run(R)) return 0;       /* refused before anything changes */
+  if (holds_run(R) || foreign_files(dir))
+    return 0;                       /* refused before anything changes */
   if (!make_parents(dir)) return 0;
   if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
     fprintf(stderr, "afv run: cannot create %s: %s\n", dir, strerror(errno));
@@ -1843,11 +2045,12 @@ static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
   /* everything is checked: only now is anything created */
   if (!make_out_dir(R)) return EXIT_BAD_INPUT;
   R->progress = !R->cfg.quiet && isatty(STDERR_FILENO);
-  if (R->cells.n && write_cells_copy(R->dir, &R->cells) != AFV_OK)
-    return write_failed(R, "cells.txt");
+  /* params.txt first: a directory with it is afv's (foreign_files) */
   if (write_params(R->dir, &R->cfg, R->cells.n ? "cells.txt" : "none")
       != AFV_OK)
     return write_failed(R, "params.txt");
+  if (R->cells.n && write_cells_copy(R->dir, &R->cells) != AFV_OK)
+    return write_failed(R, "cells.txt");
   if (!open_outputs(R, NULL, err, sizeof err)) {
     fprintf(stderr, "afv run: %s\n", err);
     return EXIT_BAD_INPUT;
@@ -1873,12 +2076,10 @@ static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
 /* --steps MORE of a resume: a count of steps, 0 .. 2^63 - 1. */
 static int parse_more_steps(const char *text, long long *more)
 {
-  char *end;
-  errno = 0;
-  *more = strtoll(text, &end, 10);
-  if (end != text && !*end && !errno && *more >= 0) return 1;
-  fprintf(stderr, "afv: --steps: '%s' is not a count of steps (an integer "
-          "from 0 to %lld)\n", text, LLONG_MAX);
+  const char *why = integral_problem(text, 0, LLONG_MAX, more);
+  if (!why) return 1;
+  cli_errorf("--steps: '%s' %s: not a count of steps (an integer from 0 to "
+             "%lld)", text, why, LLONG_MAX);
   return 0;
 }
 
@@ -1929,9 +2130,9 @@ static int resume_checkpoint(run_state *R, long long more, const char *ckpt,
     return EXIT_BAD_INPUT;
   }
   if (more >= 0 && more > LLONG_MAX - ck->step) {
-    fprintf(stderr, "afv: --steps: %lld more steps past the checkpoint's "
-            "step %lld exceed the largest step count (%lld)\n", more,
-            ck->step, LLONG_MAX);
+    cli_errorf("--steps: %lld more steps past the checkpoint's step %lld "
+               "exceed the largest step count (%lld)", more, ck->step,
+               LLONG_MAX);
     return EXIT_BAD_INPUT;
   }
   *new_steps = more >= 0 && R->cfg.steps != ck->step + more;

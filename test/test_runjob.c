@@ -426,6 +426,47 @@ static void test_failed_resume_changes_nothing(void)
         "after a refused --steps the run no longer resumes");
 }
 
+/* A cells file root/name of one column: n cells, all usual but cell odd. */
+static void write_column(const char *name, const char *column, int n,
+                         int odd, const char *odd_value, const char *usual)
+{
+  char path[512];
+  FILE *fp;
+  int i;
+  snprintf(path, sizeof path, "%s/%s", root, name);
+  if (!(fp = fopen(path, "w"))) {
+    CHECK(0, "cannot write %s", path);
+    return;
+  }
+  fprintf(fp, "# %s\n", column);
+  for (i = 0; i < n; i++) fprintf(fp, "%s\n", i == odd ? odd_value : usual);
+  fclose(fp);
+}
+
+/* `afv run --N n --steps 20 ARGS --out root/bad` ('@' in ARGS stands for
+** the suite's directory), within 20 s: exit 2, one line "afv run: ..."
+** naming want, and no directory made. */
+static void check_refused_up_front(int n, const char *args_at,
+                                   const char *want)
+{
+  char args[512], *e, *at;
+  int st;
+  snprintf(args, sizeof args, "%s", args_at);
+  if ((at = strchr(args, '@')))
+    snprintf(at, sizeof args - (size_t)(at - args), "%s%s", root,
+             strchr(args_at, '@') + 1);
+  st = test_sh("timeout 20 ./afv run --N %d --steps 20 --quiet %s --out "
+               "%s/bad 2> %s/err.txt", n, args, root, root);
+  e = last_err();
+  CHECK(st == 2, "'%s': exit %d, want 2", args, st);
+  CHECK(strncmp(e, "afv run: ", 9) == 0 && strstr(e, want)
+        && strchr(e, '\n') == e + strlen(e) - 1, "'%s': message not one "
+        "line 'afv run: ...' naming '%s': %s", args, want, e);
+  CHECK(!exists("bad"), "'%s': the directory was made", args);
+  free(e);
+  test_sh("rm -rf %s/bad", root);
+}
+
 /* ---- what the run can compute ------------------------------------------- */
 /* Values the checks let through before, but whose energy, force, step
 ** factors or angle noise overflow: refused with one line naming the key
@@ -439,44 +480,73 @@ static void test_uncomputable_parameters_refused(void)
     {"--KA 1e200", "KA:"}, {"--KA 1e308", "KA:"}, {"--A0 1e200", "A0:"},
     {"--P0 1e200", "P0:"}, {"--KP 1e300", "KP:"},
     {"--Lambda 1e300", "Lambda:"}, {"--Dr 1e308", "Dr:"},
-    {"--mu 1e300 --dt 1e10", "mu:"}, {"--v0 1e308 --dt 10", "v0:"},
+    {"--mu 1e300 --dt 1e10 --v0 0", "mu:"}, {"--v0 1e308 --dt 10", "v0:"},
     {"--cells @/dr.txt", "Dr (cells file, cell 3): 1e+308:"},
-    {"--config @/cfg.txt", "cfg.txt:2: KA:"}};
+    {"--config @/cfg.txt", "cfg.txt:2: KA:"},
+    /* meaningless: a target no cell can reach (P0 <= 0, A0 <= 0 with a
+    ** positive modulus: the relaxation crawled on, silent, for minutes), a
+    ** step that moves a cell farther than a step may (v0 dt: a dead
+    ** directory, exit 3), an l whose square leaves the doubles (the code
+    ** before: --P0 0 ran past the timeout; --l 1e200 said "start:
+    ** parameter out of range", --l 1e-200 blamed phi) */
+    {"--P0 0", "P0:"}, {"--P0 -100", "P0:"}, {"--A0 -10", "A0:"},
+    {"--v0 1e6", "v0:"}, {"--dt 10", "dt:"}, {"--v0 -60", "v0:"},
+    {"--cells @/p0.txt", "P0 (cells file, cell 2):"},
+    {"--l 1e200", "l: 1e+200"}, {"--l 1e-200", "l: 1e-200"}};
   char path[512];
   size_t c;
   FILE *fp;
-  int i;
   snprintf(path, sizeof path, "%s/cfg.txt", root);
   if ((fp = fopen(path, "w"))) {
     fputs("N 30\nKA 1e200\n", fp);
     fclose(fp);
   }
-  snprintf(path, sizeof path, "%s/dr.txt", root);
-  if ((fp = fopen(path, "w"))) {
-    fputs("# Dr\n", fp);
-    for (i = 0; i < 30; i++) fputs(i == 3 ? "1e308\n" : "0.1\n", fp);
-    fclose(fp);
-  }
-  for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
-    char args[512], *e, *at;
-    int st;
-    snprintf(args, sizeof args, "%s", cases[c][0]);
-    if ((at = strchr(args, '@')))   /* '@' stands for the suite's directory */
-      snprintf(at, sizeof args - (size_t)(at - args), "%s%s", root,
-               strchr(cases[c][0], '@') + 1);
-    st = test_sh("./afv run --N 30 --steps 20 --quiet %s --out %s/bad "
-                "2> %s/err.txt", args, root, root);
-    e = last_err();
-    CHECK(st == 2, "'%s': exit %d, want 2", args, st);
-    CHECK(strstr(e, cases[c][1]) && strchr(e, '\n') == e + strlen(e) - 1,
-          "'%s': message not one line naming '%s': %s", args, cases[c][1], e);
-    CHECK(!exists("bad"), "'%s': the directory was made", args);
-    free(e);
-    test_sh("rm -rf %s/bad", root);
-  }
-  /* just inside: the paper's values scaled far up still run */
+  write_column("dr.txt", "Dr", 30, 3, "1e308", "0.1");
+  write_column("p0.txt", "P0", 30, 2, "0", "4.5");
+  for (c = 0; c < sizeof cases / sizeof cases[0]; c++)
+    check_refused_up_front(30, cases[c][0], cases[c][1]);
+  /* just inside: the paper's values scaled far up still run; the model
+  ** needs no positive target without its modulus */
   CHECK(test_sh("./afv run --N 30 --steps 0 --KA 1e100 --quiet --out %s/big "
                "2> %s/err.txt", root, root) == 0, "KA 1e100 refused");
+  CHECK(test_sh("./afv run --N 20 --steps 5 --KP 0 --P0 0 --quiet --out "
+                "%s/kp0 2> %s/err.txt", root, root) == 0, "KP 0 P0 0 refused");
+}
+
+/* ---- a directory that is not a run's ----------------------------------- */
+/* A user's own log.txt and trajectory.dat (no params.txt), or a params.txt
+** that afv did not write: a fresh run is refused (exit 2, naming the
+** file) and every file stays as it was.  (The code before overwrote them
+** without a word.) */
+static void test_foreign_directory_kept(void)
+{
+  static const char *const setups[][2] = {
+    {"echo mine > log.txt && echo 1 2 3 > trajectory.dat", "trajectory.dat"},
+    {"echo 'N 5' > params.txt && echo mine > notes.txt", "params.txt"},
+    {"echo '<svg/>' > snap_000000100.svg", "snap"}};
+  size_t c;
+  for (c = 0; c < sizeof setups / sizeof setups[0]; c++) {
+    char sub[32], *before, *after, *e;
+    long nb, na;
+    int st;
+    snprintf(sub, sizeof sub, "own%d", (int)c);
+    CHECK(test_sh("mkdir -p %s/%s && cd %s/%s && %s", root, sub, root, sub,
+                  setups[c][0]) == 0, "setup %d", (int)c);
+    before = picture(sub, &nb);
+    st = test_sh("./afv run " FAST " --steps 10 --out %s/%s 2> %s/err.txt",
+                 root, sub, root);
+    after = picture(sub, &na);
+    e = last_err();
+    CHECK(st == 2, "case %d: exit %d, want 2", (int)c, st);
+    CHECK(na == nb && memcmp(before, after, (size_t)nb) == 0, "case %d: "
+          "the user's files changed", (int)c);
+    CHECK(strstr(e, setups[c][1]) && strchr(e, '\n') == e + strlen(e) - 1,
+          "case %d: message not one line naming %s: %s", (int)c,
+          setups[c][1], e);
+    free(before);
+    free(after);
+    free(e);
+  }
 }
 
 /* ---- a run that stopped before its first checkpoint ---------------------- */
@@ -494,8 +564,10 @@ static void test_unfinished_run_rerunnable(void)
     SKIP("no /dev/full");
     return;
   }
-  CHECK(test_sh("mkdir -p %s/u && ln -s /dev/full %s/u/trajectory.dat",
-               root, root) == 0, "making the full disk");
+  /* (a params.txt of afv's: the directory is a run's, not a user's) */
+  CHECK(test_sh("mkdir -p %s/u && ln -s /dev/full %s/u/trajectory.dat && "
+                "echo '# afv run parameters' > %s/u/params.txt", root, root,
+                root) == 0, "making the full disk");
   check_write_failure(FAST " --steps 50", "u", "u/trajectory.dat", ENOSPC);
   CHECK(!exists("u/checkpoint.txt") && exists("u/params.txt"),
         "not the state of a run stopped before its first checkpoint");
@@ -572,6 +644,7 @@ void suite_runjob(void)
   RUN(test_lock_survives_cleaning);
   RUN(test_failed_resume_changes_nothing);
   RUN(test_uncomputable_parameters_refused);
+  RUN(test_foreign_directory_kept);
   RUN(test_unfinished_run_rerunnable);
   RUN(test_io_error_names_file_and_reason);
   RUN(test_bounds_printed_in_full);
