@@ -51,7 +51,7 @@ TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
 .PHONY: all test run bench bench-quick bench-compare fuzz twins \
         protocol-check shared install uninstall clean FORCE \
-        paper paper-sweeps paper-grid paper-fss
+        paper paper-sweeps paper-grid paper-fss convergence
 
 all: afv libafv.a
 
@@ -220,6 +220,17 @@ paper-grid: paper-sweeps
 paper-fss: paper-sweeps
 	+$(MAKE) -C $(OUT)/fss
 
+# The detachment convergence study (doc/reproduction/convergence.md):
+# make convergence CONV_OUT=DIR runs tools/convergence.sh (about 1 CPU-hour;
+# resumable) and writes DIR/convergence.csv, verdicts.csv and figures/.
+CONV_OUT ?= convergence
+
+tools/convergence_plot: tools/convergence_plot.c libafv.a afv.h .build-flags
+	$(CC) $(CFLAGS) -I. -o $@ tools/convergence_plot.c libafv.a $(LDLIBS)
+
+convergence: afv tools/convergence_plot
+	sh tools/convergence.sh $(CONV_OUT)
+
 # Evidence for the paper's protocol (test/protocol_check.c): the authors'
 # random start relaxed and run at every P0 and v0 of the paper's range.
 # PROTOCOL_ARGS may shrink it (e.g. --N 100 --steps 2000).
@@ -270,6 +281,6 @@ uninstall:
 
 clean:
 	rm -f *.o libafv.a libafv.so afv.pc afv test/run_tests test/bench \
-	  test/protocol_check .build-flags
+	  test/protocol_check tools/convergence_plot .build-flags
 	rm -f test/twins_fast test/twins_ref test/twins_fast.out test/twins_ref.out
 	rm -rf fuzz/build

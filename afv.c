@@ -211,21 +211,34 @@ static void area_terms(const afv_piece *pc, double wA, double *ab)
                                                ** tau0 + ell/2 = mid */
 }
 
-/* (V1): a of one arc end of edge E (the same at both ends); the b terms
-** are +-arc_turn (see above). */
-static double arc_end_radial(const edge *E, double l, double cap, double wP,
-                             double wL)
+/* (V1): a of one arc end of edge E (the same at both ends), the end of an
+** arc of length arc; the b terms are +-arc_turn (see above).
+** THE CAP is PyAFV's contact truncation delta, so that the two codes give
+** the same forces (test_geometry.c, golden data of PyAFV 0.4.16): where
+** 2s < delta, the arc end's velocity along the edge, l^2/(d s) per unit
+** change of d, becomes l^2/(d delta/2), i.e. it gains
+**     Delta = (l^2/d) (2/delta - 1/s)        (per unit change of d),
+** and that velocity is fed into P, L and A alike.  The capped velocity has
+** a component off the circle, which moves the chord of the arc's circular
+** segment; PyAFV's area (chord polygon + segments l^2 (theta - sin theta)/2)
+** changes through it by (1/2) s Delta (-sin theta) per unit of d, theta =
+** arc / l the arc's angle.  The energy is not changed: the capped force is
+** not -grad E. */
+static double arc_end_radial(const edge *E, double l, double cap, double wA,
+                             double wP, double wL, double arc)
 {
-  double s = E->s, h = E->h;
+  double s = E->s, h = E->h, excess;
   if (!(s > 0)) return 0;              /* a chord of length 0 makes no edge */
   if (2 * s >= cap)                    /* exact gradient, (V1) */
     return (wP * (l - h) + wL * l) * (0.5 / s);
   /* capped: (dV/dD)^T w along u with l^2/(d s) -> l^2/(d cap/2), where
   ** -sigma t.w = (wP (h - l) + wL h) / l and w.u = (wP + wL) s / l at
   ** either end */
+  excess = l * l / (2 * h) * (1 / s - 2 / cap);        /* -Delta */
   return (wP + wL) * s / (2 * l)
          + (wP * (h - l) + wL * h) / l * (l * l - s * 0.5 * cap)
-           / (2 * h * 0.5 * cap);
+           / (2 * h * 0.5 * cap)
+         + wA * 0.5 * s * excess * sin(arc / l);       /* the chord's area */
 }
 
 static double arc_turn(const edge *E, double l, double wP, double wL)
@@ -276,14 +289,15 @@ void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
     ab = grad + 2 * pc->slot;
     area_terms(pc, wA, ab);                   /* (A) */
     if (prev->nbr == AFV_ARC) {               /* (V1): an arc arrives */
-      ab[0] += arc_end_radial(&E, l, cap, wP, wL);
+      ab[0] += arc_end_radial(&E, l, cap, wA, wP, wL, prev->length);
       ab[1] += arc_turn(&E, l, wP, wL);
     } else {                                  /* (V2): junction (i,k,j) */
       junction_terms(&E, &K, pc->tau, prev->tau + prev->length, wP, ab,
                      grad + 2 * prev->slot);
     }
     if (next_arc) {                           /* (V1): an arc leaves */
-      ab[0] += arc_end_radial(&E, l, cap, wP, wL);
+      ab[0] += arc_end_radial(&E, l, cap, wA, wP, wL,
+                              pieces[k + 1 < np ? k + 1 : 0].length);
       ab[1] -= arc_turn(&E, l, wP, wL);
     }
     K = E;

@@ -292,21 +292,47 @@ void afv_traj_free(afv_traj *tr);
 #define AFV_EUNSTABLE    8  /* NaN/Inf force, v0 dt > l/2, or a move > l/2 even
                             ** in dt / 2^AFV_MAX_HALVINGS: afv_sim_bad_cell */
 
+/* How afv_sim_step integrates Eq. (4) (afv_dyn.integrator):
+**   AFV_EULER: the paper's Euler step, r_i += dt (mu F_i + v0_i n_i) with
+**     the exact force, for every cell, however far it moves.  Near a
+**     contact that breaks (Lambda > 0) the force diverges like
+**     (2l - d)^(-1/2), and a finite step is what carries a pair over that
+**     barrier: the results depend on dt (doc/reproduction/convergence.md).
+**     Only a force or position that is not finite is an error; the steps
+**     in which some cell moved more than AFV_MAX_STEP_DISP l are counted
+**     (afv_sim_jumps).
+**   AFV_SUBSTEPS: a cell that the force would move farther than max_move l
+**     moves in pieces (substeps.c), and a step that would move a cell more
+**     than AFV_MAX_STEP_DISP l is taken in halves: as max_move -> 0 this
+**     approaches the continuous-time dynamics, in which a touching pair
+**     never separates. */
+#define AFV_EULER    0
+#define AFV_SUBSTEPS 1
+/* AFV_EULER refuses a step only if a force or position is not finite, or
+** if it would move a cell farther than AFV_RUNAWAY_MOVE l: no force of
+** the model does that at sane parameters (the divergence at detachment
+** is cut off by the spacing of doubles near 2l: |F| < 1e7 at the paper's
+** parameters, a move of 1e5 l in dt = 0.01), but a modulus like
+** KA = 1e100 does, and positions that far off no longer resolve l. */
+#define AFV_RUNAWAY_MOVE 1e8
+
 typedef struct afv_dyn {
+  int integrator;     /* AFV_EULER (default) or AFV_SUBSTEPS */
   double mu;          /* mobility (inverse friction), > 0 */
   double v0;          /* self-propulsion speed, in l per unit time */
   double Dr;          /* rotational diffusion constant, 1/time, >= 0 */
   double dt;          /* time step, > 0 */
-  double max_move;    /* sub-step threshold, in l (>= 0; 0 = plain Euler):
-                      ** a step in which the force would move some cell
-                      ** farther is integrated in pieces that move it at
-                      ** most this far (substeps.c, SUB-STEPS) */
+  double max_move;    /* AFV_SUBSTEPS only: sub-step threshold, in l
+                      ** (> 0): a step in which the force would move some
+                      ** cell farther is integrated in pieces that move it
+                      ** at most this far (substeps.c, SUB-STEPS) */
   const double *v0_i; /* optional per-cell v0 (length n), NULL = scalar v0 */
   const double *Dr_i; /* optional per-cell Dr (length n), NULL = scalar Dr */
   unsigned long long seed; /* key of the random streams */
 } afv_dyn;
 
-/* Paper defaults: mu 1, v0 0, Dr 0.1, dt 0.01, seed 1; max_move 0.05. */
+/* Paper defaults: AFV_EULER, mu 1, v0 0, Dr 0.1, dt 0.01, seed 1;
+** max_move 0.05 (used by AFV_SUBSTEPS only). */
 void afv_dyn_default(afv_dyn *d);
 
 
@@ -362,6 +388,11 @@ long long  afv_sim_substeps(const afv_sim *s);
 /* Steps (or parts of steps) taken again in two halves so far (dynamics.c,
 ** HALVES). */
 long long  afv_sim_halvings(const afv_sim *s);
+/* AFV_EULER: the steps so far (active and relaxation) in which some cell
+** moved more than AFV_MAX_STEP_DISP l, and the largest move of a cell in
+** one step so far, in l (0 before a step; NaN never: such a step is refused). */
+long long  afv_sim_jumps(const afv_sim *s);
+double     afv_sim_largest_move(const afv_sim *s);
 /* After AFV_EUNSTABLE: the offending cell (else -1), its step length / l
 ** (NaN or inf if the force was not finite), and the time over which it
 ** would have moved so far (dt, or the smallest half). */
@@ -424,6 +455,8 @@ typedef struct afv_relax_report {
   double drop;         /* and its drop of the mean energy / sum_i |e_i| */
   long long substeps;  /* extra sub-step pieces taken */
   long long halvings;  /* steps taken again in halves */
+  long long jumps;     /* AFV_EULER: steps that moved a cell more than
+                       ** AFV_MAX_STEP_DISP l (afv_sim_jumps) */
   int    converged;    /* 1 if max_force <= tol */
   int    at_kink;      /* 1 if stopped at a kink by the criterion above */
   int    refused;      /* 1 if stopped because a step of dt would move a

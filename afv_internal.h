@@ -176,6 +176,10 @@ struct afv_sim {
                        ** of their regions; substeps.c, GROUPS) */
   long long  halvings; /* steps (or parts of steps) taken again in two
                        ** halves so far (dynamics.c, HALVES) */
+  long long  jumps;    /* AFV_EULER: steps in which some cell moved more
+                       ** than AFV_MAX_STEP_DISP l (dynamics.c, euler_step) */
+  double     largest_move; /* AFV_EULER: the largest move of a cell in one
+                       ** step so far, in l */
   int        bad_cell; /* on AFV_EUNSTABLE: the offending cell, else -1 */
   double     bad_disp; /* on AFV_EUNSTABLE: its step length / l (NaN or
                        ** inf if the force was not finite) */

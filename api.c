@@ -75,6 +75,8 @@ afv_box    *afv_sim_box(afv_sim *s)           { return &s->box; }
 afv_dyn    *afv_sim_dyn(afv_sim *s)           { return &s->dyn; }
 long long  afv_sim_substeps(const afv_sim *s) { return s->substeps; }
 long long  afv_sim_halvings(const afv_sim *s) { return s->halvings; }
+long long  afv_sim_jumps(const afv_sim *s) { return s->jumps; }
+double     afv_sim_largest_move(const afv_sim *s) { return s->largest_move; }
 int        afv_sim_bad_cell(const afv_sim *s) { return s->bad_cell; }
 double     afv_sim_bad_disp(const afv_sim *s) { return s->bad_disp; }
 double     afv_sim_bad_time(const afv_sim *s) { return s->bad_time; }

@@ -169,9 +169,11 @@ const char *model_help =
   "  --box open       open space (default)\n"
   "  --box LX,LY      periodic Lx x Ly box, minimum image; each side >= 4l;\n"
   "                   positions outside the box are wrapped\n"
-  "  --cap DELTA      contact cap: arc-end derivatives use\n"
-  "                   max(sqrt(4l^2-d^2), DELTA); default 0 = exact -grad E.\n"
-  "                   With DELTA > 0 the force is NOT the gradient of E.\n";
+  "  --cap DELTA      contact cap (default 0 = exact -grad E): PyAFV's\n"
+  "                   contact truncation delta, the arc-end velocities use\n"
+  "                   max(sqrt(4l^2-d^2), DELTA) in the area, perimeter and\n"
+  "                   arc terms (the same forces as PyAFV).  With DELTA > 0\n"
+  "                   the force is NOT the gradient of E (E is unchanged).\n";
 
 static int parse_box(const char *text, afv_box *b)
 {

@@ -277,21 +277,81 @@ static int too_fast(afv_sim *s, double *v0_max)
   return AFV_OK;
 }
 
-int afv_sim_step(afv_sim *s)
+/* max_i |v0_i|. */
+static double largest_v0(const afv_sim *s)
 {
-  unsigned long long seed = s->dyn.seed, step = (unsigned long long)s->step;
+  int i, n = s->dyn.v0_i ? s->n : 1;
+  double most = 0;
+  for (i = 0; i < n; i++) {
+    double v0 = s->dyn.v0_i ? fabs(s->dyn.v0_i[i]) : fabs(s->dyn.v0);
+    if (v0 > most) most = v0;
+  }
+  return most;
+}
+
+/* EULER (AFV_EULER): the paper's step, Eq. (4), as it is written: every
+** cell moves dt (mu F_i + v0_i n_i) with the exact force, however far;
+** then the forces at the new positions.  Nothing is refused but a move or
+** a force that is not finite (the state is then restored).  A step in
+** which some cell moved more than AFV_MAX_STEP_DISP l counts as a jump
+** (s->jumps): near a contact that breaks, the force diverges like
+** (2l - d)^(-1/2), and such a jump is how a discrete step carries a pair
+** over the barrier that holds it in continuous time.  The whole moves are
+** measured only when the force moves and v0 dt could add up to a jump
+** (every cell's move is at most max |dt mu F| + max |v0| dt). */
+static int euler_step(afv_sim *s, double v0_max, double dt)
+{
+  double most = euler_all(s, 0, dt), far, limit = AFV_MAX_STEP_DISP;
+  int st;
+  if (!isfinite(most)) {                  /* NaN or inf force: refused */
+    back_to(s, s->r_start);
+    return afv_unstable(s, first_at(s->move_len, s->n, most), most);
+  }
+  far = sqrt(most) + v0_max * dt;         /* a bound on every move */
+  if (far > limit * s->par.l || far > s->largest_move * s->par.l) {
+    double far2 = farthest_from_start(s);
+    far = sqrt(far2) / s->par.l;          /* the largest move */
+    if (far > AFV_RUNAWAY_MOVE) {         /* as good as not finite */
+      int cell = first_at(s->move_len, s->n, far2);
+      back_to(s, s->r_start);
+      return afv_unstable(s, cell, far * s->par.l);
+    }
+    if (far > limit) s->jumps++;
+    if (far > s->largest_move) s->largest_move = far;
+  }
+  st = afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
+  if (st != AFV_OK) {                     /* a position not finite */
+    back_to(s, s->r_start);
+    return st == AFV_ENONFINITE ? afv_unstable(s, 0, INFINITY) : st;
+  }
+  return AFV_OK;
+}
+
+/* One time dt of the positions by the chosen integrator (afv_dyn), with
+** v0 as it is in s->dyn; a refused step leaves the state as it was. */
+static int move_all(afv_sim *s, double dt)
+{
   long long substeps = s->substeps, halvings = s->halvings;
   double v0_max;
-  int i, pairs, st;
-  s->bad_time = s->dyn.dt;
+  int st;
+  s->bad_time = dt;
+  if (s->dyn.integrator == AFV_EULER)
+    return euler_step(s, largest_v0(s), dt);
   if ((st = too_fast(s, &v0_max)) != AFV_OK) return st;
-  if ((st = advance_in_halves(s, v0_max, s->dyn.dt, 0)) != AFV_OK) {
+  if ((st = advance_in_halves(s, v0_max, dt, 0)) != AFV_OK) {
     /* a refused step leaves the state as it was, sub-steps included */
     back_to(s, s->halvings > halvings ? s->r_step : s->r_start);
     s->substeps = substeps;
     s->halvings = halvings;
-    return st;
   }
+  return st;
+}
+
+int afv_sim_step(afv_sim *s)
+{
+  unsigned long long seed = s->dyn.seed, step = (unsigned long long)s->step;
+  int i, pairs, st;
+  if ((st = move_all(s, s->dyn.dt)) != AFV_OK) return st;
   if (AFV_REFERENCE_MODE) {
     rotate_plain(s, seed, step);
   } else {
@@ -314,6 +374,7 @@ void afv_dyn_default(afv_dyn *d)
   d->v0 = 0;
   d->Dr = 0.1;
   d->dt = 0.01;
+  d->integrator = AFV_EULER;
   d->max_move = 0.05;
   d->seed = 1;
 }
@@ -321,6 +382,8 @@ void afv_dyn_default(afv_dyn *d)
 static int dyn_check(const afv_dyn *d, int n)
 {
   int i;
+  if (d->integrator != AFV_EULER && d->integrator != AFV_SUBSTEPS)
+    return AFV_EINVAL;
   if (!(isfinite(d->max_move) && d->max_move >= 0)) return AFV_EINVAL;
   if (!(isfinite(d->mu) && d->mu > 0 && isfinite(d->dt) && d->dt > 0
         && isfinite(d->v0) && isfinite(d->Dr) && d->Dr >= 0))
@@ -404,6 +467,8 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   s->t = 0;
   s->substeps = 0;
   s->halvings = 0;
+  s->jumps = 0;
+  s->largest_move = 0;
   s->bad_time = 0;
   s->bad_cell = -1;
   s->bad_disp = 0;
@@ -516,19 +581,11 @@ static double largest_mean_move(int n, const double *a, const double *b,
   return most;
 }
 
-/* One step of the flow, or a refusal with the state unchanged (as
-** afv_sim_step, whose moves it shares). */
+/* One step of the flow (v0 = 0 in s->dyn), or a refusal with the state
+** unchanged: afv_sim_step's moves by the same integrator. */
 static int flow_step(afv_sim *s, double dt)
 {
-  long long substeps = s->substeps, halvings = s->halvings;
-  int st;
-  s->bad_time = dt;
-  if ((st = advance_in_halves(s, 0, dt, 0)) != AFV_OK) {
-    back_to(s, s->halvings > halvings ? s->r_step : s->r_start);
-    s->substeps = substeps;
-    s->halvings = halvings;
-  }
-  return st;
+  return move_all(s, dt);
 }
 
 /* The relaxation's running sums over the present and the previous window:
@@ -569,7 +626,7 @@ int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
               afv_relax_monitor mon, void *ctx)
 {
   afv_dyn saved = s->dyn;
-  long long substeps = s->substeps, halvings = s->halvings;
+  long long substeps = s->substeps, halvings = s->halvings, jumps = s->jumps;
   window W;
   int st = AFV_OK;
   memset(rep, 0, sizeof *rep);
@@ -612,6 +669,7 @@ int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
   rep->time = (double)rep->iterations * s->dyn.dt;
   rep->substeps = s->substeps - substeps;
   rep->halvings = s->halvings - halvings;
+  rep->jumps = s->jumps - jumps;
   free(W.r_sum < W.r_sum_prev ? W.r_sum : W.r_sum_prev);
   return st;
 }

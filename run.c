@@ -37,6 +37,7 @@ typedef struct run_cfg {
   double phi;             /* packing fraction N pi l^2 / L^2 */
   char box[16];           /* "periodic" or "open" */
   double l, KA, KP, A0, P0, Lambda, cap;       /* model (afv_params) */
+  char integrator[16];    /* "euler" or "substeps" (afv_dyn.integrator) */
   double mu, v0, Dr, dt, max_move;             /* dynamics (afv_dyn) */
   long long steps;        /* active steps in the whole run */
   unsigned long long seed;/* noise and random starts */
@@ -82,25 +83,38 @@ static const run_key run_keys[] = {
      "must be > 0 (where KP > 0; any number where KP = 0)"),
   RK("Lambda", K_REAL, Lambda, "0.2", "energy/l", "extra tension of the "
      "free (arc) boundary; any finite number"),
-  RK("cap", K_REAL, cap, "0", "l", "contact cap delta: near detachment "
-     "(4l^2-d^2 < delta^2) the force uses sqrt(4l^2-d^2) >= delta, so it "
-     "stays bounded but is NOT -grad E (the peers' regularisation); 0 = "
-     "exact -grad E; must be >= 0"),
+  RK("cap", K_REAL, cap, "0", "l", "contact cap delta, defined as PyAFV's "
+     "contact truncation: near detachment (4l^2-d^2 < delta^2) the "
+     "arc-end velocities use sqrt(4l^2-d^2) >= delta in every term, so the "
+     "force stays bounded but is NOT -grad E (the energy is unchanged; "
+     "PyAFV's default is 0.45); 0 = exact -grad E; must be >= 0"),
   RK("mu", K_REAL, mu, "1", "l/(time force)", "mobility; must be > 0"),
   RK("v0", K_REAL, v0, "0.5", "l/time", "self-propulsion speed (main "
-     "knob); any finite number (a step with |v0| dt > "
-     AFV_STR(AFV_MAX_STEP_DISP) " l is refused)"),
+     "knob); any finite number (a run with |v0| dt beyond the box side L, "
+     "or with integrator substeps beyond " AFV_STR(AFV_MAX_STEP_DISP) " l, "
+     "is refused)"),
   RK("Dr", K_REAL, Dr, "0.1", "1/time", "rotational diffusion of the "
      "polarity; must be >= 0"),
   RK("dt", K_REAL, dt, "0.01", "time", "time step (Euler-Maruyama); must be "
      "> 0"),
-  RK("max_move", K_REAL, max_move, "0.05", "l", "sub-step threshold: a "
-     "cell that the force would move farther in a step moves in pieces of "
-     "at most this length (at most " AFV_STR(AFV_MAX_SUBSTEPS) " pieces), "
-     "which tames the exact force's divergence at contact breaking; a step "
-     "that would still move a cell more than " AFV_STR(AFV_MAX_STEP_DISP)
-     " l is taken in halves (down to dt/2^" AFV_STR(AFV_MAX_HALVINGS) "); "
-     "0 = plain Euler steps, and such a step is refused; must be >= 0"),
+  RK("integrator", K_WORD, integrator, "euler", "euler|substeps", "how "
+     "Eq. (4) is integrated: euler = the paper's Euler step, every cell "
+     "moves dt (mu F + v0 n) with the exact force however far (only a "
+     "force or position that is not finite stops the run; steps that move "
+     "a cell more than " AFV_STR(AFV_MAX_STEP_DISP) " l are counted in "
+     "log.txt): near a breaking contact the force diverges and a finite "
+     "step carries the pair over the barrier, so results depend on dt "
+     "(doc/reproduction/convergence.md); substeps = a cell the force would "
+     "move farther than max_move l moves in pieces, and a step that would "
+     "move a cell more than " AFV_STR(AFV_MAX_STEP_DISP) " l is taken in "
+     "halves: the continuous-time limit as max_move -> 0, where a touching "
+     "pair never separates; the relaxation uses the same integrator"),
+  RK("max_move", K_REAL, max_move, "0.05", "l", "integrator substeps "
+     "only: a cell that the force would move farther in a step moves in "
+     "pieces of at most this length (at most " AFV_STR(AFV_MAX_SUBSTEPS)
+     " pieces); a step that would still move a cell more than "
+     AFV_STR(AFV_MAX_STEP_DISP) " l is taken in halves (down to dt/2^"
+     AFV_STR(AFV_MAX_HALVINGS) "); must be > 0"),
   RK("steps", K_INT, steps, "10000", "steps", "active steps of the whole "
      "run (main knob); must be >= 0"),
   RK("seed", K_SEED, seed, "1", "-", "random seed: noise, random start, "
@@ -358,32 +372,36 @@ static int targets_positive(const run_cfg *c, const afv_cells *cl,
   return 1;
 }
 
-/* Every active step moves a cell by v0 dt of self-propulsion alone, and
-** a step that moves a cell more than AFV_MAX_STEP_DISP l is refused
-** (dynamics.c, too_fast): with |v0| dt beyond that, the very first step
-** would stop the run, so it is refused before anything is made. */
+/* Every active step moves a cell by v0 dt of self-propulsion alone.  With
+** the sub-steps a step that moves a cell more than AFV_MAX_STEP_DISP l is
+** refused (dynamics.c, too_fast), so with |v0| dt beyond that the very
+** first step would stop the run; with Euler steps a self-propulsion that
+** carries a cell across the whole box (side L) in one step makes the
+** step meaningless.  Either is refused before anything is made. */
 static int steps_meaningful(const run_cfg *c, const int *set,
                             const afv_cells *cl, char *err, size_t errlen)
 {
-  if (c->steps == 0) return 1;   /* a run of no step moves nothing */
   int n = cl->n > 0 ? cl->n : 1, i;
   int dt_named = set[find_key("dt") - run_keys] && !cl->has[AFV_COL_V0]
                  && !set[find_key("v0") - run_keys];
+  int euler = strcmp(c->integrator, "substeps") != 0;
+  double limit = euler ? box_side(c) : AFV_MAX_STEP_DISP * c->l;
+  const char *what = euler ? "the box side L" : "the most a step of the "
+                     "sub-steps may move a cell";
+  if (c->steps == 0) return 1;   /* a run of no step moves nothing */
   for (i = 0; i < n; i++) {
     char label[64];
     double v0 = cell_value(cl, AFV_COL_V0, c->v0, i, "v0", label,
                            sizeof label);
-    if (!(fabs(v0) * c->dt > AFV_MAX_STEP_DISP * c->l)) continue;
+    if (!(fabs(v0) * c->dt > limit)) continue;
     if (dt_named)   /* the key the user gave */
       afv_errorf(err, errlen, "dt: %g: a step's self-propulsion |v0| dt = "
-                 "%g l (v0 = %g) exceeds %g l, the most a step may move a "
-                 "cell: every step would be refused; lower dt", c->dt,
-                 fabs(v0) * c->dt / c->l, v0, AFV_MAX_STEP_DISP);
+                 "%g l (v0 = %g) exceeds %g l, %s: lower dt", c->dt,
+                 fabs(v0) * c->dt / c->l, v0, limit / c->l, what);
     else
       afv_errorf(err, errlen, "%s: %g: a step's self-propulsion |v0| dt = "
-                 "%g l (dt = %g) exceeds %g l, the most a step may move a "
-                 "cell: every step would be refused; lower v0 or dt", label,
-                 v0, fabs(v0) * c->dt / c->l, c->dt, AFV_MAX_STEP_DISP);
+                 "%g l (dt = %g) exceeds %g l, %s: lower v0 or dt", label,
+                 v0, fabs(v0) * c->dt / c->l, c->dt, limit / c->l, what);
     return 0;
   }
   return 1;
@@ -424,7 +442,7 @@ static int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
   if (c->mu <= 0) BAD("mu: must be > 0 (got %g)", c->mu);
   if (c->Dr < 0) BAD("Dr: must be >= 0 (got %g)", c->Dr);
   if (c->dt <= 0) BAD("dt: must be > 0 (got %g)", c->dt);
-  if (c->max_move < 0) BAD("max_move: must be >= 0 (got %g)", c->max_move);
+  if (!(c->max_move > 0)) BAD("max_move: must be > 0 (got %g)", c->max_move);
   if (c->steps < 0) BAD("steps: must be >= 0 (got %lld)", c->steps);
   if (c->spacing <= 0) BAD("spacing: must be > 0 (got %g)", c->spacing);
   if (c->relax_tol <= 0) BAD("relax_tol: must be > 0 (got %g)", c->relax_tol);
@@ -589,6 +607,8 @@ static void cfg_model(const run_cfg *c, const afv_cells *cl, afv_params *p,
   b->Lx = b->Ly = box_side(c);
   afv_dyn_default(d);
   d->mu = c->mu; d->v0 = c->v0; d->Dr = c->Dr; d->dt = c->dt;
+  d->integrator = strcmp(c->integrator, "substeps") == 0 ? AFV_SUBSTEPS
+                                                          : AFV_EULER;
   d->max_move = c->max_move;
   d->seed = c->seed;
   d->v0_i = cl->col[AFV_COL_V0];
@@ -1445,11 +1465,23 @@ static void monitor_relax(void *ctx, long iter, double E, double fmax)
 ** criterion: afv.h, afv_relax). */
 static void log_relax(run_state *R, const afv_relax_report *rep)
 {
-  run_log(R, "relaxation at v0 = 0 (overdamped steps of dt = %g): %ld "
-          "steps (t = %.6g, %lld extra sub-steps, %lld halved), energy "
-          "%.10g -> %.10g, max |F| %.3e\n", R->sim.dyn.dt, rep->iterations,
-          rep->time, rep->substeps, rep->halvings, rep->energy0, rep->energy,
-          rep->max_force);
+  if (R->sim.dyn.integrator == AFV_EULER)
+    run_log(R, "relaxation at v0 = 0 (Euler steps of dt = %g): %ld steps "
+            "(t = %.6g; %lld moved a cell more than %g l), energy %.10g -> "
+            "%.10g, max |F| %.3e\n", R->sim.dyn.dt, rep->iterations,
+            rep->time, rep->jumps, AFV_MAX_STEP_DISP, rep->energy0,
+            rep->energy, rep->max_force);
+  else
+    run_log(R, "relaxation at v0 = 0 (overdamped steps of dt = %g): %ld "
+            "steps (t = %.6g, %lld extra sub-steps, %lld halved), energy "
+            "%.10g -> %.10g, max |F| %.3e\n", R->sim.dyn.dt,
+            rep->iterations, rep->time, rep->substeps, rep->halvings,
+            rep->energy0, rep->energy, rep->max_force);
+  if (R->cfg.cap > 0)
+    run_log(R, "relaxation: with cap %g the force is regularised near "
+            "detachment (PyAFV's contact truncation), so it is not -grad E: "
+            "the relaxation follows that force, and E may rise in a step\n",
+            R->cfg.cap);
   if (rep->converged)
     run_log(R, "relaxation: converged, max |F| %.3e <= relax_tol %g\n",
             rep->max_force, R->cfg.relax_tol);
@@ -1537,12 +1569,13 @@ static int report_nonfinite(run_state *R)
 }
 
 /* What a refused step means (afv_sim_step, AFV_EUNSTABLE). */
-static const char *unstable_reason(const afv_sim *s, double max_move)
+static const char *unstable_reason(const afv_sim *s)
 {
-  if (!isfinite(s->bad_disp)) return "its force is not finite";
-  if (max_move <= 0)
-    return "the time step is too large for plain Euler steps (max_move 0; "
-           "max_move 0.05 takes such steps in pieces)";
+  if (!isfinite(s->bad_disp)) return "its force or position is not finite";
+  if (s->dyn.integrator == AFV_EULER)
+    return "a runaway (farther than " AFV_STR(AFV_RUNAWAY_MOVE) " l in one "
+           "step): the parameters are far too stiff for dt (check KA, KP, "
+           "Lambda, mu)";
   if (s->bad_time < s->dyn.dt)
     return "the moves mu dt F are too large for any time step, even in "
            "the smallest half of dt (check mu, then KA, KP, Lambda, P0)";
@@ -1569,8 +1602,7 @@ static int run_loop(run_state *R)
             "(> %g l) in a time %g: %s; %s\n",
             R->progress ? "\n" : "", s->step + 1, s->t, i, s->bad_disp,
             AFV_MAX_STEP_DISP, s->bad_time,
-            unstable_reason(s, R->cfg.max_move),
-            resume_point(R, where, sizeof where));
+            unstable_reason(s), resume_point(R, where, sizeof where));
     if (R->log) fprintf(R->log, "stopped: unstable step %lld, cell %d\n",
                         s->step + 1, i);
     return EXIT_UNSTABLE;
@@ -1599,11 +1631,21 @@ static int run_loop(run_state *R)
   {
     double w = wall_seconds() - R->wall0;
     long long k = s->step - R->start_step;
-    run_log(R, "%d cells, steps %lld..%lld (t = %.6g) in %.3g s (%.0f "
-            "steps/s, %lld extra sub-steps); outputs in %s/: "
-            "observables.csv, trajectory.dat, snapshots snap_*.svg and "
-            "final.svg\n", s->n, R->start_step, s->step, s->t, w,
-            w > 0 ? (double)k / w : 0.0, s->substeps, R->dir);
+    if (s->dyn.integrator == AFV_EULER)
+      run_log(R, "%d cells, steps %lld..%lld (t = %.6g) in %.3g s (%.0f "
+              "steps/s; Euler steps that moved a cell more than %g l: "
+              "%lld, since this process started, relaxation included; "
+              "largest move of a cell in one step %.3g l); outputs in %s/: "
+              "observables.csv, trajectory.dat, snapshots snap_*.svg and "
+              "final.svg\n", s->n, R->start_step, s->step, s->t, w,
+              w > 0 ? (double)k / w : 0.0, AFV_MAX_STEP_DISP, s->jumps,
+              s->largest_move, R->dir);
+    else
+      run_log(R, "%d cells, steps %lld..%lld (t = %.6g) in %.3g s (%.0f "
+              "steps/s, %lld extra sub-steps); outputs in %s/: "
+              "observables.csv, trajectory.dat, snapshots snap_*.svg and "
+              "final.svg\n", s->n, R->start_step, s->step, s->t, w,
+              w > 0 ? (double)k / w : 0.0, s->substeps, R->dir);
   }
   return 0;
 }
@@ -2092,6 +2134,10 @@ static int resume_params(run_state *R, const run_args *a, int *set,
   char err[2 * RUN_PATH_MAX];
   if (!read_config(params, &R->cfg, set, err, sizeof err))
     return bad_input(err);
+  /* a params.txt without the key predates it (0.1.0): that run used the
+  ** sub-steps, and goes on with them */
+  if (!set[find_key("integrator") - run_keys])
+    snprintf(R->cfg.integrator, sizeof R->cfg.integrator, "substeps");
   if (a->quiet) R->cfg.quiet = a->quiet > 0;
   if (!cfg_validate(&R->cfg, set, &R->cells, err, sizeof err)) {
     locate_error(err, sizeof err, set, params);

@@ -280,9 +280,21 @@ int test_pair_sim(afv_sim *s, double x, double y, double KA, double dt,
   afv_params_default(&p);
   p.KA = KA;
   afv_dyn_default(&d);
+  d.integrator = AFV_SUBSTEPS;   /* the sub-steps are what is tested */
   d.Dr = 0;
   d.dt = dt;
   d.max_move = max_move;
   memset(s, 0, sizeof *s);
   return afv_sim_init(s, 2, r, NULL, &p, &b, &d);
+}
+
+/* ---- golden files ------------------------------------------------------- */
+/* A two-column CSV/space file read with afv_read_points (NULL if it cannot
+** be read): the golden data of ../shared/golden/. */
+double *test_read_pairs(const char *path, int *n)
+{
+  double *r = NULL;
+  char err[256];
+  if (afv_read_points(path, n, &r, err, sizeof err) != AFV_OK) return NULL;
+  return r;
 }

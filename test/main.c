@@ -65,6 +65,7 @@ int main(void)
   suite_protocol();
   suite_docs();
   suite_api();
+  suite_integrator();
   suite_paper();
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;

@@ -78,6 +78,10 @@ void test_config_free(test_config *c);
 int test_pair_sim(afv_sim *s, double x, double y, double KA, double dt,
                   double max_move);
 
+/* A two-column CSV/space file (the golden data): its n rows as 2n doubles
+** (malloc'd), or NULL if it cannot be read. */
+double *test_read_pairs(const char *path, int *n);
+
 /* Test suites, one per source file. */
 void suite_core(void);
 void suite_cli(void);
@@ -94,5 +98,6 @@ void suite_protocol(void);
 void suite_docs(void);
 void suite_api(void);
 void suite_paper(void);
+void suite_integrator(void);
 
 #endif

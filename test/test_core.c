@@ -1181,15 +1181,6 @@ static void test_contact_cap(void)
 ** 8. External references
 ** ======================================================================== */
 
-/* Reads a two-column CSV/space file with afv_read_points. */
-static double *read_pairs(const char *path, int *n)
-{
-  double *r = NULL;
-  char err[256];
-  if (afv_read_points(path, n, &r, err, sizeof err) != AFV_OK) return NULL;
-  return r;
-}
-
 /* The authors' MATLAB forces on 100 cells (open space, paper defaults);
 ** see ../shared/golden/matlab_open_100/README.md. */
 static void test_matlab_golden(void)
@@ -1204,8 +1195,8 @@ static void test_matlab_golden(void)
            test_shared_dir());
   snprintf(frc, sizeof frc, "%s/golden/matlab_open_100/forces.csv",
            test_shared_dir());
-  r = read_pairs(pts, &n);
-  want = read_pairs(frc, &m);
+  r = test_read_pairs(pts, &n);
+  want = test_read_pairs(frc, &m);
   if (!r || !want) {
     SKIP("%s not found (set AFV_SHARED)", pts);
     free(r);

@@ -498,6 +498,7 @@ static void quench_start(afv_sim *s, afv_params *p, afv_dyn *d, int k)
   afv_init_angles(QN, 9, th);
   afv_params_default(p);
   afv_dyn_default(d);
+  d->integrator = AFV_SUBSTEPS;   /* the sub-steps are what is tested */
   d->v0 = 0.3;
   memset(s, 0, sizeof *s);
   CHECK(afv_sim_init(s, QN, r, th, p, &b, d) == AFV_OK, "init");

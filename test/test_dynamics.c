@@ -202,6 +202,7 @@ static void test_sim_refuses_unstable_step(void)
   memset(&s, 0, sizeof s);
   cluster_system(N, &b, &p, r);
   afv_dyn_default(&d);
+  d.integrator = AFV_SUBSTEPS;   /* the sub-steps are what is tested */
   d.v0 = 0.6;
   d.dt = 1.0;       /* v0 dt = 0.6 l > l/2 */
   CHECK(afv_sim_init(&s, N, r, NULL, &p, &b, &d) == AFV_OK, "init");
@@ -772,7 +773,8 @@ static void test_run_unstable_exit(void)
 {
   char path[512], *err;
   long len;
-  int st = sh("./afv run --N 64 --mu 1e6 --steps 10 --quiet --out %s/u "
+  int st = sh("./afv run --N 64 --integrator substeps --mu 1e6 --steps 10 "
+              "--quiet --out %s/u "
               "2> %s/err.txt", tmpdir, tmpdir);
   snprintf(path, sizeof path, "%s/err.txt", tmpdir);
   err = slurp(path, &len);
@@ -912,6 +914,7 @@ static void test_whole_step_move_bounded(void)
   afv_params_default(&p);
   p.KA = 1e5;
   afv_dyn_default(&d);
+  d.integrator = AFV_SUBSTEPS;   /* the sub-steps are what is tested */
   afv_init_random(N, 3, &b, 0, r);
   CHECK(afv_sim_init(&s, N, r, NULL, &p, &b, &d) == AFV_OK, "init");
   memcpy(r0, s.r, sizeof r0);
@@ -935,6 +938,7 @@ static void detaching_cluster(int n, const afv_box *one, double gap,
   int i, rim = 0;
   afv_params_default(p);
   afv_dyn_default(d);
+  d->integrator = AFV_SUBSTEPS;   /* the sub-steps are what is tested */
   d->v0 = 0.3;
   d->Dr = 0;
   afv_init_cluster(n - 1, 1.7, one, r);
@@ -1141,6 +1145,7 @@ static void test_near_groups_either_order(void)
   memset(&b_alone, 0, sizeof b_alone);
   afv_params_default(&p);
   afv_dyn_default(&d);
+  d.integrator = AFV_SUBSTEPS;   /* the sub-steps are what is tested */
   d.Dr = 0;                   /* v0 = 0: the forces alone move the cells */
   r[0] = 10;      r[1] = 10;                    /* pair A, upright */
   r[2] = 10;      r[3] = 12 - 1e-7;

@@ -490,7 +490,9 @@ static void test_uncomputable_parameters_refused(void)
     ** before: --P0 0 ran past the timeout; --l 1e200 said "start:
     ** parameter out of range", --l 1e-200 blamed phi) */
     {"--P0 0", "P0:"}, {"--P0 -100", "P0:"}, {"--A0 -10", "A0:"},
-    {"--v0 1e6", "v0:"}, {"--dt 10", "dt:"}, {"--v0 -60", "v0:"},
+    {"--v0 1e6", "v0:"}, {"--dt 100", "dt:"},
+    {"--dt 10 --integrator substeps", "dt:"},
+    {"--v0 -60 --integrator substeps", "v0:"},
     {"--cells @/p0.txt", "P0 (cells file, cell 2):"},
     {"--l 1e200", "l: 1e+200"}, {"--l 1e-200", "l: 1e-200"}};
   char path[512];

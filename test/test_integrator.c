@@ -1,0 +1,279 @@
+/*
+** test_integrator.c -- the ways to integrate Eq. (4) (afv_dyn.integrator)
+** and the contact cap (afv_params.cap), as doc/design.md and afv.h state
+** them:
+**   - an AFV_EULER step is Eq. (4) to the bit, a cell that moves 2 l
+**     included, and nothing finite is refused;
+**   - the detachment mechanism: a pair pulled apart by v0 separates under
+**     Euler at dt = 0.01 and stays joined at smaller dt (the exact force
+**     diverges as the contact breaks: only a finite step crosses it);
+**   - the cap is PyAFV's (golden forces of PyAFV 0.4.16 to 1e-10), it leaves
+**     the energy unchanged, and a relaxation with it says so.
+*/
+#define _POSIX_C_SOURCE 200809L   /* mkdtemp */
+#include "test.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- the Euler step ------------------------------------------------------ */
+
+/* A step of AFV_EULER moves every cell by dt (mu F_i + v0 n_i), with F the
+** force at the start and n from the angle at the start, computed here in
+** the same order of operations; the angle then gets its noise.  The
+** configuration has a pair 0.1 l apart, whose force moves a cell about
+** 2 l in dt = 0.01 at KA = 10 (a move the sub-steps would split). */
+static void test_euler_step_is_eq4_to_the_bit(void)
+{
+  enum { N = 6 };
+  double r[2 * N] = {0, 0, 0.1, 0, 3, 0.5, 4.6, 0.4, 3.8, 1.9, -2, -1.5};
+  double th[N] = {0.3, 1.2, -2.0, 2.8, 0.1, -0.7}, want[2 * N], f0[2 * N];
+  double most = 0;
+  afv_params p;
+  afv_box b = test_open_box();
+  afv_dyn d;
+  afv_sim s;
+  int i;
+  afv_params_default(&p);
+  p.KA = 40;
+  afv_dyn_default(&d);
+  d.v0 = 0.7;
+  d.mu = 1.3;
+  memset(&s, 0, sizeof s);
+  CHECK(d.integrator == AFV_EULER, "the default integrator is not euler");
+  CHECK(afv_sim_init(&s, N, r, th, &p, &b, &d) == AFV_OK, "init");
+  memcpy(f0, s.f, sizeof f0);
+  for (i = 0; i < N; i++) {
+    double mx = d.dt * (d.mu * f0[2*i] + d.v0 * cos(th[i]));
+    double my = d.dt * (d.mu * f0[2*i+1] + d.v0 * sin(th[i]));
+    want[2*i] = r[2*i] + mx;                           /* Eq. (4) */
+    want[2*i+1] = r[2*i+1] + my;
+    if (hypot(mx, my) > most) most = hypot(mx, my);
+  }
+  CHECK(most > 2, "largest move %g l: the test needs one above 2 l", most);
+  CHECK(afv_sim_step(&s) == AFV_OK, "a finite step refused");
+  for (i = 0; i < 2 * N; i++)
+    CHECK(s.r[i] == want[i], "coordinate %d: %.17g, Eq. (4) gives %.17g",
+          i, s.r[i], want[i]);
+  CHECK(afv_sim_jumps(&s) == 1, "jumps %lld, want 1", afv_sim_jumps(&s));
+  CHECK_CLOSE(afv_sim_largest_move(&s), most, 1e-12, 0, "largest move");
+  CHECK(s.step == 1 && s.t == d.dt, "step %lld t %g", s.step, s.t);
+  /* the invariant: the forces are those of the new positions */
+  {
+    afv_geom g = {0};
+    double f[2 * N];
+    CHECK(afv_compute(&g, N, s.r, &p, &b, f) == AFV_OK, "compute");
+    CHECK(memcmp(f, s.f, sizeof f) == 0, "forces not those at the new r");
+    afv_geom_free(&g);
+  }
+  afv_sim_free(&s);
+}
+
+/* Nothing finite is refused, but a force that is not finite is, and the
+** state is then unchanged. */
+static void test_euler_refuses_only_the_non_finite(void)
+{
+  double r[4] = {0, 0, 1.5, 0}, keep[4];
+  afv_params p;
+  afv_box b = test_open_box();
+  afv_dyn d;
+  afv_sim s;
+  afv_params_default(&p);
+  afv_dyn_default(&d);
+  d.v0 = 80;                         /* v0 dt = 0.8 l: substeps refuse it */
+  memset(&s, 0, sizeof s);
+  CHECK(afv_sim_init(&s, 2, r, NULL, &p, &b, &d) == AFV_OK, "init");
+  CHECK(afv_sim_step(&s) == AFV_OK, "v0 dt = 0.8 l refused under euler");
+  s.dyn.integrator = AFV_SUBSTEPS;
+  memcpy(keep, s.r, sizeof keep);
+  CHECK(afv_sim_step(&s) == AFV_EUNSTABLE, "substeps took v0 dt = 0.8 l");
+  s.dyn.integrator = AFV_EULER;
+  s.f[0] = NAN;                                /* a force not finite */
+  CHECK(afv_sim_step(&s) == AFV_EUNSTABLE, "a NaN force was stepped");
+  CHECK(memcmp(keep, s.r, sizeof keep) == 0, "refused step moved cells");
+  afv_sim_free(&s);
+}
+
+/* ---- detachment ---------------------------------------------------------- */
+
+/* Two touching cells, each self-propelled away from the other at v0
+** (Dr = 0), from d = 1.9 l, for a time T: their distance at the end, or
+** -1 on an error. */
+static double pair_pulled_apart(double v0, double dt, double T)
+{
+  double r[4] = {0, 0, 1.9, 0}, th[2] = {3.14159265358979323846, 0}, d2;
+  afv_params p;
+  afv_box b = test_open_box();
+  afv_dyn d;
+  afv_sim s;
+  long k, steps = (long)(T / dt + 0.5);
+  afv_params_default(&p);
+  afv_dyn_default(&d);
+  d.v0 = v0;
+  d.Dr = 0;
+  d.dt = dt;
+  memset(&s, 0, sizeof s);
+  if (afv_sim_init(&s, 2, r, th, &p, &b, &d) != AFV_OK) return -1;
+  for (k = 0; k < steps; k++)
+    if (afv_sim_step(&s) != AFV_OK) {
+      afv_sim_free(&s);
+      return -1;
+    }
+  d2 = hypot(s.r[2] - s.r[0], s.r[3] - s.r[1]);
+  afv_sim_free(&s);
+  return d2;
+}
+
+/* The mechanism of doc/reproduction/convergence.md, on one pair: the force
+** that holds a breaking contact diverges like (2l - d)^(-1/2), so for any
+** v0 the continuous-time dynamics stalls at a distance d* < 2l where it
+** balances 2 v0 of relative self-propulsion (v0 = 5: d* = 1.9929 l), and
+** finer steps follow it there; but that force is so steep at d* that an
+** Euler step of dt = 0.01 overshoots past 2l, where it vanishes: the pair
+** separates. */
+static void test_pair_separates_only_by_a_finite_step(void)
+{
+  static const double dts[4] = {0.01, 0.001, 1e-4, 1e-5};
+  double d[4];
+  int k;
+  for (k = 0; k < 4; k++) {
+    d[k] = pair_pulled_apart(5, dts[k], 2.0);
+    printf("  v0 5, dt %g: distance after t = 2: %.6f l\n", dts[k], d[k]);
+  }
+  CHECK(d[0] > 2, "dt = 0.01: the pair did not separate (d = %g)", d[0]);
+  for (k = 1; k < 4; k++)
+    CHECK(d[k] > 1.99 && d[k] < 2, "dt = %g: the pair did not stall just "
+          "short of 2l (d = %.9g)", dts[k], d[k]);
+  CHECK(fabs(d[3] - d[2]) < 1e-5 && fabs(d[2] - d[1]) < 1e-4,
+        "finer steps do not converge to one stall distance: %.9g %.9g %.9g",
+        d[1], d[2], d[3]);
+}
+
+/* ---- the cap ----------------------------------------------------------- */
+
+/* PyAFV's forces (../shared/golden/pyafv_cap/, PyAFV 0.4.16) with its
+** contact truncation delta = 0 and 0.45, against afv's cap, to 1e-10 on
+** every component. */
+static void test_cap_is_pyafvs(void)
+{
+  static const char *dirs[4] = {"two_d1.95", "two_d1.999", "three_near",
+                                "random60"};
+  static const double caps[2] = {0, 0.45};
+  static const char *files[2] = {"forces_delta0.csv", "forces_delta0.45.csv"};
+  int k, c, found = 0;
+  for (k = 0; k < 4; k++)
+    for (c = 0; c < 2; c++) {
+      char pts[1024], frc[1024];
+      double *r, *want, *f, worst = 0;
+      int n = 0, m = 0, i;
+      afv_params p;
+      afv_geom g = {0};
+      afv_box b = test_open_box();
+      snprintf(pts, sizeof pts, "%s/golden/pyafv_cap/%s/points.csv",
+               test_shared_dir(), dirs[k]);
+      snprintf(frc, sizeof frc, "%s/golden/pyafv_cap/%s/%s",
+               test_shared_dir(), dirs[k], files[c]);
+      r = test_read_pairs(pts, &n);
+      want = test_read_pairs(frc, &m);
+      if (!r || !want || n != m) {
+        free(r);
+        free(want);
+        continue;
+      }
+      found++;
+      afv_params_default(&p);
+      p.cap = caps[c];
+      f = malloc((size_t)(2 * n) * sizeof(double));
+      CHECK(f && afv_compute(&g, n, r, &p, &b, f) == AFV_OK, "compute");
+      for (i = 0; f && i < 2 * n; i++)
+        if (fabs(f[i] - want[i]) > worst) worst = fabs(f[i] - want[i]);
+      CHECK(worst <= 1e-10, "%s, cap %g: largest deviation %.3e", dirs[k],
+            caps[c], worst);
+      printf("  PyAFV %s, delta %g: largest deviation %.2e\n", dirs[k],
+             caps[c], worst);
+      free(r);
+      free(want);
+      free(f);
+      afv_geom_free(&g);
+    }
+  if (!found) SKIP("%s/golden/pyafv_cap not found", test_shared_dir());
+}
+
+/* The cap regularises the force only: the geometry and the energy are
+** those of the exact model; and where no contact is near detachment the
+** force is the exact one, to the bit. */
+static void test_cap_changes_only_the_force(void)
+{
+  double r[6] = {0, 0, 1.97, 0, -0.4, 1.92}, f0[6], f1[6];
+  afv_params p;
+  afv_geom g0 = {0}, g1 = {0};
+  afv_box b = test_open_box();
+  int i;
+  afv_params_default(&p);
+  CHECK(afv_compute(&g0, 3, r, &p, &b, f0) == AFV_OK, "exact");
+  p.cap = 0.45;
+  CHECK(afv_compute(&g1, 3, r, &p, &b, f1) == AFV_OK, "capped");
+  CHECK(g0.energy == g1.energy, "energy %.17g vs %.17g", g0.energy,
+        g1.energy);
+  for (i = 0; i < 3; i++)
+    CHECK(g0.area[i] == g1.area[i] && g0.perim[i] == g1.perim[i]
+          && g0.arc[i] == g1.arc[i], "cell %d: shape changed by the cap", i);
+  CHECK(fabs(f0[0] - f1[0]) > 1e-3, "the cap changed no force here");
+  r[2] = 1.5;                         /* no contact near detachment now */
+  r[4] = -0.4; r[5] = 1.6;
+  p.cap = 0;
+  CHECK(afv_compute(&g0, 3, r, &p, &b, f0) == AFV_OK, "exact, far");
+  p.cap = 0.45;
+  CHECK(afv_compute(&g1, 3, r, &p, &b, f1) == AFV_OK, "capped, far");
+  CHECK(memcmp(f0, f1, sizeof f0) == 0, "the cap changed a force far from "
+        "detachment");
+  afv_geom_free(&g0);
+  afv_geom_free(&g1);
+}
+
+/* The file at path, NUL-terminated (NULL if unreadable); *len its size. */
+static char *slurp_file(const char *path, long *len)
+{
+  FILE *fp = fopen(path, "rb");
+  char *buf;
+  if (!fp) return NULL;
+  fseek(fp, 0, SEEK_END);
+  *len = ftell(fp);
+  rewind(fp);
+  buf = malloc((size_t)*len + 1);
+  if (buf && fread(buf, 1, (size_t)*len, fp) != (size_t)*len) {
+    free(buf);
+    buf = NULL;
+  }
+  if (buf) buf[*len] = 0;
+  fclose(fp);
+  return buf;
+}
+
+/* afv run with a cap says in log.txt that its relaxation follows a force
+** that is not -grad E. */
+static void test_capped_relaxation_says_so(void)
+{
+  char dir[] = "/tmp/afv_capped_XXXXXX", path[256], *log;
+  long len;
+  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+  CHECK(test_sh("./afv run --N 30 --cap 0.45 --steps 10 --relax_max_steps "
+                "50 --quiet --out %s/run", dir) == 0, "afv run --cap 0.45");
+  snprintf(path, sizeof path, "%s/run/log.txt", dir);
+  log = slurp_file(path, &len);
+  CHECK(log && strstr(log, "not -grad E"), "log.txt does not say the "
+        "capped force is not -grad E:\n%s", log ? log : "(none)");
+  free(log);
+  test_sh("rm -rf %s", dir);
+}
+
+void suite_integrator(void)
+{
+  RUN(test_euler_step_is_eq4_to_the_bit);
+  RUN(test_euler_refuses_only_the_non_finite);
+  RUN(test_pair_separates_only_by_a_finite_step);
+  RUN(test_cap_is_pyafvs);
+  RUN(test_cap_changes_only_the_force);
+  RUN(test_capped_relaxation_says_so);
+}
