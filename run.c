@@ -90,9 +90,9 @@ static const run_key run_keys[] = {
      "PyAFV's default is 0.45); 0 = exact -grad E; must be >= 0"),
   RK("mu", K_REAL, mu, "1", "l/(time force)", "mobility; must be > 0"),
   RK("v0", K_REAL, v0, "0.5", "l/time", "self-propulsion speed (main "
-     "knob); any finite number (a run with |v0| dt beyond the box side L, "
-     "or with integrator substeps beyond " AFV_STR(AFV_MAX_STEP_DISP) " l, "
-     "is refused)"),
+     "knob); any finite number (with integrator substeps a run with |v0| "
+     "dt > " AFV_STR(AFV_MAX_STEP_DISP) " l is refused, with euler one "
+     "whose |v0| dt exceeds the box side L)"),
   RK("Dr", K_REAL, Dr, "0.1", "1/time", "rotational diffusion of the "
      "polarity; must be >= 0"),
   RK("dt", K_REAL, dt, "0.01", "time", "time step (Euler-Maruyama); must be "
