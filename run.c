@@ -466,6 +466,21 @@ static int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
 #undef BAD
 }
 
+/* The value of key K in c as params.txt writes it (reals in %.17g). */
+static void key_text(const run_cfg *c, const run_key *K, char *buf,
+                     size_t len)
+{
+  const char *p = (const char *)c + K->off;
+  switch (K->kind) {
+  case K_REAL: snprintf(buf, len, "%.17g", *(const double *)p); break;
+  case K_INT: snprintf(buf, len, "%lld", *(const long long *)p); break;
+  case K_SEED: snprintf(buf, len, "%llu", *(const unsigned long long *)p);
+    break;
+  case K_BOOL: snprintf(buf, len, "%d", *(const int *)p); break;
+  case K_WORD: case K_PATH: snprintf(buf, len, "%s", p); break;
+  }
+}
+
 /* Writes every key to path as KEY VALUE (reals in %.17g: they read back
 ** exactly); cells is the value written for the cells key. */
 static int write_params_to(const char *path, const run_cfg *c,
@@ -479,16 +494,9 @@ static int write_params_to(const char *path, const run_cfg *c,
           "repeats the run\n");
   for (k = 0; k < N_RUN_KEYS; k++) {
     const run_key *K = &run_keys[k];
-    const char *p = (const char *)c + K->off;
-    fprintf(fp, "%-16s ", K->name);
-    switch (K->kind) {
-    case K_REAL: fprintf(fp, "%.17g\n", *(const double *)p); break;
-    case K_INT: fprintf(fp, "%lld\n", *(const long long *)p); break;
-    case K_SEED: fprintf(fp, "%llu\n", *(const unsigned long long *)p); break;
-    case K_BOOL: fprintf(fp, "%d\n", *(const int *)p); break;
-    case K_WORD: fprintf(fp, "%s\n", p); break;
-    case K_PATH: fprintf(fp, "%s\n", cells); break;
-    }
+    char value[RUN_PATH_MAX + 32];
+    key_text(c, K, value, sizeof value);
+    fprintf(fp, "%-16s %s\n", K->name, K->kind == K_PATH ? cells : value);
   }
   if (strcmp(c->box, "periodic") == 0)
     fprintf(fp, "# box side L = %.17g\n", box_side(c));
@@ -1681,7 +1689,9 @@ static const char *run_usage =
   "the run would stop the same way, and a fresh run may use DIR.  --continue makes the command\n"
   "idempotent (the jobs of afv sweep): a new run if DIR holds none (or one\n"
   "that stopped before its first checkpoint), a resumed one if DIR holds\n"
-  "an unfinished run, nothing if it is finished.  Missing parent folders\n"
+  "an unfinished run, nothing if it is finished; parameters other than\n"
+  "the run's in DIR (any key but quiet and checkpoint_every) are refused,\n"
+  "naming the key.  Missing parent folders\n"
   "of DIR are created.\n"
   "Exit status: 0 done, 2 bad input or an I/O error, 3 unstable step (a\n"
   "force not finite, v0 dt > l/2, or forces too large even for dt/256) or\n"
@@ -2062,6 +2072,24 @@ static int write_failed(run_state *R, const char *name)
   return report_io(R);
 }
 
+/* The parameters the command line asks for: the defaults, --config FILE,
+** the --KEY VALUE overrides, checked (cfg_validate; the cells file read
+** into cl); set[k] records where key k came from.  0, or an exit status
+** with the message printed. */
+static int requested_cfg(run_cfg *cfg, afv_cells *cl, const run_args *a,
+                         int argc, char **argv, int *set)
+{
+  char err[2 * RUN_PATH_MAX] = "";
+  if (a->config && !read_config(a->config, cfg, set, err, sizeof err))
+    return bad_input(err);
+  if (!apply_args(argc, argv, cfg, set)) return EXIT_BAD_INPUT;
+  if (!cfg_validate(cfg, set, cl, err, sizeof err)) {
+    locate_error(err, sizeof err, set, a->config);
+    return bad_input(err);
+  }
+  return 0;
+}
+
 static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
 {
   char err[2 * RUN_PATH_MAX] = "";
@@ -2072,13 +2100,8 @@ static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
   snprintf(R->dir, sizeof R->dir, "%s", a->out);
   if ((holder = lock_holder(R->dir)) > 0)   /* at once, before the start */
     return report_in_use(R->dir, holder);
-  if (a->config && !read_config(a->config, &R->cfg, set, err, sizeof err))
-    return bad_input(err);
-  if (!apply_args(argc, argv, &R->cfg, set)) return EXIT_BAD_INPUT;
-  if (!cfg_validate(&R->cfg, set, &R->cells, err, sizeof err)) {
-    locate_error(err, sizeof err, set, a->config);
-    return bad_input(err);
-  }
+  if ((st = requested_cfg(&R->cfg, &R->cells, a, argc, argv, set)) != 0)
+    return st;
   if (run_start(R, err, sizeof err) != AFV_OK) return bad_input(err);
   if (!run_computable(R, "the start", err, sizeof err)) {
     locate_error(err, sizeof err, set, a->config);
@@ -2311,6 +2334,79 @@ static int run_finished(const char *dir)
   return done;
 }
 
+/* 1 if the cells files a and b hold the same columns and values. */
+static int same_cells(const afv_cells *a, const afv_cells *b)
+{
+  int k;
+  if (a->n != b->n) return 0;
+  for (k = 0; k < AFV_NCOLS; k++)
+    if (a->has[k] != b->has[k] || (a->has[k] && memcmp(a->col[k], b->col[k],
+                                   (size_t)a->n * sizeof(double)) != 0))
+      return 0;
+  return 1;
+}
+
+/* --continue on DIR with a run: the parameters asked for must be the
+** run's (DIR/params.txt, and its cells.txt against the cells file
+** given), every key but quiet and checkpoint_every; else refused, naming the first key that
+** differs (before, they were ignored: --P0 5 on a finished P0 4 run said
+** "finished already", and an unfinished one resumed with the old N, P0,
+** v0).  0 if they agree, else an exit status with the message printed. */
+static int same_run_asked(const run_args *a, int argc, char **argv)
+{
+  char path[RUN_PATH_MAX + 32], err[2 * RUN_PATH_MAX];
+  char want[RUN_PATH_MAX + 32], have[RUN_PATH_MAX + 32];
+  run_cfg asked, run;
+  afv_cells asked_cells, run_cells;
+  int set_asked[N_RUN_KEYS], set_run[N_RUN_KEYS], k, st = 0;
+  memset(set_asked, 0, sizeof set_asked);
+  memset(set_run, 0, sizeof set_run);
+  memset(&asked_cells, 0, sizeof asked_cells);
+  memset(&run_cells, 0, sizeof run_cells);
+  cfg_defaults(&asked);
+  cfg_defaults(&run);
+  snprintf(path, sizeof path, "%s/params.txt", a->out);
+  if ((st = requested_cfg(&asked, &asked_cells, a, argc, argv, set_asked)))
+    goto done;
+  if (!read_config(path, &run, set_run, err, sizeof err)) {
+    st = bad_input(err);
+    goto done;
+  }
+  if (!set_run[find_key("integrator") - run_keys])   /* as resume_params */
+    snprintf(run.integrator, sizeof run.integrator, "substeps");
+  if (!cfg_validate(&run, set_run, &run_cells, err, sizeof err)) {
+    locate_error(err, sizeof err, set_run, path);
+    st = bad_input(err);
+    goto done;
+  }
+  for (k = 0; k < N_RUN_KEYS && !st; k++) {
+    const run_key *K = &run_keys[k];
+    if (strcmp(K->name, "quiet") == 0
+        || strcmp(K->name, "checkpoint_every") == 0)
+      continue;   /* neither changes what the run computes or records */
+    key_text(&asked, K, want, sizeof want);
+    key_text(&run, K, have, sizeof have);
+    if (K->kind == K_PATH ? same_cells(&asked_cells, &run_cells)
+        : strcmp(want, have) == 0)
+      continue;
+    if (K->kind == K_PATH)
+      cli_errorf("--continue: cells: the cells file %s differs from the "
+                 "run's (%s/cells.txt): %s holds another run; choose another "
+                 "--out", want, a->out, a->out);
+    else
+      cli_errorf("--continue: %s: %s asked, but %s has %s: %s holds another "
+                 "run; choose another --out, or ask for its parameters%s",
+                 K->name, want, path, have, a->out,
+                 strcmp(K->name, "steps") == 0 ? " (to run it longer: afv "
+                 "run --resume DIR --steps MORE)" : "");
+    st = EXIT_BAD_INPUT;
+  }
+done:
+  afv_cells_free(&asked_cells);
+  afv_cells_free(&run_cells);
+  return st;
+}
+
 /* --continue --out DIR: the idempotent job of afv sweep.  No checkpoint in
 ** DIR (no run, or one that stopped before its first checkpoint, which a
 ** fresh run replaces): a fresh run.  A checkpointed run short of its
@@ -2325,6 +2421,7 @@ static int run_continue(run_state *R, run_args *a, int argc, char **argv)
   if (strlen(a->out) > RUN_PATH_MAX - 64) return bad_input("--out: path too long");
   snprintf(ckpt, sizeof ckpt, "%s/checkpoint.txt", a->out);
   if (access(ckpt, F_OK) != 0) return run_fresh(R, a, argc, argv);
+  if ((done = same_run_asked(a, argc, argv)) != 0) return done;
   if ((done = run_finished(a->out)) != 0) {
     if (done > 0 && !a->quiet)
       fprintf(stderr, "afv run: %s: finished already\n", a->out);

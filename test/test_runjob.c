@@ -515,6 +515,58 @@ static void test_uncomputable_parameters_refused(void)
                 "%s/kp0 2> %s/err.txt", root, root) == 0, "KP 0 P0 0 refused");
 }
 
+/* ---- --continue holds to the run in DIR ---------------------------------- */
+/* --continue with parameters other than DIR's run: refused (exit 2, one
+** line naming the key), the directory unchanged, whether the run is
+** finished or not; with its own parameters (and a copy of its cells file)
+** it goes on.  (The code before: "finished already", exit 0, for --P0 5
+** on a P0 4 run, and an unfinished run resumed with its old N, P0, v0.) */
+static void test_continue_other_parameters_refused(void)
+{
+  static const char *const cases[][2] = {
+    {"--P0 5", "P0: 5 asked"}, {"--v0 2 --mu 3", "mu: 3 asked"},
+    {"--steps 40", "steps: 40 asked"},
+    {"--cells @/c2.txt", "cells: the cells file"}};
+  size_t c;
+  write_column("c1.txt", "v0", 30, 1, "0.2", "0.3");
+  write_column("c2.txt", "v0", 30, 1, "0.25", "0.3");
+  CHECK(test_sh("./afv run " FAST " --N 30 --cells %s/c1.txt --steps 20 "
+                "--out %s/co && rm %s/co/final.svg", root, root, root) == 0,
+        "the run, made unfinished");
+  for (c = 0; c < 2 * sizeof cases / sizeof cases[0]; c++) {
+    const char *const *k = cases[c % 4];
+    char args[512], *at, *before, *after, *e;
+    long nb, na;
+    int st;
+    snprintf(args, sizeof args, "--cells @/c1.txt %s", k[0]);
+    while ((at = strchr(args, '@'))) {   /* '@': the suite's directory */
+      char rest[512];
+      snprintf(rest, sizeof rest, "%s", at + 1);
+      snprintf(at, sizeof args - (size_t)(at - args), "%s%s", root, rest);
+    }
+    if (c == 4)   /* the second round: the run finished */
+      CHECK(test_sh("./afv run --resume %s/co --quiet", root) == 0,
+            "finishing the run");
+    before = picture("co", &nb);
+    st = test_sh("./afv run " FAST " --N 30 --steps 20 %s --continue --out "
+                 "%s/co 2> %s/err.txt", args, root, root);
+    after = picture("co", &na);
+    e = last_err();
+    CHECK(st == 2 && strstr(e, k[1]) && strchr(e, '\n') == e + strlen(e) - 1,
+          "'%s' (%s run): exit %d, want 2 and one line naming '%s': %s",
+          args, c >= 4 ? "finished" : "unfinished", st, k[1], e);
+    CHECK(na == nb && memcmp(before, after, (size_t)nb) == 0, "'%s': the "
+          "run's directory changed", args);
+    free(before);
+    free(after);
+    free(e);
+  }
+  CHECK(test_sh("cp %s/c1.txt %s/c1copy.txt && ./afv run " FAST " --N 30 "
+                "--cells %s/c1copy.txt --steps 20 --continue --out %s/co",
+                root, root, root, root) == 0, "--continue with the run's own "
+        "parameters");
+}
+
 /* ---- a directory that is not a run's ----------------------------------- */
 /* A user's own log.txt and trajectory.dat (no params.txt), or a params.txt
 ** that afv did not write: a fresh run is refused (exit 2, naming the
@@ -647,6 +699,7 @@ void suite_runjob(void)
   RUN(test_failed_resume_changes_nothing);
   RUN(test_uncomputable_parameters_refused);
   RUN(test_foreign_directory_kept);
+  RUN(test_continue_other_parameters_refused);
   RUN(test_unfinished_run_rerunnable);
   RUN(test_io_error_names_file_and_reason);
   RUN(test_bounds_printed_in_full);
