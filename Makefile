@@ -10,10 +10,13 @@
 #   make twins      the two modes side by side (test/twins.c, doc/reference.md)
 #   make protocol-check  the paper's protocol at N = 400 (~1 hour, 2 cores)
 #   make shared     the shared library libafv.so (for Python's ctypes, ...)
-#   make install    bin/afv, lib/libafv.a, lib/libafv.so, include/afv.h,
-#                   lib/pkgconfig/afv.pc, share/man/man1/afv.1 under
-#                   $(DESTDIR)$(PREFIX) (PREFIX defaults to /usr/local)
-#   make uninstall  removes exactly those files
+#   make install    bin/afv, lib/libafv.a, lib/libafv.so.VERSION (and its
+#                   links libafv.so.MAJOR, libafv.so), include/afv.h,
+#                   lib/pkgconfig/afv.pc, share/man/man1/afv.1, the Python
+#                   module lib/python3/dist-packages/afv.py, share/doc/afv/
+#                   under $(DESTDIR)$(PREFIX) (PREFIX defaults to /usr/local)
+#   make uninstall  removes exactly what make install created
+#   make python-test  the Python module's tests, with and without numpy
 #   make -j2 paper SCALE=smoke|quick|full OUT=DIR   reproduce the paper's
 #                   figures and claims table (see "Reproducing the paper")
 #   make clean
@@ -50,7 +53,7 @@ LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
 .PHONY: all test run bench bench-quick bench-compare fuzz twins \
-        protocol-check shared install uninstall clean FORCE \
+        protocol-check shared python-test install uninstall clean FORCE \
         paper paper-sweeps paper-grid paper-fss convergence
 
 all: afv libafv.a
@@ -94,10 +97,26 @@ PIC_OBJ  = $(LIB_SRC:.c=.pic.o)
 %.pic.o: %.c afv.h afv_internal.h .build-flags
 	$(CC) $(CFLAGS) -fPIC -c -o $@ $<
 
+# Its SONAME is libafv.so.MAJOR (AFV_VERSION_MAJOR in afv.h): a program
+# linked against it loads that name, which make install points at
+# libafv.so.MAJOR.MINOR.PATCH.
 libafv.so: $(PIC_OBJ)
-	$(CC) $(CFLAGS) -shared -o $@ $(PIC_OBJ) $(LDLIBS)
+	$(CC) $(CFLAGS) -shared -Wl,-soname,libafv.so.$(VERSION_MAJOR) -o $@ \
+	  $(PIC_OBJ) $(LDLIBS)
 
 shared: libafv.so
+
+# The Python module's tests (python/test_afv.py), with numpy if installed
+# and without: python/check_driver runs the same scenario through afv.h.
+PYTHON ?= python3
+
+python/check_driver: python/check_driver.c libafv.a afv.h .build-flags
+	$(CC) $(CFLAGS) -I. -o $@ python/check_driver.c libafv.a $(LDLIBS)
+
+python-test: afv libafv.so python/check_driver
+	$(PYTHON) python/test_afv.py --driver python/check_driver --afv ./afv
+	$(PYTHON) python/test_afv.py --driver python/check_driver --afv ./afv \
+	  --no-numpy
 
 test/run_tests: $(TEST_SRC) test/test.h libafv.a afv.h afv_internal.h .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ $(TEST_SRC) libafv.a $(LDLIBS)
@@ -243,44 +262,40 @@ protocol-check: test/protocol_check
 	./test/protocol_check $(PROTOCOL_ARGS)
 
 # Installation.  DESTDIR (for packagers) is prepended to every path;
-# PREFIX is what afv.pc records.
+# PREFIX is what afv.pc records.  tools/install.sh copies the files and
+# lists what it created (files and directories) in share/afv/installed,
+# which make uninstall removes, and nothing else.
 PREFIX  ?= /usr/local
 DESTDIR ?=
 VERSION := $(shell sed -n 's/^\#define AFV_VERSION "\(.*\)"/\1/p' afv.h)
-BINDIR   = $(DESTDIR)$(PREFIX)/bin
-LIBDIR   = $(DESTDIR)$(PREFIX)/lib
-INCDIR   = $(DESTDIR)$(PREFIX)/include
-PCDIR    = $(LIBDIR)/pkgconfig
-MANDIR   = $(DESTDIR)$(PREFIX)/share/man/man1
+VERSION_MAJOR := $(shell sed -n 's/^\#define AFV_VERSION_MAJOR \([0-9]*\)$$/\1/p' afv.h)
 
 # afv.pc: -lm always (the static library needs it, and pkg-config --libs
-# leaves Libs.private out unless --static); -fopenmp for an OpenMP build.
-# Rewritten whenever PREFIX or the flags change (FORCE, then cmp: as for
-# .build-flags), so it never records the prefix of an earlier install.
+# leaves Libs.private out unless --static); -fopenmp for an OpenMP build;
+# -Wl,-rpath: a program linked with pkg-config --libs finds libafv.so in
+# any PREFIX without LD_LIBRARY_PATH.  Rewritten whenever PREFIX or the
+# flags change (FORCE, then cmp: as for .build-flags), so it never records
+# the prefix of an earlier install.
 afv.pc: FORCE
 	@printf '%s\n' 'prefix=$(PREFIX)' 'exec_prefix=$${prefix}' \
 	  'libdir=$${exec_prefix}/lib' 'includedir=$${prefix}/include' '' \
 	  'Name: afv' \
-	  'Description: Active Finite Voronoi model of epithelial and mesenchymal tissue' \
+	  'Description: Active Finite Voronoi model of epithelial and mesenchymal tissue (MIT licence)' \
 	  'Version: $(VERSION)' \
-	  'Libs: -L$${libdir} -lafv $(LDLIBS)' \
+	  'License: MIT' \
+	  'Libs: -L$${libdir} -Wl,-rpath,$${libdir} -lafv $(LDLIBS)' \
 	  'Cflags: -I$${includedir}' > $@.tmp
 	@cmp -s $@.tmp $@ || mv $@.tmp $@; rm -f $@.tmp
 
 install: afv libafv.a libafv.so afv.pc doc/afv.1
-	mkdir -p $(BINDIR) $(LIBDIR) $(INCDIR) $(PCDIR) $(MANDIR)
-	cp afv $(BINDIR)/afv
-	cp libafv.a libafv.so $(LIBDIR)/
-	cp afv.h $(INCDIR)/afv.h
-	cp afv.pc $(PCDIR)/afv.pc
-	cp doc/afv.1 $(MANDIR)/afv.1
+	sh tools/install.sh install '$(DESTDIR)$(PREFIX)' $(VERSION) $(VERSION_MAJOR)
 
 uninstall:
-	rm -f $(BINDIR)/afv $(LIBDIR)/libafv.a $(LIBDIR)/libafv.so \
-	  $(INCDIR)/afv.h $(PCDIR)/afv.pc $(MANDIR)/afv.1
+	sh tools/install.sh uninstall '$(DESTDIR)$(PREFIX)'
 
 clean:
 	rm -f *.o libafv.a libafv.so afv.pc afv test/run_tests test/bench \
+	  python/check_driver \
 	  test/protocol_check tools/convergence_plot .build-flags
 	rm -f test/twins_fast test/twins_ref test/twins_fast.out test/twins_ref.out
-	rm -rf fuzz/build
+	rm -rf fuzz/build python/__pycache__

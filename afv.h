@@ -836,4 +836,53 @@ typedef struct afv_collapse {
 int afv_collapse_fit(int nc, int n, const double *x, const double *y,
                      const double *p0, afv_collapse *out);
 
+/* ---- bindings (api.c) --------------------------------------------------- */
+/* For callers that cannot include this header (Python's ctypes,
+** python/afv.py): the structs that may grow between versions are handed
+** out by pointer and read and written by field name, so a binding never
+** mirrors their layout.  Names are the fields' names; a name the version
+** does not know gives AFV_EINVAL. */
+const char *afv_version(void);            /* AFV_VERSION of the library */
+/* sizeof the struct "afv_params" or "afv_box" (0 for another name): a
+** binding that mirrors these two checks its mirror against it. */
+size_t afv_struct_size(const char *name);
+
+/* A new afv_dyn with afv_dyn_default's values (NULL if out of memory). */
+afv_dyn *afv_dyn_new(void);
+void     afv_dyn_delete(afv_dyn *d);      /* NULL is allowed */
+/* The scalar fields: "mu", "v0", "Dr", "dt", "max_move", "seed" (an
+** integer in [0, 2^64) as a double; others AFV_EINVAL), "integrator"
+** (AFV_EULER or AFV_SUBSTEPS, as a double). */
+int afv_dyn_set(afv_dyn *d, const char *name, double value);
+int afv_dyn_get(const afv_dyn *d, const char *name, double *value);
+/* Points v0_i ("v0") or Dr_i ("Dr") at n values the caller keeps (NULL:
+** the scalar again). */
+int afv_dyn_set_cells(afv_dyn *d, const char *name, const double *values);
+
+/* A zeroed report for afv_relax; its fields by name ("iterations", "time",
+** "max_force", "energy0", "energy", "drift", "drop", "substeps",
+** "halvings", "converged", "at_kink", "refused"), integers as doubles. */
+afv_relax_report *afv_relax_report_new(void);
+void afv_relax_report_delete(afv_relax_report *rep);
+int  afv_relax_report_get(const afv_relax_report *rep, const char *name,
+                          double *value);
+
+/* The order parameters of a configuration (afv_clusters_compute): into
+** values[AFV_ORDER_COUNT], and each cell's cluster into label (n values;
+** may be NULL).  g computed for r (afv_geometry or afv_compute). */
+enum { AFV_ORDER_GIANT,      /* N_GC / N, the largest cluster's share */
+       AFV_ORDER_OMEGA,      /* Omega, the confluency */
+       AFV_ORDER_CLUSTERS,   /* number of clusters (isolated cells too) */
+       AFV_ORDER_PAIRS,      /* contacting pairs */
+       AFV_ORDER_JUNCTIONS,  /* triple junctions */
+       AFV_ORDER_COUNT };
+int afv_order_parameters(const afv_geom *g, const double *r, double l,
+                         const afv_box *b, double *values, int *label);
+
+/* afv_svg_draw (filled by cluster if color_by_cluster, else as
+** afv_svg_write) into the file path, atomically. */
+int afv_svg_save(const char *path, const afv_geom *g, int n, const double *r,
+                 const double *theta, const afv_params *p, const afv_box *b,
+                 int color_by_cluster);
+
 #endif /* AFV_H */

@@ -208,6 +208,199 @@ static void test_accessors_hand_out_the_fields(void)
   afv_sim_delete(NULL);
 }
 
+/* The calls for bindings (afv.h, "bindings"): each name reads and writes
+** its own field; a name the library does not know, or a seed that is not
+** an integer in [0, 2^64), is refused and changes nothing. */
+static void test_bindings_by_name(void)
+{
+  static const char *const names[] = {"mu", "v0", "Dr", "dt", "max_move"};
+  afv_dyn *d = afv_dyn_new(), def;
+  afv_relax_report rep;
+  double v, cells[3] = {1, 2, 3};
+  double *fields[5];
+  int k;
+  CHECK(d != NULL, "afv_dyn_new failed");
+  if (!d) return;
+  afv_dyn_default(&def);
+  CHECK(d->mu == def.mu && d->v0 == def.v0 && d->Dr == def.Dr
+        && d->dt == def.dt && d->max_move == def.max_move
+        && d->seed == def.seed && d->integrator == def.integrator
+        && !d->v0_i && !d->Dr_i,
+        "afv_dyn_new is not afv_dyn_default");
+  fields[0] = &d->mu; fields[1] = &d->v0; fields[2] = &d->Dr;
+  fields[3] = &d->dt; fields[4] = &d->max_move;
+  for (k = 0; k < 5; k++) {
+    CHECK(afv_dyn_set(d, names[k], 10.5 + k) == AFV_OK
+          && *fields[k] == 10.5 + k, "afv_dyn_set %s", names[k]);
+    CHECK(afv_dyn_get(d, names[k], &v) == AFV_OK && v == 10.5 + k,
+          "afv_dyn_get %s gave %g", names[k], v);
+  }
+  CHECK(afv_dyn_set(d, "seed", 9007199254740992.0) == AFV_OK
+        && d->seed == 9007199254740992ULL, "seed 2^53");
+  CHECK(afv_dyn_set(d, "seed", -1) == AFV_EINVAL
+        && afv_dyn_set(d, "seed", 0.5) == AFV_EINVAL
+        && afv_dyn_set(d, "seed", 18446744073709551616.0) == AFV_EINVAL
+        && afv_dyn_set(d, "seed", 0.0 / 0.0) == AFV_EINVAL
+        && d->seed == 9007199254740992ULL, "a bad seed was accepted");
+  CHECK(afv_dyn_set(d, "integrator", AFV_SUBSTEPS) == AFV_OK
+        && d->integrator == AFV_SUBSTEPS
+        && afv_dyn_get(d, "integrator", &v) == AFV_OK && v == AFV_SUBSTEPS
+        && afv_dyn_set(d, "integrator", 2) == AFV_EINVAL
+        && afv_dyn_set(d, "integrator", 0.5) == AFV_EINVAL
+        && d->integrator == AFV_SUBSTEPS, "integrator by name");
+  CHECK(afv_dyn_set(d, "v1", 1) == AFV_EINVAL
+        && afv_dyn_get(d, "seeds", &v) == AFV_EINVAL,
+        "an unknown name was accepted");
+  CHECK(afv_dyn_set_cells(d, "v0", cells) == AFV_OK && d->v0_i == cells
+        && afv_dyn_set_cells(d, "Dr", cells + 1) == AFV_OK
+        && d->Dr_i == cells + 1 && afv_dyn_set_cells(d, "v0", NULL) == AFV_OK
+        && !d->v0_i && afv_dyn_set_cells(d, "P0", cells) == AFV_EINVAL,
+        "afv_dyn_set_cells");
+  afv_dyn_delete(d);
+  afv_dyn_delete(NULL);
+
+  memset(&rep, 0, sizeof rep);
+  rep.iterations = 1; rep.time = 2; rep.max_force = 3; rep.energy0 = 4;
+  rep.energy = 5; rep.drift = 6; rep.drop = 7; rep.substeps = 8;
+  rep.halvings = 9; rep.converged = 10; rep.at_kink = 11; rep.refused = 12;
+  {
+    static const char *const rnames[] = {"iterations", "time", "max_force",
+      "energy0", "energy", "drift", "drop", "substeps", "halvings",
+      "converged", "at_kink", "refused"};
+    for (k = 0; k < 12; k++)
+      CHECK(afv_relax_report_get(&rep, rnames[k], &v) == AFV_OK
+            && v == k + 1, "afv_relax_report_get %s gave %g", rnames[k], v);
+  }
+  CHECK(afv_relax_report_get(&rep, "steps", &v) == AFV_EINVAL,
+        "an unknown report field was accepted");
+  CHECK(afv_struct_size("afv_params") == sizeof(afv_params)
+        && afv_struct_size("afv_box") == sizeof(afv_box)
+        && afv_struct_size("afv_dyn") == 0, "afv_struct_size");
+  CHECK(strcmp(afv_version(), AFV_VERSION) == 0, "afv_version");
+}
+
+/* afv_order_parameters hands out afv_clusters_compute's results. */
+static void test_order_parameters_are_the_clusters(void)
+{
+  /* a pair, a triangle and two lone cells */
+  double r[14] = {0, 0, 1.5, 0, 10, 0, 11.5, 0, 10.7, 1.2, 20, 20, -20, 20};
+  double v[AFV_ORDER_COUNT];
+  int label[7], i;
+  afv_params p;
+  afv_box b = {0, 0, 0};
+  afv_clusters c = {0};
+  afv_geom *g = afv_geom_new();
+  if (!g) { CHECK(0, "afv_geom_new failed"); return; }
+  afv_params_default(&p);
+  CHECK(afv_geometry(g, 7, r, &p, &b) == AFV_OK
+        && afv_clusters_compute(&c, g, r, p.l, &b) == AFV_OK
+        && afv_order_parameters(g, r, p.l, &b, v, label) == AFV_OK,
+        "geometry or clusters failed");
+  CHECK(v[AFV_ORDER_GIANT] == 3.0 / 7 && c.giant == 3
+        && v[AFV_ORDER_OMEGA] == c.omega
+        && v[AFV_ORDER_CLUSTERS] == 4 && c.count == 4
+        && v[AFV_ORDER_PAIRS] == c.n_pairs && c.n_pairs == 4
+        && v[AFV_ORDER_JUNCTIONS] == c.n_junctions,
+        "order parameters %g %g %g %g %g", v[0], v[1], v[2], v[3], v[4]);
+  for (i = 0; i < 7; i++)
+    CHECK(label[i] == c.label[i], "label of cell %d", i);
+  afv_clusters_free(&c);
+  afv_geom_delete(g);
+}
+
+/* afv_svg_save writes afv_svg_write's bytes (afv_svg_draw's with cluster
+** colours), atomically: a path it cannot write leaves nothing. */
+static void test_svg_save_is_svg_write(void)
+{
+  double r[6] = {0, 0, 1.5, 0, 0.7, 1.2};
+  afv_params p;
+  afv_box b = {0, 0, 0};
+  afv_draw_opts o = {0};
+  afv_geom *g = afv_geom_new();
+  char a[128], w[128], c[128];
+  FILE *fp;
+  if (!g) { CHECK(0, "afv_geom_new failed"); return; }
+  afv_params_default(&p);
+  CHECK(afv_geometry(g, 3, r, &p, &b) == AFV_OK, "geometry failed");
+  snprintf(a, sizeof a, "%s/saved.svg", tmp);
+  snprintf(w, sizeof w, "%s/written.svg", tmp);
+  snprintf(c, sizeof c, "%s/clusters.svg", tmp);
+  CHECK(afv_svg_save(a, g, 3, r, NULL, &p, &b, 0) == AFV_OK,
+        "afv_svg_save failed");
+  if ((fp = fopen(w, "w"))) {
+    CHECK(afv_svg_write(fp, g, 3, r, NULL, &p, &b) == AFV_OK, "svg_write");
+    fclose(fp);
+  }
+  CHECK(test_sh("cmp -s '%s' '%s'", a, w) == 0,
+        "afv_svg_save differs from afv_svg_write");
+  CHECK(afv_svg_save(c, g, 3, r, NULL, &p, &b, 1) == AFV_OK
+        && test_sh("grep -q 'class=\"cell\"' '%s'", c) == 0,
+        "afv_svg_save with cluster colours has no filled cells");
+  o.color_by_cluster = 1;
+  if ((fp = fopen(w, "w"))) {
+    CHECK(afv_svg_draw(fp, g, 3, r, NULL, &p, &b, &o) == AFV_OK, "draw");
+    fclose(fp);
+  }
+  CHECK(test_sh("cmp -s '%s' '%s'", c, w) == 0,
+        "afv_svg_save by cluster differs from afv_svg_draw's");
+  snprintf(a, sizeof a, "%s/no/such/dir.svg", tmp);
+  CHECK(afv_svg_save(a, g, 3, r, NULL, &p, &b, 0) == AFV_EIO
+        && test_sh("test -e '%s' || test -e '%s.tmp'", a, a) != 0,
+        "an unwritable path gave no AFV_EIO or left a file");
+  afv_geom_delete(g);
+}
+
+/* The first line of file that starts with prefix, the rest of it (without
+** its newline) into buf; 1 if found. */
+static int line_after(const char *file, const char *prefix, char *buf,
+                      size_t len)
+{
+  FILE *fp = fopen(file, "r");
+  char line[512];
+  size_t n = strlen(prefix);
+  int found = 0;
+  if (!fp) return 0;
+  while (!found && fgets(line, sizeof line, fp))
+    if (strncmp(line, prefix, n) == 0) {
+      line[strcspn(line, "\r\n")] = 0;
+      snprintf(buf, len, "%s", line + n);
+      found = 1;
+    }
+  fclose(fp);
+  return found;
+}
+
+/* CITATION.cff cites this version, and CHANGELOG.md's newest entry is it
+** (its first heading line after the title is the version alone). */
+static void test_version_in_citation_and_changelog(void)
+{
+  char got[128] = "";
+  FILE *fp;
+  char line[512];
+  int k = 0;
+  CHECK(line_after("CITATION.cff", "version: ", got, sizeof got)
+        && strcmp(got, AFV_VERSION) == 0,
+        "CITATION.cff: version '%s', afv.h: %s", got, AFV_VERSION);
+  got[0] = 0;
+  if ((fp = fopen("CHANGELOG.md", "r"))) {
+    /* the first line underlined with '-' after the title */
+    char prev[512] = "";
+    while (fgets(line, sizeof line, fp)) {
+      if (++k > 2 && line[0] == '-' && prev[0]) {
+        prev[strcspn(prev, "\r\n")] = 0;
+        snprintf(got, sizeof got, "%s", prev);
+        break;
+      }
+      snprintf(prev, sizeof prev, "%s", line);
+    }
+    fclose(fp);
+  }
+  CHECK(strcmp(got, AFV_VERSION) == 0,
+        "CHANGELOG.md's newest entry is '%s', afv.h: %s", got, AFV_VERSION);
+  CHECK(line_after("LICENSE", "MIT License", got, sizeof got),
+        "LICENSE is not the MIT licence");
+}
+
 void suite_api(void)
 {
   char cmd[96];
@@ -225,6 +418,10 @@ void suite_api(void)
   RUN(test_afv_h_hides_internals);
   RUN(test_clusters_work_space_hidden);
   RUN(test_accessors_hand_out_the_fields);
+  RUN(test_bindings_by_name);
+  RUN(test_order_parameters_are_the_clusters);
+  RUN(test_svg_save_is_svg_write);
+  RUN(test_version_in_citation_and_changelog);
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);   /* mkdtemp's own dir */
   if (system(cmd) != 0) printf("  note: could not remove %s\n", tmp);
 }

@@ -268,6 +268,30 @@ static void test_capped_relaxation_says_so(void)
   test_sh("rm -rf %s", dir);
 }
 
+/* An unknown integrator is refused before anything is written, with the
+** accepted names; so is max_move 0 with substeps (it had meant plain
+** Euler with refusals, which `integrator euler` now is, without them). */
+static void test_integrator_key_refused_cleanly(void)
+{
+  char dir[] = "/tmp/afv_integ_XXXXXX", path[256], *err;
+  long len;
+  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+  CHECK(test_sh("./afv run --integrator rk4 --out %s/run 2> %s/err",
+                dir, dir) == 2, "integrator rk4: exit status not 2");
+  snprintf(path, sizeof path, "%s/err", dir);
+  err = slurp_file(path, &len);
+  CHECK(err && strstr(err, "integrator") && strstr(err, "euler|substeps"),
+        "the message does not name the key and the choices: %s",
+        err ? err : "");
+  free(err);
+  snprintf(path, sizeof path, "%s/run", dir);
+  CHECK(fopen(path, "r") == NULL, "a run directory was created");
+  CHECK(test_sh("./afv run --integrator substeps --max_move 0 --out %s/run "
+                "2> /dev/null", dir) == 2, "max_move 0: exit status not 2");
+  CHECK(fopen(path, "r") == NULL, "a run directory was created");
+  test_sh("rm -rf %s", dir);
+}
+
 void suite_integrator(void)
 {
   RUN(test_euler_step_is_eq4_to_the_bit);
@@ -276,4 +300,5 @@ void suite_integrator(void)
   RUN(test_cap_is_pyafvs);
   RUN(test_cap_changes_only_the_force);
   RUN(test_capped_relaxation_says_so);
+  RUN(test_integrator_key_refused_cleanly);
 }
