@@ -18,6 +18,18 @@
 #include <time.h>
 #include <unistd.h>
 
+/* ---- the build ---------------------------------------------------------- */
+/* "0.2.0 (commit 0123456789ab)" when built from a git checkout (the
+** Makefile passes -DAFV_COMMIT), else "0.2.0". */
+const char *afv_build_version(void)
+{
+#ifdef AFV_COMMIT
+  return AFV_VERSION " (commit " AFV_COMMIT ")";
+#else
+  return AFV_VERSION;
+#endif
+}
+
 /* ---- messages and numbers ---------------------------------------------- */
 const char *command_name = NULL;
 

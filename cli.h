@@ -48,6 +48,9 @@ int cmd_paper(int argc, char **argv);
 extern const char *program_name;
 
 /* ---- cli.c -------------------------------------------------------------- */
+/* afv's version and, when built from a git checkout, its commit:
+** "0.2.0 (commit 0123456789ab)", or "0.2.0". */
+const char *afv_build_version(void);
 /* The running command ("run", "sweep", ...; main.c sets it): every message
 ** starts "afv COMMAND: ". */
 extern const char *command_name;

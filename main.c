@@ -109,7 +109,7 @@ int main(int argc, char **argv)
     return argc < 2 ? EXIT_BAD_INPUT : 0;
   }
   if (strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "version") == 0) {
-    printf("afv %s\n", AFV_VERSION);
+    printf("afv %s\n", afv_build_version());
     return 0;
   }
   for (c = 0; c < sizeof commands / sizeof commands[0]; c++)

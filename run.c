@@ -490,8 +490,8 @@ static int write_params_to(const char *path, const run_cfg *c,
   FILE *fp;
   int k;
   if (!(fp = afv_atomic_open(path, tmp, sizeof tmp))) return AFV_EIO;
-  fprintf(fp, "# afv run parameters: afv run --config THIS_FILE --out DIR "
-          "repeats the run\n");
+  fprintf(fp, "# afv run parameters, written by afv %s: afv run --config "
+          "THIS_FILE --out DIR repeats the run\n", afv_build_version());
   for (k = 0; k < N_RUN_KEYS; k++) {
     const run_key *K = &run_keys[k];
     char value[RUN_PATH_MAX + 32];
@@ -599,6 +599,16 @@ static void run_log(run_state *R, const char *fmt, ...)
     vfprintf(stderr, fmt, ap);
     va_end(ap);
   }
+}
+
+/* log.txt (only): the program that writes what follows, "afv 0.2.0
+** (commit ...): a fresh run" or "...: resumed", so each part of a run can
+** be traced to its code. */
+static void log_build(run_state *R, const char *what)
+{
+  if (!R->log) return;
+  fprintf(R->log, "afv %s: %s\n", afv_build_version(), what);
+  fflush(R->log);
 }
 
 /* Model and dynamics parameters of the configuration, per-cell arrays
@@ -2120,6 +2130,7 @@ static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
     fprintf(stderr, "afv run: %s\n", err);
     return EXIT_BAD_INPUT;
   }
+  log_build(R, "a fresh run");
   if (R->start_spacing > 0
       && R->start_spacing < R->cfg.spacing * (1 - 1e-9))
     run_log(R, "cluster start: spacing %.6g l instead of %.6g l, so that "
@@ -2306,6 +2317,7 @@ static int run_resume(run_state *R, const run_args *a)
   afv_checkpoint_free(&ck);
   if (st != 0) return st;
   R->progress = !R->cfg.quiet && isatty(STDERR_FILENO);
+  log_build(R, "resumed");
   run_log(R, "resuming at step %lld (t = %.6g), to step %lld\n", R->sim.step,
           R->sim.t, R->cfg.steps);
   return run_loop(R);

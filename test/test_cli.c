@@ -335,6 +335,35 @@ static void test_cli_argument_habits(void)
             "--P0")), "afv eval --help says A0 is pi l^2");
 }
 
+/* params.txt and log.txt name the program that wrote them: afv's version
+** and, built from a git checkout, its commit (the code before: neither). */
+static void test_cli_run_records_version(void)
+{
+  static char params[OUT_MAX], log[OUT_MAX];
+  char want[64], commit[64] = "";
+  FILE *git = popen("git rev-parse --short=12 HEAD 2>/dev/null", "r");
+  if (git) {
+    if (!fgets(commit, sizeof commit, git)) commit[0] = 0;
+    commit[strcspn(commit, "\n")] = 0;
+    pclose(git);
+  }
+  CHECK(afv("run --N 12 --steps 2 --quiet --out %s/ver") == 0, "afv run: %s",
+        err);
+  slurp("ver/params.txt", params);
+  slurp("ver/log.txt", log);
+  snprintf(want, sizeof want, "# afv run parameters, written by afv %s",
+           AFV_VERSION);
+  CHECK(strstr(params, want) != NULL, "params.txt lacks '%s':\n%.300s", want,
+        params);
+  snprintf(want, sizeof want, "afv %s", AFV_VERSION);
+  CHECK(strncmp(log, want, strlen(want)) == 0, "log.txt does not start with "
+        "'%s':\n%.300s", want, log);
+  if (commit[0])   /* a git checkout: the commit the tests were built at */
+    CHECK(strstr(params, commit) && strstr(log, commit), "params.txt or "
+          "log.txt lacks the commit %s", commit);
+  test_sh("rm -rf %s/ver", dir);
+}
+
 static void remove_dir(void)
 {
   static const char *names[] = {"stdout", "stderr", "good.xy", "word.xy",
@@ -371,5 +400,6 @@ void suite_cli(void)
   RUN(test_cli_check);
   RUN(test_cli_bad_input);
   RUN(test_cli_argument_habits);
+  RUN(test_cli_run_records_version);
   remove_dir();
 }
