@@ -42,8 +42,13 @@ static void message_prefix(void)
 
 int bad_input(const char *msg)
 {
-  message_prefix();
-  fprintf(stderr, "%s\n", msg);
+  size_t m = command_name ? strlen(command_name) : 0;
+  if (m && strncmp(msg, command_name, m) == 0 && msg[m] == ':')
+    fprintf(stderr, "afv %s\n", msg);   /* msg names the command itself */
+  else {
+    message_prefix();
+    fprintf(stderr, "%s\n", msg);
+  }
   return EXIT_BAD_INPUT;
 }
 
@@ -145,9 +150,18 @@ const char *nearest_option(const char *opt, const char *text)
   return best[0] ? best : NULL;
 }
 
-int unknown_option(const char *opt, const char *help_text)
+int unknown_option(const char *opt, const char *help_text,
+                   const char *more_text)
 {
-  const char *near = nearest_option(opt, help_text);
+  char first[48] = "";
+  const char *near = nearest_option(opt, help_text), *other;
+  if (near) {   /* nearest_option's buffer is reused by the next call */
+    snprintf(first, sizeof first, "%s", near);
+    near = first;
+  }
+  if (more_text && (other = nearest_option(opt, more_text)) != NULL
+      && (!near || edit_distance(opt, other) < edit_distance(opt, near)))
+    near = other;
   if (near)
     cli_errorf("unknown option '%s' (did you mean %s? see afv %s --help)",
                opt, near, command_name ? command_name : "--help");

@@ -69,8 +69,12 @@ const char *integral_problem(const char *text, long long lo, long long hi,
 ** distance (at most 2, and less than opt's length), or NULL. */
 const char *nearest_option(const char *opt, const char *help_text);
 /* "afv CMD: unknown option 'OPT' (did you mean --NEAR? see afv CMD
-** --help)"; returns EXIT_BAD_INPUT. */
-int unknown_option(const char *opt, const char *help_text);
+** --help)", NEAR the nearest option of help_text and more_text (which
+** may be NULL); returns EXIT_BAD_INPUT. */
+int unknown_option(const char *opt, const char *help_text,
+                   const char *more_text);
+/* Every option of afv run ("--out ... --N --phi ..."), for afv sweep. */
+const char *run_option_names(void);
 /* Parses a whole string as a finite double; message names the option. */
 int parse_double(const char *opt, const char *text, double *out);
 /* --help text of the model options shared by eval, check and draw. */

@@ -178,9 +178,7 @@ int cmd_analyze(int argc, char **argv)
         || double_option(argc, argv, &k, "--Dr", &Dr_o, &bad))
       continue;
     if (argv[k][0] == '-' && argv[k][1]) {
-      fprintf(stderr, "afv analyze: unknown option '%s' (see afv analyze "
-              "--help)\n", argv[k]);
-      return EXIT_BAD_INPUT;
+      return unknown_option(argv[k], analyze_usage, NULL);
     }
     if (dir) return bad_input("analyze: more than one DIR given");
     dir = argv[k];

@@ -1722,7 +1722,7 @@ static void run_help(void)
 
 /* "--out --resume ... --N --phi ...": every option of afv run, for the
 ** nearest one to an unknown option. */
-static const char *run_option_names(void)
+const char *run_option_names(void)
 {
   static char names[2048];
   size_t m;
@@ -1771,7 +1771,7 @@ static int scan_args(int argc, char **argv, run_args *a)
     if (strncmp(o, "--", 2) != 0
         || (!find_key(o + 2) && strcmp(o, "--out") && strcmp(o, "--resume")
             && strcmp(o, "--config"))) {
-      unknown_option(o, run_option_names());
+      unknown_option(o, run_option_names(), NULL);
       return 0;
     }
     if (k + 1 >= argc || strncmp(argv[k + 1], "--", 2) == 0) {

@@ -318,6 +318,15 @@ static void test_cli_argument_habits(void)
         params);
   expect_bad("run --vo 1 --out %s/x", "afv run: ", "did you mean --v0");
   expect_bad("run --stpes 10 --out %s/x", "did you mean --steps", NULL);
+  expect_bad("eval %s/good.xy --Lamda 1", "afv eval: ", "did you mean "
+             "--Lambda");
+  expect_bad("check %s/good.xy --toll 1", "afv check: ", "did you mean "
+             "--tol");
+  expect_bad("draw %s/good.xy --widht 300", "afv draw: ", "did you mean "
+             "--width");
+  expect_bad("sweep --out %s/sw --vo 1,2", "afv sweep: ", "did you mean "
+             "--v0");
+  expect_bad("analyze %s/a %s/b", "afv analyze: more than one DIR", NULL);
   expect_bad("run --steps 2.5 --out %s/x", "afv run: steps: '2.5'",
              "fractional");
   expect_bad("run --P0 1e-320 --out %s/x", "afv run: P0: '1e-320'",
