@@ -7,7 +7,8 @@
 #   make bench-compare  per-cell cost against N = 400 (and threads, OPENMP=1)
 #   make fuzz       every libFuzzer harness fuzz/fuzz_*.c for FUZZ_SECONDS s
 #                   (default 60; clang; make -j2 fuzz runs two at a time)
-#   make twins      the two modes side by side (test/twins.c, doc/reference.md)
+#   make plain      reference/afv_plain: the model in one plain file, to read
+#   make twins      the library against the plain file (test/twins.c)
 #   make protocol-check  the paper's protocol at N = 400 (~1 hour, 2 cores)
 #   make shared     the shared library libafv.so (for Python's ctypes, ...)
 #   make install    bin/afv, lib/libafv.a, lib/libafv.so.VERSION (and its
@@ -23,9 +24,6 @@
 #
 # CC and CFLAGS may be overridden (make CC=clang, make CC=tcc).
 # OPENMP=1 adds -fopenmp (optional; the default build is plain C99).
-# REFERENCE=1 builds the reference mode (-DAFV_REFERENCE, doc/reference.md):
-# the C library's atan2, sin and cos, a plain neighbour search, a plain
-# loop for the noise; the same model to rounding, slower.
 
 # -O3 and -fno-math-errno (sqrt inline, without the errno branch; afv never
 # reads errno) take 2-4% fewer instructions per step than -O2 (callgrind)
@@ -38,11 +36,6 @@ ifeq ($(OPENMP),1)
 CFLAGS  += -fopenmp
 LDLIBS  += -fopenmp
 endif
-# (override: also appended to a CFLAGS given on the command line; after
-# the OpenMP lines, which an override would silence)
-ifeq ($(REFERENCE),1)
-override CFLAGS += -DAFV_REFERENCE
-endif
 
 # The library, one file per idea (doc/reference.md has the reading order);
 # afv_internal.h, fastmath.h and rng.h are shared by its files only (not
@@ -52,7 +45,7 @@ LIB_SRC  = neighbours.c geom.c fastmath.c afv.c dynamics.c substeps.c rng.c \
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
-.PHONY: all test run bench bench-quick bench-compare fuzz twins \
+.PHONY: all test run bench bench-quick bench-compare fuzz twins plain \
         protocol-check shared python-test install uninstall clean FORCE \
         paper paper-sweeps paper-grid paper-fss convergence
 
@@ -60,7 +53,7 @@ all: afv libafv.a
 
 # Every object and program depends on .build-flags, which holds the
 # compiler and flags of the last build and is rewritten only when they
-# change: switching CC, CFLAGS, OPENMP or REFERENCE rebuilds everything.  (Else the
+# change: switching CC, CFLAGS or OPENMP rebuilds everything.  (Else the
 # builds mix: after a serial build, make OPENMP=1 test linked the serial
 # library into an OpenMP test program; the other way round, the serial
 # programs failed to link the OpenMP library.)
@@ -197,9 +190,10 @@ fuzz/build/%.o: %.c afv.h afv_internal.h fastmath.h rng.h cli.h
 fuzz/build/libafv_fuzz.a: $(FUZZ_OBJ)
 	$(AR) rcs $@ $(FUZZ_OBJ)
 
-# (run.c: the config harness includes it)
+# (run.c: the config and collect harnesses include it; collect.c: the
+# collect harness)
 fuzz/build/fuzz_%: fuzz/fuzz_%.c fuzz/build/libafv_fuzz.a $(wildcard fuzz/*.h) \
-                   run.c cli.h afv.h
+                   run.c collect.c cli.h afv.h
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -I. -o $@ $< \
 	  fuzz/build/libafv_fuzz.a -lm
 
@@ -208,25 +202,25 @@ fuzz-%: fuzz/build/fuzz_%
 
 fuzz: $(addprefix fuzz-,$(FUZZ_NAMES))
 
-# The twin check (test/twins.c): one program built from the sources in each
-# mode (whatever REFERENCE says) prints every result of its configurations
-# in %.17g; the fast one then compares the two outputs (shapes, energy and
-# forces to 1e-12, 100 steps to 1e-9 l) and refuses two of one mode.
-TWIN_SRC    = test/twins.c test/fixtures.c $(LIB_SRC)
-TWIN_CFLAGS = $(filter-out -DAFV_REFERENCE,$(CFLAGS))
+# The plain file (reference/afv_plain.c): the whole model in one C99 file
+# for reading, built alone (no library): ./reference/afv_plain [N [P0 [v0
+# [steps [seed]]]]] prints E and N_GC/N as a tissue runs.
+reference/afv_plain: reference/afv_plain.c .build-flags
+	$(CC) $(CFLAGS) -o $@ reference/afv_plain.c $(LDLIBS)
 
-test/twins_fast: $(TWIN_SRC) test/test.h afv.h afv_internal.h fastmath.h rng.h \
-                  .build-flags
-	$(CC) $(TWIN_CFLAGS) -I. -o $@ $(TWIN_SRC) $(LDLIBS)
+plain: reference/afv_plain
 
-test/twins_ref: $(TWIN_SRC) test/test.h afv.h afv_internal.h fastmath.h rng.h \
-                 .build-flags
-	$(CC) $(TWIN_CFLAGS) -DAFV_REFERENCE -I. -o $@ $(TWIN_SRC) $(LDLIBS)
+# The twin check (test/twins.c): the library against the plain file, on
+# the test configurations and random ones (shapes, energy and forces to
+# 1e-12, 100 Euler steps to 1e-9 l); then test/twins_mutants.sh shows that
+# one wrong sign in either makes it fail.
+test/twins: test/twins.c test/fixtures.c reference/afv_plain.c test/test.h \
+            libafv.a afv.h afv_internal.h .build-flags
+	$(CC) $(CFLAGS) -I. -o $@ test/twins.c test/fixtures.c libafv.a $(LDLIBS)
 
-twins: test/twins_fast test/twins_ref
-	./test/twins_fast > test/twins_fast.out
-	./test/twins_ref > test/twins_ref.out
-	./test/twins_fast --compare test/twins_fast.out test/twins_ref.out
+twins: test/twins
+	./test/twins
+	sh test/twins_mutants.sh $(CC)
 
 # ---- Reproducing the paper --------------------------------------------------
 # make -j2 paper SCALE=smoke|quick|full OUT=DIR: tools/paper_sweeps.sh writes
@@ -236,8 +230,9 @@ twins: test/twins_fast test/twins_ref
 # afv collect tables each sweep and afv paper OUT draws the figures
 # (OUT/figures/*.svg) and writes OUT/claims.csv.  A killed make resumes
 # where it stopped.  SCALE=full writes the paper's 1400-job grid: run its
-# runs where there are cores (sbatch OUT/grid/slurm.sh, or make -C OUT/grid
+# runs where there are cores (sh OUT/grid/slurm.sh, or make -C OUT/grid
 # -j N), then make paper SCALE=full OUT=DIR again for the figures.
+# make paper-sweeps SCALE=... OUT=DIR writes the sweeps and runs nothing.
 SCALE ?= quick
 OUT   ?= paper
 
@@ -313,5 +308,5 @@ clean:
 	rm -f *.o libafv.a libafv.so afv.pc afv test/run_tests test/bench \
 	  python/check_driver \
 	  test/protocol_check tools/convergence_plot .build-flags
-	rm -f test/twins_fast test/twins_ref test/twins_fast.out test/twins_ref.out
+	rm -f test/twins reference/afv_plain
 	rm -rf fuzz/build python/__pycache__

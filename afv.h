@@ -48,19 +48,6 @@ const char *afv_strerror(int status);   /* one-line description of a status */
 ** contact: it is kept in the boundary but not counted in afv_geom_contacts. */
 #define AFV_CONTACT_TOL 1e-9
 
-/* ---- reference build (make REFERENCE=1) -------------------------------- */
-/* 1 in a build with -DAFV_REFERENCE: the C library's atan2, sin and cos in
-** place of afv_angle's and afv_sincos's own arithmetic, a plain neighbour
-** search (a cell list rebuilt at every call: no Verlet candidates, no
-** movers) and one plain per-cell loop for the noise, with the same random
-** numbers.  The same model to rounding (doc/reference.md); 0 otherwise.
-** The library tests it with `if`, so both paths are always compiled. */
-#ifdef AFV_REFERENCE
-#define AFV_REFERENCE_MODE 1
-#else
-#define AFV_REFERENCE_MODE 0
-#endif
-
 /* ---- parameters -------------------------------------------------------- */
 typedef struct afv_params {
   double l;        /* maximal cell radius; the length unit (> 0) */

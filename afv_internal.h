@@ -107,7 +107,7 @@ int  afv_geometry_prepare(afv_geom *g, int n, const double *r, double l,
 /* Fills g's neighbour lists: every centre closer than 2l, sorted by
 ** direction (counter-clockwise from +x), filtered from candidates that a
 ** cell list refreshes only when cells have moved (neighbours.c, Verlet skin);
-** in the reference build, found in a cell list built at every call. */
+** (the plain path to read is reference/afv_plain.c). */
 int  afv_neighbours(afv_geom *g, int n, const double *r, double l,
                     const afv_box *b);
 /* The cells that may now lie within R of the point (x, y), from the cell
@@ -117,7 +117,7 @@ int  afv_neighbours(afv_geom *g, int n, const double *r, double l,
 ** from which no cell has since moved more than `moved`.  Cost: the cells
 ** in the bins within about R + cand_moved + moved, not O(N) (cand_moved,
 ** the largest move since the rebuild, is at most 0.15 l unless some
-** cells have moved farther: geom.c, MOVERS). */
+** cells have moved farther: neighbours.c, MOVERS). */
 int  afv_cells_around(const afv_geom *g, double x, double y, double R,
                       double moved, int *out);
 

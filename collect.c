@@ -4,16 +4,20 @@
 ** boundary fit and the phase-diagram figures.  It only reads: the order
 ** parameters come from each run's analysis/summary.txt (afv analyze).
 */
-#define _POSIX_C_SOURCE 200809L  /* mkdir */
+#define _POSIX_C_SOURCE 200809L  /* mkdir, open, fcntl, st_mtim */
 #include "cli.h"
 
 #include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <unistd.h>
 
 #define COLLECT_MAX_KEYS 32   /* swept keys in points.csv */
 #define FIELD_MAX 64          /* longest value in points.csv */
@@ -45,17 +49,23 @@ static const order_param params[] = {
 #define N_PARAMS ((int)(sizeof params / sizeof params[0]))
 enum { P_NGC, P_NCL, P_OMEGA, P_DEFF, P_TAU, P_T1, P_BETA };
 
+/* What afv collect found for a job. */
+enum { JOB_MISSING, JOB_DONE, JOB_DAMAGED };
+
 typedef struct job {
   char id[FIELD_MAX];
   char seed[FIELD_MAX];
+  int line;               /* its line in points.csv */
   int point;              /* state point it belongs to */
-  int done;               /* 1: summary.txt read */
+  int state;              /* JOB_MISSING, JOB_DONE or JOB_DAMAGED */
+  char *why;              /* missing or damaged: the reason (allocated) */
   double v[N_PARAMS];     /* its order parameters */
 } job;
 
 typedef struct point {
   int first;              /* first job of the point (its key values) */
-  int n;                  /* finished jobs */
+  int n;                  /* verified jobs */
+  int lack_beta;          /* verified jobs without msd_beta */
   double mean[N_PARAMS], sem[N_PARAMS];
 } point;
 
@@ -65,18 +75,24 @@ typedef struct sweep_table {
   char key[COLLECT_MAX_KEYS][FIELD_MAX];
   int njobs, npoints;
   job *jobs;
-  char (*val)[COLLECT_MAX_KEYS][FIELD_MAX];  /* val[j][k]: key k of job j */
+  char (*val)[FIELD_MAX]; /* VAL(T, j, k): key k of job j */
+  double *num;            /* NUM(T, j, k): the same as a number (or NaN) */
   point *points;
+  struct stat analysis_args;  /* DIR/analysis.txt, if has_args */
+  int has_args;
 } sweep_table;
+#define VAL(T, j, k) ((T)->val[(size_t)(j) * (size_t)(T)->nkeys + (size_t)(k)])
+#define NUM(T, j, k) ((T)->num[(size_t)(j) * (size_t)(T)->nkeys + (size_t)(k)])
 
 static const char *collect_usage =
   "usage: afv collect DIR\n"
   "\n"
   "Reads the sweep in DIR (afv sweep): points.csv and, for every job,\n"
   "runs/ID/analysis/summary.txt, and writes\n"
-  "  DIR/table.csv    one row per state point with a finished job: the\n"
-  "                   swept keys, n_seeds, then NAME_mean and NAME_sem\n"
-  "                   (standard error over the seeds) for ngc_frac,\n"
+  "  DIR/table.csv    one row per state point with a verified job: the\n"
+  "                   swept keys, n_seeds (its verified jobs), then\n"
+  "                   NAME_mean and NAME_sem (standard error over the\n"
+  "                   seeds where NAME is a number) for ngc_frac,\n"
   "                   n_clusters, omega, D_eff, tau_NGC, t1_rate, msd_beta,\n"
   "                   then the phase labels of the means:\n"
   "       cluster_phase      clustered if N_GC/N >= 0.99, else dispersed\n"
@@ -85,12 +101,15 @@ static const char *collect_usage =
   "                          of log MSD_rel vs log lag at lags 1% .. 10% of\n"
   "                          the steady window is ~0 for caged cells and ~1\n"
   "                          for diffusing ones whatever the run's length\n"
+  "                          (undefined where every seed's steady window\n"
+  "                          was too short for msd_beta: afv analyze --help)\n"
   "       dynamic_phase_deff the paper's: glassy if D_eff < 1e-8; D_eff\n"
   "                          of a caged tissue falls like 1/lag, so this\n"
   "                          label depends on the run length and the lag\n"
   "                          (undefined at v0 = 0, where D_eff is nan)\n"
-  "  DIR/missing.txt  every job without a summary, with the last line of\n"
-  "                   its log (logs/ID.log); also listed on stderr\n"
+  "  DIR/missing.txt  every job not tabled, with the reason: missing (no\n"
+  "                   summary: the last line of its log, logs/ID.log) or\n"
+  "                   damaged (see below); also listed on stderr\n"
   "  DIR/fits.txt     the dispersal boundary v_s(P0) = v0* - c P0^alpha,\n"
   "                   least squares over the v0 where N_GC/N falls below\n"
   "                   0.99 at each P0, with standard errors\n"
@@ -99,17 +118,65 @@ static const char *collect_usage =
   "                   v0 are the swept keys, map_ngc_frac.svg, map_omega.svg,\n"
   "                   map_D_eff.svg, map_msd_beta.svg (threshold contour in\n"
   "                   black, the fitted boundary dashed) and boundary.svg\n"
-  "Exit status: 0 every job finished, 1 some missing (the rest is still\n"
-  "written), 2 bad input.\n";
+  "A job is tabled only when verified: its summary.txt is complete (every\n"
+  "value above, a number; N_GC/N, Omega, the cluster count and the T1\n"
+  "rate finite), its run's params.txt holds the values of its points.csv\n"
+  "row and of jobs/ID.conf, the run finished (its checkpoint at its last\n"
+  "step, final.svg written), the analysis saw every frame of it and is not\n"
+  "older than DIR/analysis.txt (the sweep's analysis arguments).  Every\n"
+  "other job"
+  " is damaged, with the reason.  points.csv must have distinct ids and\n"
+  "distinct (state point, seed) rows, values that afv run accepts.\n"
+  "Exit status: 0 every job verified, 1 some missing or damaged (the rest\n"
+  "is still written), 2 bad input.\n";
 
 /* ---- reading --------------------------------------------------------------- */
+/* Opens path for reading if it is a regular file (a FIFO or a device would
+** block or never end); NULL with errno set (EINVAL: not a regular file). */
+static FILE *open_regular(const char *path)
+{
+  struct stat sb;
+  FILE *fp;
+  int fd = open(path, O_RDONLY | O_NONBLOCK);
+  if (fd < 0) return NULL;
+  if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)
+      || fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK) != 0
+      || !(fp = fdopen(fd, "r"))) {
+    int e = S_ISREG(sb.st_mode) ? errno : EINVAL;
+    close(fd);
+    errno = e;
+    return NULL;
+  }
+  return fp;
+}
+
+static const char *open_error(void)
+{
+  return errno == EINVAL ? "not a regular file" : strerror(errno);
+}
+
+/* One line of fp (without its end) into buf: 1, 0 at the end, -1 if it is
+** longer than len - 1 bytes or holds a NUL byte. */
+static int read_line(FILE *fp, char *buf, size_t len)
+{
+  size_t m = 0;
+  int c;
+  while ((c = getc(fp)) != EOF && c != '\n') {
+    if (c == 0 || m + 1 >= len) return -1;
+    buf[m++] = (char)c;
+  }
+  if (c == EOF && m == 0) return 0;
+  if (m && buf[m - 1] == '\r') m--;
+  buf[m] = 0;
+  return 1;
+}
+
 /* Splits line at commas into at most max fields of FIELD_MAX; -1 if a field
 ** is too long or there are too many. */
 static int split_csv(char *line, char (*f)[FIELD_MAX], int max)
 {
   int n = 0;
   char *p = line;
-  line[strcspn(line, "\r\n")] = 0;
   for (;;) {
     size_t m = strcspn(p, ",");
     if (n == max || m >= FIELD_MAX) return -1;
@@ -120,11 +187,19 @@ static int split_csv(char *line, char (*f)[FIELD_MAX], int max)
   }
 }
 
+/* A whole string as a number (NaN if it is not one). */
+static double number_of(const char *text)
+{
+  char *end;
+  double v = strtod(text, &end);
+  return end != text && !*end ? v : NAN;
+}
+
 static int read_header(sweep_table *T, FILE *fp, const char *path)
 {
-  char line[LINE_MAX_POINTS], f[COLLECT_MAX_KEYS + 2][FIELD_MAX];
-  int n, k;
-  if (!fgets(line, sizeof line, fp)
+  char line[LINE_MAX_POINTS], f[COLLECT_MAX_KEYS + 2][FIELD_MAX], err[512];
+  int n = -1, k;
+  if (read_line(fp, line, sizeof line) <= 0
       || (n = split_csv(line, f, COLLECT_MAX_KEYS + 2)) < 2
       || strcmp(f[0], "id") || strcmp(f[n - 1], "seed")) {
     fprintf(stderr, "afv collect: %s:1: expected the header id,KEY...,seed "
@@ -132,124 +207,459 @@ static int read_header(sweep_table *T, FILE *fp, const char *path)
     return 0;
   }
   T->nkeys = n - 2;
-  for (k = 0; k < T->nkeys; k++) snprintf(T->key[k], FIELD_MAX, "%s", f[k + 1]);
+  for (k = 0; k < T->nkeys; k++) {
+    snprintf(T->key[k], FIELD_MAX, "%s", f[k + 1]);
+    if (!run_key_check(T->key[k], "1", err, sizeof err)
+        && strstr(err, "unknown")) {
+      fprintf(stderr, "afv collect: %s:1: '%s' is not a key of afv run\n",
+              path, T->key[k]);
+      return 0;
+    }
+  }
   return 1;
 }
 
-/* points.csv into T->jobs and T->val. */
+/* 1 if id can name a job (runs/ID): letters, digits, '_', '-', '.', and
+** not "." or "..". */
+static int plain_id(const char *id)
+{
+  return id[0] && strcmp(id, ".") && strcmp(id, "..")
+         && strspn(id, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                   "0123456789_-.") == strlen(id);
+}
+
+/* Checks the fields f (n of them) of line lineno: the id, and every value
+** as afv run would accept it for its key.  0 with a message printed. */
+static int check_row(const sweep_table *T, char (*f)[FIELD_MAX], int n,
+                     const char *path, int lineno)
+{
+  char err[512];
+  int k;
+  if (n != T->nkeys + 2) {
+    fprintf(stderr, "afv collect: %s:%d: expected %d fields (id, keys, "
+            "seed), found %d\n", path, lineno, T->nkeys + 2, n);
+    return 0;
+  }
+  if (!plain_id(f[0])) {
+    fprintf(stderr, "afv collect: %s:%d: id '%s' is not a job id of afv "
+            "sweep\n", path, lineno, f[0]);
+    return 0;
+  }
+  for (k = 0; k <= T->nkeys; k++) {
+    const char *key = k < T->nkeys ? T->key[k] : "seed";
+    if (!run_key_check(key, f[k + 1], err, sizeof err)) {
+      fprintf(stderr, "afv collect: %s:%d: %s\n", path, lineno, err);
+      return 0;
+    }
+  }
+  return 1;
+}
+
+/* Room for one more job in T (arrays doubled as needed). */
+static int grow(sweep_table *T, int *cap)
+{
+  size_t nk = (size_t)T->nkeys + 1;
+  void *a, *b, *c;
+  if (T->njobs < *cap) return 1;
+  if (*cap > INT_MAX / 4) return 0;
+  *cap = *cap ? 2 * *cap : 64;
+  a = realloc(T->jobs, (size_t)*cap * sizeof *T->jobs);
+  if (a) T->jobs = a;
+  b = realloc(T->val, (size_t)*cap * nk * sizeof *T->val);
+  if (b) T->val = b;
+  c = realloc(T->num, (size_t)*cap * nk * sizeof *T->num);
+  if (c) T->num = c;
+  return a && b && c;
+}
+
+/* points.csv into T->jobs, T->val and T->num. */
 static int read_points(sweep_table *T)
 {
   char path[RUN_PATH_MAX + 32], line[LINE_MAX_POINTS];
   char f[COLLECT_MAX_KEYS + 2][FIELD_MAX];
-  int cap = 0, lineno = 1;
+  int cap = 0, lineno = 1, st;
   FILE *fp;
   snprintf(path, sizeof path, "%s/points.csv", T->dir);
-  if (!(fp = fopen(path, "r"))) {
+  if (!(fp = open_regular(path))) {
     fprintf(stderr, "afv collect: %s: cannot open: %s (is %s a sweep of afv "
-            "sweep?)\n", path, strerror(errno), T->dir);
+            "sweep?)\n", path, open_error(), T->dir);
     return 0;
   }
   if (!read_header(T, fp, path)) return fclose(fp), 0;
-  while (fgets(line, sizeof line, fp)) {
-    int n = split_csv(line, f, COLLECT_MAX_KEYS + 2), k;
+  while ((st = read_line(fp, line, sizeof line)) != 0) {
+    int n = st < 0 ? -1 : split_csv(line, f, COLLECT_MAX_KEYS + 2), k;
+    job *J;
     lineno++;
-    if (n != T->nkeys + 2 || !f[0][0] || strchr(f[0], '/')) {
-      fprintf(stderr, "afv collect: %s:%d: expected %d fields (id, keys, "
-              "seed)\n", path, lineno, T->nkeys + 2);
+    if (st < 0) {
+      fprintf(stderr, "afv collect: %s:%d: a NUL byte or a line over %d "
+              "bytes\n", path, lineno, LINE_MAX_POINTS - 2);
       return fclose(fp), 0;
     }
-    if (T->njobs == cap) {
-      void *a, *b;
-      cap = cap ? 2 * cap : 64;
-      a = realloc(T->jobs, (size_t)cap * sizeof *T->jobs);
-      if (a) T->jobs = a;
-      b = realloc(T->val, (size_t)cap * sizeof *T->val);
-      if (b) T->val = b;
-      if (!a || !b) return fclose(fp), !bad_input("collect: out of memory");
+    if (!check_row(T, f, n, path, lineno)) return fclose(fp), 0;
+    if (!grow(T, &cap))
+      return fclose(fp), !bad_input("collect: out of memory");
+    J = &T->jobs[T->njobs];
+    memset(J, 0, sizeof *J);
+    J->line = lineno;
+    snprintf(J->id, FIELD_MAX, "%s", f[0]);
+    snprintf(J->seed, FIELD_MAX, "%s", f[n - 1]);
+    for (k = 0; k < T->nkeys; k++) {
+      snprintf(VAL(T, T->njobs, k), FIELD_MAX, "%s", f[k + 1]);
+      NUM(T, T->njobs, k) = number_of(f[k + 1]);
     }
-    memset(&T->jobs[T->njobs], 0, sizeof *T->jobs);
-    snprintf(T->jobs[T->njobs].id, FIELD_MAX, "%s", f[0]);
-    snprintf(T->jobs[T->njobs].seed, FIELD_MAX, "%s", f[n - 1]);
-    for (k = 0; k < T->nkeys; k++)
-      snprintf(T->val[T->njobs][k], FIELD_MAX, "%s", f[k + 1]);
     T->njobs++;
   }
   fclose(fp);
   return 1;
 }
 
-/* runs/ID/analysis/summary.txt of job J: its order parameters (NaN for a
-** key it lacks).  0 if there is none. */
-static int read_summary(const sweep_table *T, job *J)
+/* ---- state points ---------------------------------------------------------- */
+/* Order of two values of a key: as numbers when both are, else as text. */
+static int cmp_value(const sweep_table *T, int a, int b, int k)
 {
-  char path[RUN_PATH_MAX + 96], line[256], key[64];
-  FILE *fp;
-  int k;
-  snprintf(path, sizeof path, "%s/runs/%s/analysis/summary.txt", T->dir, J->id);
-  if (!(fp = fopen(path, "r"))) return 0;
-  for (k = 0; k < N_PARAMS; k++) J->v[k] = NAN;
-  while (fgets(line, sizeof line, fp)) {
-    char val[64], *end;
-    if (line[0] == '#' || sscanf(line, "%63s %63s", key, val) != 2) continue;
-    for (k = 0; k < N_PARAMS; k++)
-      if (!strcmp(key, params[k].key)) {
-        double v = strtod(val, &end);
-        J->v[k] = *end ? NAN : v;
-      }
+  double x = NUM(T, a, k), y = NUM(T, b, k);
+  if (!isnan(x) && !isnan(y)) return x < y ? -1 : x > y;
+  return strcmp(VAL(T, a, k), VAL(T, b, k));
+}
+
+/* Order of jobs a and b by state point (key by key), skipping key skip. */
+static int cmp_point(const sweep_table *T, int a, int b, int skip)
+{
+  int k, c;
+  for (k = 0; k < T->nkeys; k++)
+    if (k != skip && (c = cmp_value(T, a, b, k)) != 0) return c;
+  return 0;
+}
+
+/* qsort has no context argument in C99: the table of the sort in progress
+** and the key it leaves out (-1: none). */
+static const sweep_table *sort_table;
+static int sort_skip;
+
+/* Jobs by state point, then seed (as numbers), then line. */
+static int cmp_job_point(const void *pa, const void *pb)
+{
+  int a = *(const int *)pa, b = *(const int *)pb, c;
+  double sa, sb;
+  if ((c = cmp_point(sort_table, a, b, -1)) != 0) return c;
+  sa = number_of(sort_table->jobs[a].seed);
+  sb = number_of(sort_table->jobs[b].seed);
+  if (sa != sb) return sa < sb ? -1 : 1;
+  return (a > b) - (a < b);
+}
+
+static int cmp_job_id(const void *pa, const void *pb)
+{
+  int a = *(const int *)pa, b = *(const int *)pb;
+  int c = strcmp(sort_table->jobs[a].id, sort_table->jobs[b].id);
+  return c ? c : (a > b) - (a < b);
+}
+
+/* Groups the jobs into state points (numbered in order of their first
+** job); refuses a repeated id or a repeated (state point, seed). */
+static int group_points(sweep_table *T, int *order)
+{
+  int j, q;
+  sort_table = T;
+  for (j = 0; j < T->njobs; j++) order[j] = j;
+  qsort(order, (size_t)T->njobs, sizeof *order, cmp_job_id);
+  for (j = 1; j < T->njobs; j++)
+    if (!strcmp(T->jobs[order[j]].id, T->jobs[order[j - 1]].id))
+      return fprintf(stderr, "afv collect: %s/points.csv:%d: id %s repeats "
+                     "line %d\n", T->dir, T->jobs[order[j]].line,
+                     T->jobs[order[j]].id, T->jobs[order[j - 1]].line), 0;
+  qsort(order, (size_t)T->njobs, sizeof *order, cmp_job_point);
+  for (j = 0; j < T->njobs; j = q) {
+    int a = order[j], least = a, m;
+    for (q = j + 1; q < T->njobs && !cmp_point(T, a, order[q], -1); q++) {
+      int b = order[q], c = order[q - 1];
+      if (number_of(T->jobs[b].seed) == number_of(T->jobs[c].seed))
+        return fprintf(stderr, "afv collect: %s/points.csv:%d: state point "
+                       "and seed %s repeat line %d\n", T->dir,
+                       T->jobs[b].line, T->jobs[b].seed, T->jobs[c].line), 0;
+      if (b < least) least = b;
+    }
+    /* the point of jobs j .. q-1 (sorted) is named by its first job */
+    for (m = j; m < q; m++) T->jobs[order[m]].point = -1 - least;
+  }
+  /* number the points in order of their first job */
+  for (j = 0, q = 0; j < T->njobs; j++) {
+    int p = T->jobs[j].point;
+    if (p < 0 && -1 - p == j) {
+      T->points[q].first = j;
+      T->jobs[j].point = q++;
+    } else if (p < 0) {
+      T->jobs[j].point = T->jobs[-1 - p].point;
+    }
+  }
+  T->npoints = q;
+  return 1;
+}
+
+/* ---- verifying a job ---------------------------------------------------------- */
+/* The reason a job is not tabled, into J->why (allocated); returns 0. */
+static int job_fails(job *J, int state, const char *fmt, ...)
+{
+  char text[1024];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(text, sizeof text, fmt, ap);
+  va_end(ap);
+  J->state = state;
+  free(J->why);
+  J->why = malloc(strlen(text) + 1);
+  if (J->why) strcpy(J->why, text);
+  return 0;
+}
+
+/* A KEY VALUE file (summary.txt, params.txt, ID.conf): its keys and their
+** values, in order; lines starting with '#' are comments. */
+#define KV_MAX 64
+typedef struct kv_file {
+  int n;
+  char key[KV_MAX][64], val[KV_MAX][FIELD_MAX + 192];
+} kv_file;
+
+/* Reads path into F; 1, or 0 with the reason in why (-1: no such file). */
+static int kv_read(const char *path, kv_file *F, char *why, size_t len)
+{
+  char line[512];
+  FILE *fp = open_regular(path);
+  int st, lineno = 0;
+  F->n = 0;
+  if (!fp) {
+    snprintf(why, len, "%s", open_error());
+    return errno == ENOENT ? -1 : 0;
+  }
+  while ((st = read_line(fp, line, sizeof line)) != 0) {
+    char extra[2];
+    lineno++;
+    if (st > 0 && (line[0] == '#' || !line[0])) continue;
+    if (st < 0 || F->n == KV_MAX
+        || sscanf(line, "%63s %255s %1s", F->key[F->n], F->val[F->n],
+                  extra) != 2) {
+      snprintf(why, len, "line %d is not KEY VALUE", lineno);
+      return fclose(fp), 0;
+    }
+    F->n++;
   }
   fclose(fp);
   return 1;
 }
 
-/* ---- state points ---------------------------------------------------------- */
-static int same_point(const sweep_table *T, int a, int b)
+/* The value of key in F, or NULL. */
+static const char *kv_get(const kv_file *F, const char *key)
 {
   int k;
-  for (k = 0; k < T->nkeys; k++)
-    if (strcmp(T->val[a][k], T->val[b][k])) return 0;
+  for (k = F->n - 1; k >= 0; k--)
+    if (!strcmp(F->key[k], key)) return F->val[k];
+  return NULL;
+}
+
+/* 1 if a run's value (params.txt) and a sweep's value of key agree:
+** equal numbers, or equal text; a run given a cells file records its own
+** copy, cells.txt. */
+static int same_value(const char *key, const char *run, const char *sweep)
+{
+  double x = number_of(run), y = number_of(sweep);
+  if (!strcmp(key, "cells") && !strcmp(run, "cells.txt"))
+    return strcmp(sweep, "none") != 0;
+  return !isnan(x) && !isnan(y) ? x == y : !strcmp(run, sweep);
+}
+
+/* Order parameters collect requires finite (the others may be nan: D_eff
+** at v0 = 0, msd_beta of a short window, tau_NGC of a flat N_GC). */
+static int must_be_finite(int k)
+{
+  return k == P_NGC || k == P_NCL || k == P_OMEGA || k == P_T1;
+}
+
+/* summary.txt of J, complete: its order parameters into J->v, its frame
+** count into *frames. */
+static int summary_ok(const sweep_table *T, job *J, long *frames,
+                      struct stat *when)
+{
+  char path[RUN_PATH_MAX + 96], why[256];
+  kv_file F;
+  const char *f;
+  int k, st;
+  snprintf(path, sizeof path, "%s/runs/%s/analysis/summary.txt", T->dir, J->id);
+  if ((st = kv_read(path, &F, why, sizeof why)) <= 0)
+    return st < 0 ? job_fails(J, JOB_MISSING, "")
+                  : job_fails(J, JOB_DAMAGED, "summary.txt: %s", why);
+  if (stat(path, when) != 0) return job_fails(J, JOB_DAMAGED, "summary.txt: "
+                                              "%s", strerror(errno));
+  for (k = 0; k < N_PARAMS; k++) {
+    const char *v = kv_get(&F, params[k].key);
+    if (!v) return job_fails(J, JOB_DAMAGED, "summary.txt lacks %s (an "
+                             "incomplete analysis)", params[k].key);
+    J->v[k] = number_of(v);
+    if (isnan(J->v[k]) && strcmp(v, "nan") && strcmp(v, "-nan"))
+      return job_fails(J, JOB_DAMAGED, "summary.txt: %s '%s' is not a "
+                       "number", params[k].key, v);
+    if (must_be_finite(k) && !isfinite(J->v[k]))
+      return job_fails(J, JOB_DAMAGED, "summary.txt: %s %s is not finite",
+                       params[k].key, v);
+  }
+  f = kv_get(&F, "frames");
+  *frames = f && number_of(f) >= 1 ? (long)number_of(f) : -1;
+  if (*frames < 0) return job_fails(J, JOB_DAMAGED, "summary.txt lacks "
+                                    "frames (an incomplete analysis)");
   return 1;
 }
 
-/* Mean and standard error of the mean (sd with n - 1, over sqrt n); the
-** standard error is NaN for one seed. */
+/* The run's params.txt holds the values of J's row of points.csv and of
+** jobs/ID.conf (if there is one: afv sweep writes it); its steps and
+** frame_every into *steps, *every. */
+static int params_ok(const sweep_table *T, job *J, int j, double *steps,
+                     double *every)
+{
+  static kv_file P, C;  /* big: not on the stack */
+  char path[RUN_PATH_MAX + 96], why[256];
+  const char *v;
+  int k, st;
+  snprintf(path, sizeof path, "%s/runs/%s/params.txt", T->dir, J->id);
+  if ((st = kv_read(path, &P, why, sizeof why)) <= 0)
+    return job_fails(J, JOB_DAMAGED, "params.txt: %s", why);
+  for (k = 0; k <= T->nkeys; k++) {
+    const char *key = k < T->nkeys ? T->key[k] : "seed";
+    const char *want = k < T->nkeys ? VAL(T, j, k) : J->seed;
+    if (!(v = kv_get(&P, key)) || !same_value(key, v, want))
+      return job_fails(J, JOB_DAMAGED, "params.txt has %s %s, points.csv %s "
+                       "(not this job's run)", key, v ? v : "(none)", want);
+  }
+  snprintf(path, sizeof path, "%s/jobs/%s.conf", T->dir, J->id);
+  if ((st = kv_read(path, &C, why, sizeof why)) == 0)
+    return job_fails(J, JOB_DAMAGED, "jobs/%s.conf: %s", J->id, why);
+  for (k = 0; st > 0 && k < C.n; k++)
+    if (strcmp(C.key[k], "version") && strcmp(C.key[k], "commit")
+        && (!(v = kv_get(&P, C.key[k])) || !same_value(C.key[k], v, C.val[k])))
+      return job_fails(J, JOB_DAMAGED, "params.txt has %s %s, jobs/%s.conf "
+                       "%s (not this job's run)", C.key[k], v ? v : "(none)",
+                       J->id, C.val[k]);
+  v = kv_get(&P, "steps");
+  *steps = v ? number_of(v) : NAN;
+  v = kv_get(&P, "frame_every");
+  *every = v ? number_of(v) : NAN;
+  if (!(*steps >= 0) || !(*every >= 0))
+    return job_fails(J, JOB_DAMAGED, "params.txt lacks steps or "
+                     "frame_every");
+  return 1;
+}
+
+/* The run reached its steps (checkpoint) and wrote final.svg, its last
+** output; its analysis saw every frame and is not older than the sweep's
+** analysis arguments. */
+static int finished_ok(const sweep_table *T, job *J, double steps,
+                       double every, long frames, const struct stat *when)
+{
+  char path[RUN_PATH_MAX + 96], err[512];
+  afv_checkpoint ck;
+  struct stat sb;
+  long long at;
+  long want = every > 0 ? (long)floor(steps / every) + 1 : 0;
+  snprintf(path, sizeof path, "%s/runs/%s/checkpoint.txt", T->dir, J->id);
+  if (stat(path, &sb) != 0 || !S_ISREG(sb.st_mode))
+    return job_fails(J, JOB_DAMAGED, "checkpoint.txt: %s (the run did not "
+                     "finish)", stat(path, &sb) ? strerror(errno)
+                     : "not a regular file");
+  if (afv_checkpoint_read(path, &ck, err, sizeof err) != AFV_OK)
+    return job_fails(J, JOB_DAMAGED, "%s", err);
+  at = ck.step;
+  afv_checkpoint_free(&ck);
+  snprintf(path, sizeof path, "%s/runs/%s/final.svg", T->dir, J->id);
+  if (at < (long long)steps || stat(path, &sb) != 0)
+    return job_fails(J, JOB_DAMAGED, "the run is at step %lld of %.0f%s "
+                     "(unfinished, yet analysed: remove runs/%s/analysis "
+                     "and run the runner again)", at, steps,
+                     at < (long long)steps ? "" : ", without final.svg",
+                     J->id);
+  if (frames != want)
+    return job_fails(J, JOB_DAMAGED, "analysed %ld frames of the finished "
+                     "run's %ld (analysed before it finished: remove "
+                     "runs/%s/analysis and run the runner again)", frames,
+                     want, J->id);
+  if (T->has_args && (when->st_mtim.tv_sec < T->analysis_args.st_mtim.tv_sec
+      || (when->st_mtim.tv_sec == T->analysis_args.st_mtim.tv_sec
+          && when->st_mtim.tv_nsec < T->analysis_args.st_mtim.tv_nsec)))
+    return job_fails(J, JOB_DAMAGED, "analysed before analysis.txt last "
+                     "changed (a new analysis of the sweep): run the runner again");
+  return 1;
+}
+
+/* Reads and verifies job j: JOB_DONE with its order parameters, else
+** JOB_MISSING or JOB_DAMAGED with the reason. */
+static void verify_job(const sweep_table *T, int j)
+{
+  job *J = &T->jobs[j];
+  double steps = 0, every = 0;
+  long frames = 0;
+  struct stat when;
+  if (summary_ok(T, J, &frames, &when) && params_ok(T, J, j, &steps, &every)
+      && finished_ok(T, J, steps, every, frames, &when))
+    J->state = JOB_DONE;
+}
+
+/* Mean and standard error of the mean (sd with n - 1, over sqrt n) of the
+** values of x that are not NaN; NaN if there are none, the standard error
+** NaN for one. */
 static void mean_sem(const double *x, int n, double *mean, double *sem)
 {
   double s = 0, v = 0;
-  int k;
-  for (k = 0; k < n; k++) s += x[k];
-  s /= n;
-  for (k = 0; k < n; k++) v += (x[k] - s) * (x[k] - s);
-  *mean = s;
-  *sem = n > 1 ? sqrt(v / (n - 1) / n) : NAN;
+  int k, m = 0;
+  for (k = 0; k < n; k++)
+    if (!isnan(x[k])) s += x[k], m++;
+  if (m) s /= m;
+  for (k = 0; k < n; k++)
+    if (!isnan(x[k])) v += (x[k] - s) * (x[k] - s);
+  *mean = m ? s : NAN;
+  *sem = m > 1 ? sqrt(v / (m - 1) / m) : NAN;
 }
 
-/* Groups the jobs into state points and averages their finished seeds. */
+/* Groups the jobs into state points, verifies every job and averages the
+** verified seeds of each point. */
 static int make_points(sweep_table *T)
 {
   double *x = malloc((size_t)(T->njobs + 1) * sizeof(double));
-  int j, q, k;
+  int *order = malloc((size_t)(T->njobs + 1) * sizeof(int));
+  int *start = calloc((size_t)T->njobs + 2, sizeof(int));
+  int j, q, k, ok = 0;
+  char path[RUN_PATH_MAX + 32];
   T->points = calloc((size_t)T->njobs + 1, sizeof *T->points);
-  if (!x || !T->points) return free(x), !bad_input("collect: out of memory");
-  for (j = 0; j < T->njobs; j++) {
-    /* afv sweep lists the seeds of a point together: try the last first */
-    q = T->npoints - 1;
-    if (q < 0 || !same_point(T, T->points[q].first, j))
-      for (q = 0; q < T->npoints && !same_point(T, T->points[q].first, j);
-           q++) {}
-    if (q == T->npoints) T->points[T->npoints++].first = j;
-    T->jobs[j].point = q;
-    T->jobs[j].done = read_summary(T, &T->jobs[j]);
-    T->points[q].n += T->jobs[j].done;
+  if (!x || !order || !start || !T->points) {
+    bad_input("collect: out of memory");
+    goto done;
   }
+  if (!group_points(T, order)) goto done;
+  snprintf(path, sizeof path, "%s/analysis.txt", T->dir);
+  T->has_args = stat(path, &T->analysis_args) == 0;
+  for (j = 0; j < T->njobs; j++) {
+    verify_job(T, j);
+    if (T->jobs[j].state != JOB_DONE) continue;
+    T->points[T->jobs[j].point].n++;
+    T->points[T->jobs[j].point].lack_beta += isnan(T->jobs[j].v[P_BETA]);
+  }
+  /* the verified jobs of point q: order[start[q] .. start[q+1]-1] */
+  for (q = 0; q < T->npoints; q++) start[q + 1] = start[q] + T->points[q].n;
+  for (q = 0; q < T->npoints; q++) T->points[q].n = 0;
+  for (j = 0; j < T->njobs; j++)
+    if (T->jobs[j].state == JOB_DONE) {
+      point *p = &T->points[T->jobs[j].point];
+      order[start[T->jobs[j].point] + p->n++] = j;
+    }
   for (q = 0; q < T->npoints; q++)
     for (k = 0; k < N_PARAMS; k++) {
-      int m = 0;
-      for (j = 0; j < T->njobs; j++)
-        if (T->jobs[j].point == q && T->jobs[j].done) x[m++] = T->jobs[j].v[k];
+      int m;
+      for (m = 0; m < T->points[q].n; m++)
+        x[m] = T->jobs[order[start[q] + m]].v[k];
       if (m) mean_sem(x, m, &T->points[q].mean[k], &T->points[q].sem[k]);
     }
+  ok = 1;
+done:
   free(x);
-  return 1;
+  free(order);
+  free(start);
+  return ok;
 }
 
 /* ---- table.csv and missing.txt --------------------------------------------- */
@@ -294,7 +704,7 @@ static void write_table(FILE *fp, const sweep_table *T)
   for (q = 0; q < T->npoints; q++) {
     const point *p = &T->points[q];
     if (p->n == 0) continue;
-    for (k = 0; k < T->nkeys; k++) fprintf(fp, "%s,", T->val[p->first][k]);
+    for (k = 0; k < T->nkeys; k++) fprintf(fp, "%s,", VAL(T, p->first, k));
     fprintf(fp, "%d", p->n);
     for (k = 0; k < N_PARAMS; k++) {
       put_number(fp, p->mean[k]);
@@ -305,8 +715,9 @@ static void write_table(FILE *fp, const sweep_table *T)
   }
 }
 
-/* Why job J has no summary: the last non-empty line of logs/ID.log that is
-** not a warning (else its last line), or the state of its run folder. */
+/* Why job J is not tabled: damaged, and why; or missing, and the last
+** non-empty line of logs/ID.log that is not a warning (else its last
+** line), or the state of its run folder. */
 static void missing_reason(const sweep_table *T, const job *J, char *out,
                            size_t len)
 {
@@ -314,11 +725,15 @@ static void missing_reason(const sweep_table *T, const job *J, char *out,
   FILE *fp;
   struct stat sb;
   out[0] = 0;
+  if (J->state == JOB_DAMAGED) {
+    snprintf(out, len, "damaged: %s", J->why ? J->why : "out of memory");
+    return;
+  }
   snprintf(path, sizeof path, "%s/logs/%s.log", T->dir, J->id);
-  if ((fp = fopen(path, "r"))) {
-    int warned = 0;
-    while (fgets(line, sizeof line, fp)) {
-      line[strcspn(line, "\r\n")] = 0;
+  if ((fp = open_regular(path))) {
+    int warned = 0, st;
+    while ((st = read_line(fp, line, sizeof line)) != 0) {
+      if (st < 0) continue;
       if (!line[0] || (strstr(line, "warning:") && out[0] && !warned))
         continue;
       warned = strstr(line, "warning:") != NULL;
@@ -337,14 +752,15 @@ static void write_missing(FILE *fp, const sweep_table *T)
 {
   char why[1024];
   int j, k;
-  fprintf(fp, "# afv collect: jobs without runs/ID/analysis/summary.txt, "
-          "with the last line of logs/ID.log\n");
+  fprintf(fp, "# afv collect: jobs not tabled: without runs/ID/analysis/"
+          "summary.txt (with the last line of logs/ID.log), or damaged (with "
+          "the reason)\n");
   for (j = 0; j < T->njobs; j++) {
     const job *J = &T->jobs[j];
-    if (J->done) continue;
+    if (J->state == JOB_DONE) continue;
     missing_reason(T, J, why, sizeof why);
     fprintf(fp, "%s", J->id);
-    for (k = 0; k < T->nkeys; k++) fprintf(fp, " %s=%s", T->key[k], T->val[j][k]);
+    for (k = 0; k < T->nkeys; k++) fprintf(fp, " %s=%s", T->key[k], VAL(T, j, k));
     fprintf(fp, " seed=%s: %s\n", J->seed, why);
   }
 }
@@ -369,11 +785,23 @@ static int distinct_values(const sweep_table *T, int k, double *out)
 {
   int q, n = 0, m = 0;
   for (q = 0; q < T->npoints; q++)
-    out[n++] = atof(T->val[T->points[q].first][k]);
+    out[n++] = NUM(T, T->points[q].first, k);
   qsort(out, (size_t)n, sizeof *out, cmp_double);
   for (q = 0; q < n; q++)
     if (m == 0 || out[q] != out[m - 1]) out[m++] = out[q];
   return m;
+}
+
+/* The index of v in the sorted distinct values x[0 .. n-1] (it is one). */
+static int value_index(const double *x, int n, double v)
+{
+  int lo = 0, hi = n - 1;
+  while (lo < hi) {
+    int mid = lo + (hi - lo) / 2;
+    if (x[mid] < v) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
 }
 
 /* The (P0, v0) grid: a map's x (P0), y (v0) and, per point q, its cell. */
@@ -394,12 +822,11 @@ static int plane_make(const sweep_table *T, plane *P)
   if (!P->x || !P->y || !P->cell) return 0;
   P->nx = distinct_values(T, kp, P->x);
   P->ny = distinct_values(T, kv, P->y);
+  /* a map is drawn over a grid: not over scattered points */
+  if ((double)P->nx * P->ny > 4.0 * T->npoints + 16) return 0;
   for (q = 0; q < T->npoints; q++) {
-    double p0 = atof(T->val[T->points[q].first][kp]);
-    double v0 = atof(T->val[T->points[q].first][kv]);
-    int i = 0, j = 0;
-    while (P->x[i] != p0) i++;
-    while (P->y[j] != v0) j++;
+    int i = value_index(P->x, P->nx, NUM(T, T->points[q].first, kp));
+    int j = value_index(P->y, P->ny, NUM(T, T->points[q].first, kv));
     P->cell[q] = j * P->nx + i;
   }
   return 1;
@@ -488,28 +915,18 @@ typedef struct curves {
   char (*label)[128];
 } curves;
 
-/* qsort has no context argument in C99: the table and the v0 column of the
-** sort in progress. */
-static const sweep_table *sort_table;
-static int sort_kv;
-static int cmp_v0(const void *a, const void *b)
+/* Points by every key but v0 (sort_skip), then v0, then index. */
+static int cmp_curve_point(const void *pa, const void *pb)
 {
-  double x = atof(sort_table->val[sort_table->points[*(const int *)a].first][sort_kv]);
-  double y = atof(sort_table->val[sort_table->points[*(const int *)b].first][sort_kv]);
-  return x < y ? -1 : x > y;
+  int a = *(const int *)pa, b = *(const int *)pb, c;
+  int ja = sort_table->points[a].first, jb = sort_table->points[b].first;
+  if ((c = cmp_point(sort_table, ja, jb, sort_skip)) != 0) return c;
+  if ((c = cmp_value(sort_table, ja, jb, sort_skip)) != 0) return c;
+  return (a > b) - (a < b);
 }
 
-/* 1 if points a and b agree on every key but kv. */
-static int same_curve(const sweep_table *T, int a, int b, int kv)
-{
-  int k;
-  for (k = 0; k < T->nkeys; k++)
-    if (k != kv && strcmp(T->val[T->points[a].first][k],
-                          T->val[T->points[b].first][k]))
-      return 0;
-  return 1;
-}
-
+/* The points with a verified job, sorted by the other keys and v0: runs of
+** equal other keys are the curves. */
 static int curves_make(const sweep_table *T, int kv, curves *C)
 {
   int q, c, m = 0;
@@ -520,24 +937,26 @@ static int curves_make(const sweep_table *T, int kv, curves *C)
   C->label = malloc(np * sizeof *C->label);
   C->n = 0;
   if (!C->start || !C->len || !C->order || !C->label) return 0;
-  for (q = 0; q < T->npoints; q++) {
-    int done = 0;
-    for (c = 0; c < q && !done; c++) done = same_curve(T, c, q, kv);
-    if (done || T->points[q].n == 0) continue;
-    C->start[C->n] = m;
-    for (c = q; c < T->npoints; c++)
-      if (T->points[c].n > 0 && same_curve(T, q, c, kv)) C->order[m++] = c;
-    C->len[C->n] = m - C->start[C->n];
+  for (q = 0; q < T->npoints; q++)
+    if (T->points[q].n > 0) C->order[m++] = q;
+  sort_table = T;
+  sort_skip = kv;
+  qsort(C->order, (size_t)m, sizeof(int), cmp_curve_point);
+  for (q = 0; q < m; q++) {
+    int first = T->points[C->order[q]].first;
+    if (q && !cmp_point(T, T->points[C->order[q - 1]].first, first, kv)) {
+      C->len[C->n - 1]++;
+      continue;
+    }
+    C->start[C->n] = q;
+    C->len[C->n] = 1;
     C->label[C->n][0] = 0;
     for (c = 0; c < T->nkeys; c++)
       if (c != kv) {
         size_t l = strlen(C->label[C->n]);
         snprintf(C->label[C->n] + l, 128 - l, "%s%s=%s", l ? ", " : "",
-                 T->key[c], T->val[T->points[q].first][c]);
+                 T->key[c], VAL(T, first, c));
       }
-    sort_table = T;
-    sort_kv = kv;
-    qsort(C->order + C->start[C->n], (size_t)C->len[C->n], sizeof(int), cmp_v0);
     C->n++;
   }
   return 1;
@@ -573,7 +992,7 @@ static int plot_vs_v0(const char *dir, const sweep_table *T, int kv,
     ns++;
     for (i = 0; i < C->len[c]; i++) {
       const point *p = &T->points[o[i]];
-      x[C->start[c] + i] = atof(T->val[p->first][kv]);
+      x[C->start[c] + i] = NUM(T, p->first, kv);
       y[C->start[c] + i] = p->mean[k];
     }
   }
@@ -752,22 +1171,49 @@ static int write_one(const char *dir, const char *name, table_writer fn,
   return 1;
 }
 
-/* Lists the missing jobs on stderr (the first 20; all in missing.txt). */
+/* Lists the jobs not tabled on stderr (the first 20; all in missing.txt);
+** their count. */
 static int report_missing(const sweep_table *T)
 {
   char why[1024];
-  int j, m = 0;
+  int j, m = 0, damaged = 0;
   for (j = 0; j < T->njobs; j++) {
-    if (T->jobs[j].done) continue;
+    const job *J = &T->jobs[j];
+    if (J->state == JOB_DONE) continue;
+    damaged += J->state == JOB_DAMAGED;
     if (++m <= 20) {
-      missing_reason(T, &T->jobs[j], why, sizeof why);
-      fprintf(stderr, "afv collect: missing job %s: %s\n", T->jobs[j].id, why);
+      missing_reason(T, J, why, sizeof why);
+      fprintf(stderr, "afv collect: %s job %s: %s\n", J->state == JOB_DAMAGED
+              ? "damaged" : "missing", J->id,
+              why + (J->state == JOB_DAMAGED ? strlen("damaged: ") : 0));
     }
   }
   if (m)
-    fprintf(stderr, "afv collect: %d of %d jobs missing (all in %s/"
-            "missing.txt)\n", m, T->njobs, T->dir);
+    fprintf(stderr, "afv collect: %d of %d jobs not tabled: %d missing, %d "
+            "damaged (all in %s/missing.txt)\n", m, T->njobs, m - damaged,
+            damaged, T->dir);
   return m;
+}
+
+/* Says how many tabled state points have no msd_beta (every seed's steady
+** window too short for it) or lack it in some seeds. */
+static void report_beta(const sweep_table *T)
+{
+  int q, none = 0, some = 0, tabled = 0;
+  for (q = 0; q < T->npoints; q++) {
+    const point *p = &T->points[q];
+    if (p->n == 0) continue;
+    tabled++;
+    none += p->lack_beta == p->n;
+    some += p->lack_beta > 0 && p->lack_beta < p->n;
+  }
+  if (none)
+    printf("msd_beta: nan at %d of %d state points (dynamic_phase "
+           "undefined there): their steady window is too short for it (see "
+           "afv analyze --help)\n", none, tabled);
+  if (some)
+    printf("msd_beta: nan from some seeds at %d of %d state points (their "
+           "means are over the other seeds)\n", some, tabled);
 }
 
 int cmd_collect(int argc, char **argv)
@@ -797,11 +1243,15 @@ int cmd_collect(int argc, char **argv)
       ok = 0;
     }
   }
-  if (ok)
-    printf("%d state points (%d of %d jobs finished): %s/table.csv\n",
+  if (ok) {
+    report_beta(&T);
+    printf("%d state points (%d of %d jobs verified): %s/table.csv\n",
            T.npoints, T.njobs - missing, T.njobs, T.dir);
+  }
+  for (k = 0; k < T.njobs; k++) free(T.jobs[k].why);
   free(T.jobs);
   free(T.val);
+  free(T.num);
   free(T.points);
   return !ok ? EXIT_BAD_INPUT : missing ? EXIT_CHECK_FAILED : 0;
 }

@@ -12,10 +12,11 @@
 ** unwrapped, so r_i(t) - r_i(0) is the true displacement (for the MSD); the
 ** geometry applies the minimum image itself.
 **
-** Read first: move_of (Eq. (4)) and rotate_plain (Eq. (5)), the step as
-** the paper writes it; then euler_all (the same move for every cell, in
-** one pass that also keeps what the step needs), rotate_block (the same
-** noise in blocks), advance and afv_sim_step.  A cell the force would move
+** Read first: move_of (Eq. (4)) and rotate_block (Eq. (5), in blocks of
+** cells), the step as the paper writes it; then euler_all (the same move
+** for every cell, in one pass that also keeps what the step needs),
+** euler_step and afv_sim_step; reference/afv_plain.c has the same step in
+** its plainest form.  A cell the force would move
 ** more than max_move l takes the rest of its step in pieces: substeps.c.
 ** The random numbers (Philox4x32-10, Box-Muller): rng.h.
 **
@@ -47,22 +48,6 @@ static void move_of(const afv_sim *s, int i, double h, double *dx, double *dy)
   double mu = s->dyn.mu;
   *dx = h * (mu * s->f[2*i] + s->pol[2*i]);         /* Eq. (4) */
   *dy = h * (mu * s->f[2*i+1] + s->pol[2*i+1]);
-}
-
-/* The polarity noise, Eq. (5) of the paper, as one plain loop over the
-** cells (the reference mode's, make REFERENCE=1): th_i <- th_i +
-** sqrt(2 Dr_i dt) xi_i, xi_i the normal of cell i at this step
-** (afv_rng_normal: the draw of rotate_block, which gets the two normals of
-** a pair from one counter). */
-static void rotate_plain(afv_sim *s, unsigned long long seed,
-                         unsigned long long step)
-{
-  int i;
-  for (i = 0; i < s->n; i++) {
-    double Dr = s->dyn.Dr_i ? s->dyn.Dr_i[i] : s->dyn.Dr;
-    double xi = afv_rng_normal(seed, (uint32_t)i, step, AFV_RNG_NOISE);
-    if (Dr > 0) s->theta[i] += sqrt(2 * Dr * s->dyn.dt) * xi;   /* Eq. (5) */
-  }
 }
 
 /* The step's one pass over every cell (each cell's data read once):
@@ -352,15 +337,11 @@ int afv_sim_step(afv_sim *s)
   unsigned long long seed = s->dyn.seed, step = (unsigned long long)s->step;
   int i, pairs, st;
   if ((st = move_all(s, s->dyn.dt)) != AFV_OK) return st;
-  if (AFV_REFERENCE_MODE) {
-    rotate_plain(s, seed, step);
-  } else {
-    pairs = (s->n + 1) / 2;        /* cells 2p and 2p + 1 share one draw */
-    AFV_PARALLEL_FOR(s->n)
-    for (i = 0; i < pairs; i += NOISE_BLOCK)
-      rotate_block(s, i, pairs - i < NOISE_BLOCK ? pairs - i : NOISE_BLOCK,
-                   seed, step);
-  }
+  pairs = (s->n + 1) / 2;          /* cells 2p and 2p + 1 share one draw */
+  AFV_PARALLEL_FOR(s->n)
+  for (i = 0; i < pairs; i += NOISE_BLOCK)
+    rotate_block(s, i, pairs - i < NOISE_BLOCK ? pairs - i : NOISE_BLOCK,
+                 seed, step);
   s->step++;
   s->t = (double)s->step * s->dyn.dt;   /* no drift from summing dt */
   return AFV_OK;

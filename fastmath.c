@@ -1,8 +1,7 @@
 /*
 ** fastmath.c -- afv_angle and afv_sincos, the library's own atan2 and
-** sincos, each with its reference twin (the C library's, make REFERENCE=1):
-** the code and its reasons are in fastmath.h, where geom.c and dynamics.c
-** compile it inline.
+** sincos: the code and its reasons are in fastmath.h, where geom.c and
+** dynamics.c compile it inline.
 */
 #include "afv.h"
 #include "afv_internal.h"

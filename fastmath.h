@@ -1,16 +1,15 @@
 /*
 ** fastmath.h -- the two functions of libm that the hot path computes in
-** its own arithmetic, each beside its reference twin (make REFERENCE=1,
-** doc/reference.md):
+** its own arithmetic:
 **   afv_angle    the counter-clockwise angle of a vector, atan2(y, x) + 2 pi
 **                if negative: every arc of every cell (geom.c, gap_angle);
-**                twin: angle_libm, the C library's atan2;
 **   afv_sincos   sin x and cos x: every cell's polarity n_i and every
-**                Box-Muller angle (dynamics.c); twin: sin, cos.
+**                Box-Muller angle (dynamics.c).
 ** Both are plain C99 arithmetic, so they give the same bits on every
 ** machine whose double arithmetic is IEEE 754 (the C library's functions
 ** need not); both are checked against the C library in the tests
-** (test_core.c, test_dynamics.c) and through the twins (make twins).
+** (test_core.c, test_dynamics.c) and through the twins (make twins: the
+** plain file, reference/afv_plain.c, uses the C library's).
 ** The code is here, as static inline functions, so that the files of the
 ** hot path (geom.c, dynamics.c) compile it into their own code: a call
 ** across files makes the caller save every floating-point register around
@@ -48,13 +47,6 @@
 #define ATAN_C_HI   0.4124104415973873      /* atan(7/16) = HI + LO */
 #define ATAN_C_LO   (-1.587652227770689e-17)
 
-/* The reference twin (make REFERENCE=1): the C library's atan2. */
-static inline double angle_libm(double y, double x)
-{
-  double a = atan2(y, x);
-  return a < 0 ? a + TWO_PI : a;
-}
-
 static inline double afv_angle_inline(double y, double x)
 {
   static const double aT[11] = {
@@ -70,7 +62,6 @@ static inline double afv_angle_inline(double y, double x)
   static const double sgn[8] = {1, -1, -1, 1, -1, 1, 1, -1};
   double ax = fabs(x), ay = fabs(y), lo, hi, num, den, u, z, z2, z4, Q, a;
   int steep = ay > ax, k;
-  if (AFV_REFERENCE_MODE) return angle_libm(y, x);
   if (isnan(x) || isnan(y)) return x + y;
   lo = ay < ax ? ay : ax;                     /* min and max (minsd, maxsd */
   hi = ay > ax ? ay : ax;                     /* on x86): no branch */
@@ -122,8 +113,7 @@ static inline void afv_sincos_inline(double x, double *sin_x, double *cos_x)
   double t, r, z, sr, cr;
   long m, k;
   unsigned q;
-  /* the C library's also in the reference build (make REFERENCE=1) */
-  if (AFV_REFERENCE_MODE || !(fabs(x) < SINCOS_FAST_LIMIT)) {
+  if (!(fabs(x) < SINCOS_FAST_LIMIT)) {       /* the C library's */
     *sin_x = sin(x);
     *cos_x = cos(x);
     return;

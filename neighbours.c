@@ -12,11 +12,8 @@
 ** nbr[nbr_start[i] .. nbr_end[i] - 1]; the slots up to nbr_start[i+1]
 ** are unused room, so a loop stops at nbr_end[i].
 **
-** Read first, the reference search (make REFERENCE=1, doc/reference.md):
-** plain_neighbours -> plain_list: a cell list with bins of side >= 2l
-** built at every call, every cell closer than 2l in the bins around,
-** then sort_slots and link_cell.
-** The fast search (the default) finds the same lists:
+** (The plainest search, all pairs, is in reference/afv_plain.c; make twins
+** compares.)  The search finds the lists so:
 **   - a cell list ("cell list": grid_periodic / grid_open, fill_bins) of
 **     reach (2 + SKIN) l, scanned without a branch on the distance
 **     (scan_cell), gives every cell its Verlet candidates ("Verlet
@@ -970,14 +967,6 @@ static inline void fill_edge_pair(afv_geom *g, int s, int t, double l)
   f[3] = e[3];
 }
 
-/* The pairs of cell i with its smaller neighbours j < i: for the slot s of
-** j in the list of i, nbr_rev[s] = t, the slot of i in the list of j, and
-** nbr_rev[t] = s; the edge cache of both slots (fill_edge_pair); and zero
-** in both gradient slots, where afv_cell_shape_gradient adds.  The lists
-** are exactly symmetric (fold is odd, so d^2 has the same bits both ways),
-** so the reverse slot exists.  Each pair is linked once, from its larger
-** cell, which writes both directions: every entry has exactly one writer.
-** j's list must be filtered already. */
 /* The slot of cell i in the list of j, where i sits at displacement
 ** (x, y) from j: in a long list (more than LONG_LIST slots) a binary
 ** search by comes_after (the list is sorted by it); else, or if that
@@ -1024,6 +1013,14 @@ static COLD void link_long_cell(afv_geom *g, int i, double l)
   }
 }
 
+/* The pairs of cell i with its smaller neighbours j < i: for the slot s of
+** j in the list of i, nbr_rev[s] = t, the slot of i in the list of j, and
+** nbr_rev[t] = s; the edge cache of both slots (fill_edge_pair); and zero
+** in both gradient slots, where afv_cell_shape_gradient adds.  The lists
+** are exactly symmetric (fold is odd, so d^2 has the same bits both ways),
+** so the reverse slot exists.  Each pair is linked once, from its larger
+** cell, which writes both directions: every entry has exactly one writer.
+** j's list must be filtered already. */
 static void link_cell(afv_geom *g, int i, double l)
 {
   int s, t;
@@ -1080,87 +1077,6 @@ static int reserve_pieces(afv_geom *g, int n)
               sizeof(afv_piece));
 }
 
-/* ---- the reference neighbour search (make REFERENCE=1) ---------------- */
-/* The same lists as the candidates' (below), found plainly at every call:
-** a cell list with bins of side >= 2l, and for each cell i, in the bins
-** within 2l of it, every cell j closer than 2l, D = r_j - r_i between the
-** wrapped centres, minimum image (afv_min_image: the bits of filter_cell's
-** fold, but at a tie of half a box), sorted by direction (sort_slots).
-** The lists have no gaps.  The grid stays in g as the one afv_cells_around
-** reads, with cand_moved = 0: it is the grid of these very positions. */
-
-/* Cell i's neighbours, written to nbr[] and nbr_d[] unless nbr is NULL;
-** returns how many, or -1 - j for the first cell j at i's centre (cells
-** at one centre share a bin, in increasing order: j is the smallest). */
-static int plain_list(const afv_geom *g, int i, const double *r, double l,
-                      const afv_box *b, int *nbr, double *nbr_d)
-{
-  bin_window w = window_around(g, g->rw[2*i], g->rw[2*i+1], 2 * l, 0);
-  double near2 = near_limit2(b);
-  int q, k, count = 0;
-  for (q = 0; q < w.nx * w.ny; q++) {
-    int bin = window_bin(g, &w, q);
-    for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++) {
-      int j = g->bin_cell[k];
-      double dx = g->rw[2*j] - g->rw[2*i], dy = g->rw[2*j+1] - g->rw[2*i+1];
-      double d2;
-      afv_min_image(b, &dx, &dy);
-      d2 = dx * dx + dy * dy;
-      if (j == i || !(d2 < 4 * l * l)) continue;
-      if (d2 < near2) {             /* nearly coincident: as filter_cell */
-        exact_image(r, i, j, b, &dx, &dy);
-        if (dx == 0 && dy == 0) return -1 - j;
-      }
-      if (nbr) {
-        nbr[count] = j;
-        nbr_d[2*count] = dx;
-        nbr_d[2*count+1] = dy;
-      }
-      count++;
-    }
-  }
-  return count;
-}
-
-/* Counts every list, then writes, sorts and links them in cell order (a
-** cell's smaller neighbours are listed when link_cell pairs them).  The
-** offsets go to cand_start, where reserve_pieces reads a cell's room. */
-static int plain_neighbours(afv_geom *g, int n, const double *r, double l,
-                            const afv_box *b)
-{
-  grid G;
-  int i, st;
-  if (b && b->periodic) grid_periodic(&G, b, l, n);
-  else grid_open(&G, n, r, l);
-  if ((st = fill_bins(g, &G, n, r)) != AFV_OK) return st;
-  g->cand_grid = G;
-  g->cand_l = l;
-  g->cand_moved = 0;
-  wrap_all(g, n, r, b);
-  g->cand_start[0] = 0;
-  for (i = 0; i < n; i++) {
-    int count = plain_list(g, i, r, l, b, NULL, NULL);
-    if (count < 0) {                 /* the first cell i with a twin j > i */
-      g->bad_i = i;
-      g->bad_j = -1 - count;
-      return AFV_ECOINCIDENT;
-    }
-    g->cand_start[i + 1] = g->cand_start[i] + count;
-  }
-  if (grow_nbr(g, g->cand_start[n] + 1) || reserve_pieces(g, n))
-    return AFV_ENOMEM;
-  for (i = 0; i < n; i++) {
-    int s0 = g->cand_start[i];
-    g->nbr_start[i] = s0;
-    g->nbr_end[i] = s0 + plain_list(g, i, r, l, b, g->nbr + s0,
-                                    g->nbr_d + 2 * s0);
-    sort_slots(g->nbr + s0, g->nbr_d + 2 * s0, g->nbr_end[i] - s0);
-    link_cell(g, i, l);
-  }
-  g->nbr_start[n] = g->cand_start[n];
-  return AFV_OK;
-}
-
 /* The exact lists from the candidates, then the pairs linked.  Serially,
 ** one pass: cell i is linked right after it is listed, to its smaller
 ** neighbours, listed moments before, whose slots are still in cache (in a
@@ -1175,7 +1091,6 @@ int afv_neighbours(afv_geom *g, int n, const double *r, double l,
   g->n = n;
   g->nbr_start[0] = g->piece_start[0] = 0;
   if (n == 0) return AFV_OK;
-  if (AFV_REFERENCE_MODE) return plain_neighbours(g, n, r, l, b);
   wrap_all(g, n, r, b);
   if (!candidates_valid(g, n, r, l, b)) {
     if ((st = build_candidates(g, n, r, l, b)) != AFV_OK) return st;

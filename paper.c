@@ -316,9 +316,33 @@ static FILE *figure_open(const char *out, const char *name, char *path,
   return afv_atomic_open(path, tmp, PATH_LEN + 16);
 }
 
+/* 1 when OUT's sweeps are make paper's smoke scale (OUT/grid/scale, as
+** tools/paper_sweeps.sh writes it, says smoke): every figure and claim is
+** marked so. */
+static int smoke;
+
 static int figure_close(FILE *fp, const char *tmp, const char *path)
 {
+  /* a smoke figure gets a red line at its bottom left, before the "</svg>\n" that
+  ** ends every SVG afv writes */
+  if (smoke && fseek(fp, -7L, SEEK_END) == 0)
+    fputs("<text x=\"4\" y=\"99%\" font-family=\"sans-serif\" "
+          "font-size=\"10\" fill=\"#d62728\">SMOKE RUN (make paper "
+          "SCALE=smoke): the numbers mean nothing</text>\n</svg>\n", fp);
   return afv_atomic_commit(fp, tmp, path) == AFV_OK;
+}
+
+/* Reads OUT/grid/scale into smoke. */
+static void read_scale(const char *out)
+{
+  char path[PATH_LEN], word[16] = "";
+  FILE *fp;
+  snprintf(path, sizeof path, "%s/grid/scale", out);
+  if ((fp = fopen(path, "r"))) {
+    if (fscanf(fp, "%15s", word) != 1) word[0] = 0;
+    fclose(fp);
+  }
+  smoke = !strcmp(word, "smoke");
 }
 
 /* nc curves y[c n + k] against x[k] (or x[c n + k] if xper), labelled,
@@ -648,6 +672,7 @@ static const char *agree_text(const claim *c)
     if (!isfinite(c->afv)) a = -1;
     else a = fabs(c->afv - p) <= 2 * sqrt(e * e + c->paper_err * c->paper_err);
   }
+  if (smoke) return "not established (smoke run)";
   return a == 1 ? "yes" : a == 0 ? "no" : "not measured";
 }
 
@@ -1495,6 +1520,8 @@ static const char *paper_usage =
 "                           number the paper states and afv's; numeric\n"
 "                           claims agree when |afv - paper| <= 2 sqrt(\n"
 "                           afv_err^2 + paper_err^2)\n"
+"When OUT/grid/scale says smoke (make paper SCALE=smoke), every agrees\n"
+"is 'not established (smoke run)' and every figure says SMOKE RUN.\n"
 "  OUT/fss.csv              the finite-size table\n"
 "  OUT/halves.csv           the grid's N_GC/N over each half of the steady\n"
 "                           window, and v0* from each (a run-length test)\n"
@@ -1519,6 +1546,7 @@ int cmd_paper(int argc, char **argv)
   }
   out = argv[1];
   if (strlen(out) > RUN_PATH_MAX - 64) return bad_input("paper: OUT too long");
+  read_scale(out);
   if (!plane_read(out, &P)) { plane_free(&P); return EXIT_BAD_INPUT; }
   if (!fss_read(out, &F)) { plane_free(&P); return EXIT_BAD_INPUT; }
   snprintf(path, sizeof path, "%s/figures", out);
@@ -1535,7 +1563,9 @@ int cmd_paper(int argc, char **argv)
        && halves_table(out, &P)
        && claims_write(out, C);
   if (ok) printf("afv paper: %s/figures, %s/claims.csv (%d claims), "
-                 "%s/fss.csv\n", out, out, C->n, out);
+                 "%s/fss.csv%s\n", out, out, C->n, out, smoke ? " (smoke "
+                 "run: figures and claims marked, the numbers mean nothing)"
+                 : "");
   else fprintf(stderr, "afv paper: could not write into %s\n", out);
   free(C);
   plane_free(&P);

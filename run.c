@@ -1454,9 +1454,30 @@ static void close_outputs(run_state *R)
   R->log = NULL;
 }
 
+/* Seconds between progress lines when stderr is not a terminal (a log
+** file, a SLURM job's output). */
+#define PROGRESS_LOG_SECONDS 30.0
+
+/* Not on a terminal (and not quiet): a whole line every
+** PROGRESS_LOG_SECONDS with the step, the percentage, the elapsed time
+** and the estimated time left. */
+static void log_progress(run_state *R, double now)
+{
+  double done = (double)(R->sim.step - R->start_step), rate;
+  if (R->cfg.quiet || now - R->last_progress < PROGRESS_LOG_SECONDS) return;
+  R->last_progress = now;
+  rate = done / (now - R->wall0 > 1e-9 ? now - R->wall0 : 1e-9);
+  fprintf(stderr, "afv run: step %lld of %lld (%.1f%%), %.0f s elapsed, "
+          "about %.0f s left\n", R->sim.step, R->cfg.steps,
+          100.0 * (double)R->sim.step / (double)R->cfg.steps, now - R->wall0,
+          rate > 0 ? (double)(R->cfg.steps - R->sim.step) / rate : 0);
+  fflush(stderr);
+}
+
 static void show_progress(run_state *R, int final)
 {
   double now = wall_seconds(), done, rate, left;
+  if (!R->progress && !final) log_progress(R, now);
   if (!R->progress || (!final && now - R->last_progress < 0.5)) return;
   R->last_progress = now;
   done = (double)(R->sim.step - R->start_step);

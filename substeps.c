@@ -263,33 +263,9 @@ static int region_forces(afv_sim *s, const afv_group *G, afv_group_work *W)
   return AFV_OK;
 }
 
-/* Reference mode (make REFERENCE=1): the plainest correct force of a
-** piece, that of the whole tissue at the present positions, of which the
-** fast cells' entries are kept (region_forces computes the same from the
-** region alone).  Groups then move one after another (is_large), since a
-** whole-tissue evaluation reads every cell. */
-static int tissue_forces(afv_sim *s, const afv_group *G, afv_group_work *W)
-{
-  const int *fast = s->group_cells + G->start + G->nr;
-  double *f;
-  int k, st;
-  if (afv_grow((void **)&W->sub, &W->cap_sub, s->n, 8 * sizeof(double))
-      != AFV_OK)
-    return AFV_ENOMEM;
-  f = W->sub;
-  st = afv_compute(&W->geom, s->n, s->r, &s->par, &s->box, f);
-  if (st != AFV_OK) return st;
-  for (k = 0; k < G->nf; k++) {
-    s->f[2 * fast[k]] = f[2 * fast[k]];
-    s->f[2 * fast[k] + 1] = f[2 * fast[k] + 1];
-  }
-  return AFV_OK;
-}
-
 /* The forces on group G's fast cells at the present positions. */
 static int piece_forces(afv_sim *s, const afv_group *G, afv_group_work *W)
 {
-  if (AFV_REFERENCE_MODE) return tissue_forces(s, G, W);
   return region_forces(s, G, W);
 }
 
@@ -355,7 +331,6 @@ static void fast_pieces(afv_sim *s, afv_group *G, afv_group_work *W,
 ** regions, and libgomp starts a new team of threads for each.) */
 static int is_large(const afv_group *G)
 {
-  if (AFV_REFERENCE_MODE) return 1;   /* one group at a time (above) */
   return G->nr >= AFV_PARALLEL_MIN;
 }
 

@@ -13,6 +13,7 @@
 #define _XOPEN_SOURCE 700  /* mkdir, realpath, readlink */
 #include "cli.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -29,6 +30,9 @@
 #define SWEEP_MAX_KEYS 64
 /* Longest value text of one grid point. */
 #define VALUE_MAX 64
+/* Tasks of one SLURM job array at most, by default (SLURM's default
+** MaxArraySize is 1001: indices 0 .. 1000). */
+#define SLURM_ARRAY_MAX 1000
 
 /* One --KEY VALUES option: its expanded values. */
 typedef struct sweep_axis {
@@ -41,8 +45,11 @@ typedef struct sweep_axis {
 /* The options of afv sweep. */
 typedef struct sweep_opts {
   const char *out, *afv, *steady_from, *lag;
+  const char *reanalyze;  /* --reanalyze DIR: a new analysis of DIR */
+  const char *account, *partition, *mem, *time;  /* SLURM resources */
   long seeds;             /* --seeds K (0: not given) */
   long per_task;          /* jobs per SLURM array task */
+  long array_max;         /* tasks per SLURM array at most */
   int nax;                /* --KEY options */
   sweep_axis ax[SWEEP_MAX_KEYS];
   int seed_axis;          /* index of --seed in ax, or -1 */
@@ -50,13 +57,16 @@ typedef struct sweep_opts {
 
 static const char *sweep_usage =
   "usage: afv sweep --out DIR [--seeds K] [--KEY VALUES ...] [options]\n"
+  "       afv sweep --reanalyze DIR [--steady-from T] [--lag L]\n"
   "\n"
   "Writes a grid of afv run jobs into DIR (which must not exist yet) and\n"
   "three runners for them; nothing runs until you start one:\n"
-  "  make -C DIR -j N            (nothing to install)\n"
-  "  parallel -j N < DIR/jobs.txt   (GNU parallel)\n"
-  "  sbatch DIR/slurm.sh         (SLURM job array; see its header)\n"
-  "Then afv collect DIR writes the table and the figures.\n"
+  "  make -C DIR -j N                     (nothing to install)\n"
+  "  cd DIR && parallel -j N < jobs.txt   (GNU parallel)\n"
+  "  sh DIR/slurm.sh [SBATCH OPTIONS]     (SLURM job arrays; see its header)\n"
+  "Then afv collect DIR writes the table and the figures.  Every path in\n"
+  "the runners is relative to DIR, so DIR may be moved or reached by\n"
+  "another path (a cluster's shared file system).\n"
   "\n"
   "Any afv run key may be swept or fixed (afv run --help lists them):\n"
   "  --KEY a:b:step   inclusive range a, a+step, ..., b ((b-a)/step must be\n"
@@ -65,19 +75,39 @@ static const char *sweep_usage =
   "  --KEY v          fixed\n"
   "  --seeds K        K replicas per state point, seeds 1..K (default 1),\n"
   "                   unless --seed lists the seeds\n"
+  "Two values of a key that are the same number (4, 4.0) or text, or a\n"
+  "value with a space or a control character, are refused.\n"
   "Options:\n"
   "  --out DIR        the sweep's folder (created with its parents)\n"
   "  --steady-from T  --lag L   passed to afv analyze (steady window, lag\n"
-  "                   of D_s in time units) after each run\n"
-  "  --per-task K     SLURM: K jobs per array task, run one after the\n"
-  "                   other (default 1)\n"
+  "                   of D_s in time units) after each run; checked against\n"
+  "                   every job's run (steps, dt, frame_every) first\n"
   "  --afv PATH       the afv program the runners call (default: this one)\n"
+  "SLURM (slurm.sh; each array task runs its jobs one after the other on\n"
+  "one core):\n"
+  "  --per-task K     jobs per array task (default 1)\n"
+  "  --array-max K    tasks per job array at most (default 1000: SLURM's\n"
+  "                   usual MaxArraySize is 1001); more tasks go into\n"
+  "                   further arrays, each submitted by slurm.sh\n"
+  "  --time T         time limit per task (default: estimated from the\n"
+  "                   largest N and steps at 0.35 us per cell-step, x 3\n"
+  "                   plus 10 min; printed)\n"
+  "  --mem M  --account A  --partition P   written as #SBATCH lines\n"
   "DIR gets points.csv (id, swept keys, seed), jobs/ID.conf (every key of\n"
   "a job: afv run --config jobs/ID.conf repeats it alone), jobs.txt (one\n"
-  "command a line), Makefile, slurm.sh, and, as jobs run, runs/ID/ and\n"
-  "logs/ID.log.  A job is idempotent: afv run --continue starts, resumes\n"
-  "or leaves its run, then afv analyze writes runs/ID/analysis/.  Every\n"
-  "value is checked as afv run checks it before anything is written.\n"
+  "command a line), analysis.txt (the analysis arguments), Makefile,\n"
+  "slurm.sh, and, as jobs run, runs/ID/ and logs/ID.log.  A job is\n"
+  "idempotent: afv run --continue starts, resumes or leaves its run, then\n"
+  "afv analyze writes runs/ID/analysis/.  Every job's keys are checked as\n"
+  "afv run checks them, and the start of up to 256 jobs (every value of\n"
+  "every key among them) is built, before DIR exists; DIR appears whole.\n"
+  "\n"
+  "--reanalyze DIR: a new analysis of a sweep's runs, none run again: the\n"
+  "new --steady-from and --lag are checked against every job's run, then\n"
+  "written to DIR/analysis.txt; run the runner again (make -C DIR -j N\n"
+  "analyses every job again, since analysis.txt is newer than its\n"
+  "summary), then afv collect DIR, which reports summaries older than\n"
+  "analysis.txt.\n"
   "Exit status: 0 written, 2 bad option or value (DIR not created).\n";
 
 /* ---- grid syntax ----------------------------------------------------------- */
@@ -150,13 +180,68 @@ static int expand_list(sweep_axis *x, char *err, size_t errlen)
   return 1;
 }
 
-/* Expands x->text into values and checks each as afv run would. */
+/* A value's text: printable characters, no space (a space, a tab or a
+** newline would split jobs.txt, points.csv or a job file's line). */
+static int plain_value(const char *v)
+{
+  for (; *v; v++)
+    if ((unsigned char)*v <= ' ' || (unsigned char)*v >= 0x7f) return 0;
+  return 1;
+}
+
+/* qsort has no context argument in C99: the axis of the sort in progress. */
+static const sweep_axis *sort_axis;
+
+/* Two values of an axis by index: as numbers when both are, else as text
+** (so 4, 4.0 and 4.00 are one value). */
+static int cmp_axis_value(const void *pa, const void *pb)
+{
+  const char *a = sort_axis->value[*(const int *)pa];
+  const char *b = sort_axis->value[*(const int *)pb];
+  double x, y;
+  if (whole_double(a, &x) && whole_double(b, &y)) return (x > y) - (x < y);
+  return strcmp(a, b);
+}
+
+/* 0 with a message if two values of x are the same state (equal numbers,
+** or equal text): a repeated value would repeat its jobs. */
+static int distinct_values(const sweep_axis *x, char *err, size_t errlen)
+{
+  int *order = malloc((size_t)x->n * sizeof *order), k, ok = 1;
+  if (!order) {
+    afv_errorf(err, errlen, "--%s: out of memory", x->key);
+    return 0;
+  }
+  for (k = 0; k < x->n; k++) order[k] = k;
+  sort_axis = x;
+  qsort(order, (size_t)x->n, sizeof *order, cmp_axis_value);
+  for (k = 1; k < x->n && ok; k++)
+    if (cmp_axis_value(&order[k - 1], &order[k]) == 0) {
+      int a = order[k - 1] < order[k] ? order[k - 1] : order[k];
+      int b = order[k - 1] ^ order[k] ^ a;
+      afv_errorf(err, errlen, "--%s %.80s: values %d and %d (%s, %s) are the "
+                 "same%s", x->key, x->text, a + 1, b + 1, x->value[a],
+                 x->value[b], strchr(x->text, ':') ? " at 10 digits (a step "
+                 "too small for the range)" : ": each value once");
+      ok = 0;
+    }
+  free(order);
+  return ok;
+}
+
+/* Expands x->text into values and checks each as afv run would, and that
+** no two are the same. */
 static int sweep_axis_parse(sweep_axis *x, char *err, size_t errlen)
 {
   char msg[RUN_PATH_MAX];
   int k;
   x->n = 0;
   x->value = NULL;
+  if (!plain_value(x->text)) {
+    afv_errorf(err, errlen, "--%s: the value holds a space, a tab, a newline "
+               "or another control character", x->key);
+    return 0;
+  }
   if (!(strchr(x->text, ':') ? expand_range(x, err, errlen)
         : expand_list(x, err, errlen))) {
     if (!err[0]) afv_errorf(err, errlen, "--%s: out of memory", x->key);
@@ -167,7 +252,7 @@ static int sweep_axis_parse(sweep_axis *x, char *err, size_t errlen)
       afv_errorf(err, errlen, "--%s %s: %s", x->key, x->text, msg);
       return 0;
     }
-  return 1;
+  return distinct_values(x, err, errlen);
 }
 
 /* ---- options -------------------------------------------------------------- */
@@ -191,28 +276,65 @@ static int count_value(const char *opt, const char *text, long *out)
   return 1;
 }
 
+/* A SLURM resource value: characters of kind ("word": letters, digits,
+** _.-; "mem": digits then one of KMGT; "time": digits, ':' and '-'). */
+static int slurm_value(const char *opt, const char *val, const char *kind,
+                       const char **out)
+{
+  const char *word = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                     "0123456789_.-";
+  size_t m = strlen(val);
+  int ok = m > 0 && m < VALUE_MAX;
+  if (!strcmp(kind, "word")) ok = ok && strspn(val, word) == m;
+  else if (!strcmp(kind, "mem"))
+    ok = ok && strspn(val, "0123456789") >= m - (strchr("KMGT", val[m - 1])
+                                                 && m > 1);
+  else ok = ok && strspn(val, "0123456789:-") == m && isdigit((unsigned char)val[0]);
+  if (!ok)
+    return !fprintf(stderr, "afv sweep: %s '%s': expected %s\n", opt, val,
+                    !strcmp(kind, "word") ? "letters, digits and _.- only"
+                    : !strcmp(kind, "mem") ? "a size such as 2000M or 4G"
+                    : "a SLURM time such as 90, 2:30:00 or 1-12:00:00");
+  *out = val;
+  return 1;
+}
+
+/* --steady-from, --lag: numbers >= 0 (> 0 for --lag). */
+static int analysis_value(sweep_opts *o, const char *opt, const char *val)
+{
+  double d;
+  int lag = !strcmp(opt, "--lag");
+  if (!whole_double(val, &d) || d < 0 || (lag && d == 0))
+    return !fprintf(stderr, "afv sweep: %s '%s': expected a number %s 0\n",
+                    opt, val, lag ? ">" : ">=");
+  if (lag) o->lag = val;
+  else o->steady_from = val;
+  return 1;
+}
+
 /* One option with its value; 0 on a bad one (message printed). */
 static int sweep_option(sweep_opts *o, const char *opt, const char *val)
 {
   char err[2 * RUN_PATH_MAX] = "";
-  double d;
   int k;
   if (!strcmp(opt, "--out")) o->out = val;
+  else if (!strcmp(opt, "--reanalyze")) o->reanalyze = val;
   else if (!strcmp(opt, "--afv")) o->afv = val;
   else if (!strcmp(opt, "--seeds")) return count_value(opt, val, &o->seeds);
   else if (!strcmp(opt, "--per-task"))
     return count_value(opt, val, &o->per_task);
-  else if (!strcmp(opt, "--steady-from")) {
-    if (!whole_double(val, &d) || d < 0)
-      return !fprintf(stderr, "afv sweep: %s '%s': expected a number >= 0\n",
-                      opt, val);
-    o->steady_from = val;
-  } else if (!strcmp(opt, "--lag")) {
-    if (!whole_double(val, &d) || d <= 0)
-      return !fprintf(stderr, "afv sweep: %s '%s': expected a number > 0\n",
-                      opt, val);
-    o->lag = val;
-  } else {
+  else if (!strcmp(opt, "--array-max"))
+    return count_value(opt, val, &o->array_max);
+  else if (!strcmp(opt, "--account"))
+    return slurm_value(opt, val, "word", &o->account);
+  else if (!strcmp(opt, "--partition"))
+    return slurm_value(opt, val, "word", &o->partition);
+  else if (!strcmp(opt, "--mem")) return slurm_value(opt, val, "mem", &o->mem);
+  else if (!strcmp(opt, "--time"))
+    return slurm_value(opt, val, "time", &o->time);
+  else if (!strcmp(opt, "--steady-from") || !strcmp(opt, "--lag"))
+    return analysis_value(o, opt, val);
+  else {
     sweep_axis *x = &o->ax[o->nax];
     for (k = 0; k < o->nax; k++)
       if (!strcmp(o->ax[k].key, opt + 2))
@@ -240,6 +362,7 @@ static int sweep_parse(int argc, char **argv, sweep_opts *o)
   memset(o, 0, sizeof *o);
   o->seed_axis = -1;
   o->per_task = 1;
+  o->array_max = SLURM_ARRAY_MAX;
   for (k = 1; k < argc; k += 2) {
     if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h")) {
       fputs(sweep_usage, stdout);
@@ -252,6 +375,10 @@ static int sweep_parse(int argc, char **argv, sweep_opts *o)
       return !fprintf(stderr, "afv sweep: %s needs a value\n", argv[k]);
     if (!sweep_option(o, argv[k], argv[k + 1])) return 0;
   }
+  if (o->reanalyze)
+    return o->out || o->nax || o->seeds || o->afv
+           ? !bad_input("sweep: --reanalyze DIR takes --steady-from and --lag "
+                        "only (the runs stay as they are)") : 1;
   if (!o->out) return !bad_input("sweep: --out DIR is required");
   if (o->seeds && o->seed_axis >= 0)
     return !bad_input("sweep: give --seeds K or --seed LIST, not both");
@@ -266,6 +393,7 @@ typedef struct sweep_grid {
   int nax;                 /* axes, the seed axis last if any */
   const sweep_axis *ax[SWEEP_MAX_KEYS + 1];
   sweep_axis seeds;        /* --seeds K expanded (if no --seed) */
+  double max_cells, max_steps;  /* the largest N and steps of a job */
 } sweep_grid;
 
 static int grid_make(sweep_grid *g, const sweep_opts *o)
@@ -370,18 +498,15 @@ static int afv_program(const char *given, char *out)
   return 0;
 }
 
-/* Job j's command line (no newline). */
-static void job_command(char *cmd, size_t len, const sweep_opts *o,
-                        const char *afv, const char *dir, const char *id)
+/* Job id's command line (no newline), run in the sweep's folder: paths
+** are relative to it, and the analysis arguments are read from
+** analysis.txt when the job runs (afv sweep --reanalyze changes them). */
+static void job_command(char *cmd, size_t len, const char *afv,
+                        const char *id)
 {
-  int m = snprintf(cmd, len, "%s run --config %s/jobs/%s.conf --out %s/runs/%s"
-                   " --continue 2>>%s/logs/%s.log && %s analyze %s/runs/%s",
-                   afv, dir, id, dir, id, dir, id, afv, dir, id);
-  if (o->steady_from)
-    m += snprintf(cmd + m, len - m, " --steady-from %s", o->steady_from);
-  if (o->lag) m += snprintf(cmd + m, len - m, " --lag %s", o->lag);
-  snprintf(cmd + m, len - m, " >%s/logs/%s.out 2>>%s/logs/%s.log", dir, id,
-           dir, id);
+  snprintf(cmd, len, "%s run --config jobs/%s.conf --out runs/%s --continue "
+           "2>>logs/%s.log && %s analyze runs/%s `cat analysis.txt` "
+           ">logs/%s.out 2>>logs/%s.log", afv, id, id, id, afv, id, id, id);
 }
 
 /* Job j's id: 0001 .. 9999, or six digits for bigger sweeps (at most
@@ -393,8 +518,7 @@ static void job_id(char *id, long j, long njobs)
 
 /* Writes one file atomically through fn; 0 on failure (message printed). */
 typedef void (*sweep_writer)(FILE *fp, const sweep_grid *g,
-                             const sweep_opts *o, const char *afv,
-                             const char *dir);
+                             const sweep_opts *o, const char *afv);
 static int write_file(const char *dir, const char *name, sweep_writer fn,
                       const sweep_grid *g, const sweep_opts *o,
                       const char *afv)
@@ -403,7 +527,7 @@ static int write_file(const char *dir, const char *name, sweep_writer fn,
   FILE *fp;
   snprintf(path, sizeof path, "%s/%s", dir, name);
   if (!(fp = afv_atomic_open(path, tmp, sizeof tmp))
-      || (fn(fp, g, o, afv, dir), afv_atomic_commit(fp, tmp, path)) != AFV_OK) {
+      || (fn(fp, g, o, afv), afv_atomic_commit(fp, tmp, path)) != AFV_OK) {
     fprintf(stderr, "afv sweep: %s: cannot write\n", path);
     return 0;
   }
@@ -411,13 +535,13 @@ static int write_file(const char *dir, const char *name, sweep_writer fn,
 }
 
 static void write_points(FILE *fp, const sweep_grid *g, const sweep_opts *o,
-                         const char *afv, const char *dir)
+                         const char *afv)
 {
   const char *names[SWEEP_MAX_KEYS + 1], *values[SWEEP_MAX_KEYS + 1];
   char id[16];
   long j;
   int k;
-  (void)o; (void)afv; (void)dir;
+  (void)o; (void)afv;
   fputs("id", fp);
   for (k = 0; k < g->nax; k++)
     if (swept(g, k)) fprintf(fp, ",%s", g->ax[k]->key);
@@ -433,29 +557,43 @@ static void write_points(FILE *fp, const sweep_grid *g, const sweep_opts *o,
 }
 
 static void write_jobs(FILE *fp, const sweep_grid *g, const sweep_opts *o,
-                       const char *afv, const char *dir)
+                       const char *afv)
 {
   char id[16], cmd[4 * PATH_MAX];
   long j;
+  (void)o;
   for (j = 0; j < g->njobs; j++) {
     job_id(id, j, g->njobs);
-    job_command(cmd, sizeof cmd, o, afv, dir, id);
+    job_command(cmd, sizeof cmd, afv, id);
     fprintf(fp, "%s\n", cmd);
   }
 }
 
+/* The analysis arguments of every job: --steady-from and --lag as given
+** (afv analyze's defaults where not). */
+static void write_analysis(FILE *fp, const sweep_grid *g,
+                           const sweep_opts *o, const char *afv)
+{
+  (void)g; (void)afv;
+  if (o->steady_from) fprintf(fp, "--steady-from %s ", o->steady_from);
+  if (o->lag) fprintf(fp, "--lag %s", o->lag);
+  fputs("\n", fp);
+}
+
 static void write_makefile(FILE *fp, const sweep_grid *g, const sweep_opts *o,
-                           const char *afv, const char *dir)
+                           const char *afv)
 {
   char id[16], cmd[4 * PATH_MAX];
   long j;
-  fprintf(fp, "# afv sweep: %ld jobs.  make -C %s -j N runs them, N at a "
-          "time.\n# A job is done when runs/ID/analysis/summary.txt exists; "
-          "make run again\n# (after a crash, a kill, or a change of "
-          "machine) does what is missing.\n# --keep-going: a failed job "
-          "(see logs/ID.log) does not stop the others;\n# afv collect lists "
-          "it in missing.txt.\nMAKEFLAGS += --keep-going\n\n.PHONY: all\n"
-          "all:", g->njobs, dir);
+  (void)o;
+  fprintf(fp, "# afv sweep: %ld jobs.  make -C DIR -j N runs them, N at a "
+          "time.\n# A job is done when runs/ID/analysis/summary.txt exists "
+          "and is newer\n# than analysis.txt (afv sweep --reanalyze "
+          "rewrites it); make run again\n# (after a crash, a kill, or a "
+          "change of machine) does what is missing.\n# --keep-going: a "
+          "failed job (see logs/ID.log) does not stop the others;\n# afv "
+          "collect lists it in missing.txt.\nMAKEFLAGS += --keep-going\n\n"
+          ".PHONY: all\nall:", g->njobs);
   for (j = 0; j < g->njobs; j++) {
     job_id(id, j, g->njobs);
     fprintf(fp, " \\\n  runs/%s/analysis/summary.txt", id);
@@ -463,66 +601,137 @@ static void write_makefile(FILE *fp, const sweep_grid *g, const sweep_opts *o,
   fputs("\n", fp);
   for (j = 0; j < g->njobs; j++) {
     job_id(id, j, g->njobs);
-    job_command(cmd, sizeof cmd, o, afv, dir, id);
-    fprintf(fp, "\nruns/%s/analysis/summary.txt:\n\t%s\n", id, cmd);
+    job_command(cmd, sizeof cmd, afv, id);
+    fprintf(fp, "\nruns/%s/analysis/summary.txt: analysis.txt\n\t%s\n", id,
+            cmd);
   }
 }
 
+/* ---- SLURM ------------------------------------------------------------------ */
+/* Cost of one cell-step of afv run on one core, and of the relaxation
+** before it in steps, both measured with afv run --N 400 (cluster start)
+** on the 2-core development machine under load: 0.35 us per cell-step
+** (5000 -> 20000 steps: +2.1 s of CPU), relaxation 5 s (about 15000
+** steps).  The estimate of --time is three times the cost of a task's
+** jobs plus 10 minutes: slower cores, the analysis, start-up. */
+#define CELL_STEP_SECONDS 0.35e-6
+#define RELAX_STEPS 15000.0
+#define TIME_FACTOR 3.0
+#define TIME_EXTRA_SECONDS 600.0
+
+/* --time for one array task from its jobs' cost (whole minutes, H:MM:00
+** or D-HH:MM:00); the estimate in seconds. */
+static double estimate_time(const sweep_grid *g, const sweep_opts *o,
+                            char *text, size_t len)
+{
+  double job = CELL_STEP_SECONDS * g->max_cells * (g->max_steps + RELAX_STEPS);
+  double sec = TIME_FACTOR * job * (double)o->per_task + TIME_EXTRA_SECONDS;
+  long min = (long)ceil(sec / 60), d = min / 1440;
+  if (d > 365) min = 365 * 1440, d = 365;
+  if (d) snprintf(text, len, "%ld-%02ld:%02ld:00", d, min % 1440 / 60, min % 60);
+  else snprintf(text, len, "%ld:%02ld:00", min / 60, min % 60);
+  return sec;
+}
+
 static void write_slurm(FILE *fp, const sweep_grid *g, const sweep_opts *o,
-                        const char *afv, const char *dir)
+                        const char *afv)
 {
   long tasks = (g->njobs + o->per_task - 1) / o->per_task;
+  long arrays = (tasks + o->array_max - 1) / o->array_max;
+  char est[32];
   (void)afv;
+  estimate_time(g, o, est, sizeof est);
   fprintf(fp, "#!/bin/sh\n"
-          "# afv sweep as a SLURM job array: %ld jobs of %s/jobs.txt, %ld per "
-          "task\n# (afv sweep --per-task K), %ld array tasks.  Submit with\n"
-          "#   sbatch %s/slurm.sh\n"
-          "# Task T runs lines T*%ld+1 .. T*%ld+%ld of jobs.txt, one after "
-          "the other.\n# Every job is idempotent: submit again (or use make "
-          "or parallel) to finish\n# what a crash, a time limit or a "
-          "scancel left.\n#\n"
-          "# Resources, per array task (one job at a time, one core): edit "
-          "the lines\n# below or override them on the command line, where "
-          "sbatch options win,\n# e.g.  sbatch --time=2:00:00 "
-          "--partition=short --array=0-9%%4 %s/slurm.sh\n"
-          "# (%%4: at most 4 tasks at once).  --time must cover %ld job(s); "
-          "afv runs\n# about 5000 steps/s of 400 cells on one core.\n"
-          "#SBATCH --job-name=afv-sweep\n"
-          "#SBATCH --array=0-%ld\n"
-          "#SBATCH --ntasks=1\n"
-          "#SBATCH --cpus-per-task=1\n"
-          "#SBATCH --time=24:00:00\n"
-          "#SBATCH --output=%s/logs/slurm-%%A_%%a.out\n"
+          "# afv sweep on SLURM: %ld jobs (jobs.txt), %ld per array task, "
+          "%ld tasks\n# in %ld job array(s) of at most %ld tasks (afv sweep "
+          "--per-task, --array-max).\n#\n"
+          "# Submit from any directory (a login node of the cluster that "
+          "shares this\n# folder):\n"
+          "#   sh PATH/TO/SWEEP/slurm.sh [SBATCH OPTIONS]\n"
+          "# submits the arrays with sbatch --chdir set to this folder "
+          "(every path of\n# a job is relative to it) and passes SBATCH "
+          "OPTIONS on to each sbatch,\n# where they win over the #SBATCH "
+          "lines below (e.g. --qos=short, or\n# --array=0-9%%4 to test ten "
+          "tasks, at most four at once).  Task T of the\n# array that "
+          "starts at task F runs lines (F+T)*%ld+1 .. (F+T+1)*%ld of\n"
+          "# jobs.txt, one after the other.  Every job is idempotent: "
+          "submit again (or\n# use make or parallel) to finish what a "
+          "crash, a time limit or a scancel\n# left.\n#\n"
+          "# Resources per array task (one core, one job at a time): afv "
+          "sweep --time,\n# --mem, --account and --partition set them.  "
+          "--time is %s\n",
+          g->njobs, o->per_task, tasks, arrays, o->array_max, o->per_task,
+          o->per_task, o->time ? "as given." : "estimated:");
+  if (!o->time)
+    fprintf(fp, "# 3 x (%.3g cells x (%.0f steps + %.0f of relaxation) x "
+            "%.2g s per cell-step\n# x %ld job(s)) + 10 min.\n",
+            g->max_cells, g->max_steps, RELAX_STEPS, CELL_STEP_SECONDS,
+            o->per_task);
+  fprintf(fp, "#SBATCH --job-name=afv-sweep\n#SBATCH --ntasks=1\n"
+          "#SBATCH --cpus-per-task=1\n#SBATCH --time=%s\n",
+          o->time ? o->time : est);
+  if (o->mem) fprintf(fp, "#SBATCH --mem=%s\n", o->mem);
+  if (o->account) fprintf(fp, "#SBATCH --account=%s\n", o->account);
+  if (o->partition) fprintf(fp, "#SBATCH --partition=%s\n", o->partition);
+  fprintf(fp, "#SBATCH --output=logs/slurm-%%A_%%a.out\n"
           "set -u\n"
-          "per_task=%ld\n"
-          "jobs=%s/jobs.txt\n"
-          "task=${SLURM_ARRAY_TASK_ID:?submit with sbatch: this is a job "
-          "array}\n"
+          "tasks=%ld\nper_task=%ld\narray_max=%ld\n"
+          "if [ -z \"${SLURM_JOB_ID:-}\" ]; then\n"
+          "  # the submitter: one sbatch per array of at most array_max "
+          "tasks\n"
+          "  dir=$(cd \"$(dirname \"$0\")\" && pwd) || exit 2\n"
+          "  first=0\n"
+          "  while [ \"$first\" -lt \"$tasks\" ]; do\n"
+          "    n=$((tasks - first))\n"
+          "    if [ \"$n\" -gt \"$array_max\" ]; then n=$array_max; fi\n"
+          "    sbatch --chdir=\"$dir\" --array=0-$((n - 1)) "
+          "--export=ALL,AFV_TASK_OFFSET=\"$first\" \\\n"
+          "      \"$@\" \"$dir/slurm.sh\" || exit 1\n"
+          "    first=$((first + n))\n"
+          "  done\n"
+          "  exit 0\n"
+          "fi\n"
+          "if [ -z \"${SLURM_ARRAY_TASK_ID:-}\" ] || [ ! -f jobs.txt ]; then\n"
+          "  echo \"slurm.sh: submit it with sh PATH/TO/SWEEP/slurm.sh (not "
+          "sbatch): it submits the job arrays\" >&2\n"
+          "  exit 2\n"
+          "fi\n"
+          "task=$((${AFV_TASK_OFFSET:-0} + SLURM_ARRAY_TASK_ID))\n"
           "export OMP_NUM_THREADS=${SLURM_CPUS_PER_TASK:-1}\n"
           "status=0\n"
           "line=$((task * per_task + 1))\n"
           "last=$((line + per_task - 1))\n"
           "while [ \"$line\" -le \"$last\" ]; do\n"
-          "  job=$(sed -n \"${line}p\" \"$jobs\")\n"
+          "  job=$(sed -n \"${line}p\" jobs.txt)\n"
           "  if [ -n \"$job\" ]; then sh -c \"$job\" || status=1; fi\n"
           "  line=$((line + 1))\n"
           "done\n"
-          "exit $status\n",
-          g->njobs, dir, o->per_task, tasks, dir, o->per_task, o->per_task,
-          o->per_task, dir, o->per_task, tasks - 1, dir, o->per_task, dir);
+          "exit $status\n", tasks, o->per_task, o->array_max);
 }
 
-/* ---- afv sweep ------------------------------------------------------------- */
-/* Checks every job's whole configuration (as afv run does) before any file
-** is written; 0 on the first bad one (message names its values). */
-static int check_jobs(const sweep_grid *g, const sweep_opts *o)
+/* ---- checks before anything is created ------------------------------------- */
+/* At most this many jobs have their start built and its forces checked
+** (the relaxation's first step, as afv run does): every value of every
+** key among them when there are fewer values. */
+#define START_CHECKS 256
+
+/* Checks the start of a spread of jobs that holds every value of every
+** axis (or START_CHECKS of them, evenly spread); 0 on the first bad one
+** (the message names its values).  Every job's keys together are checked
+** when its file is written. */
+static int check_starts(const sweep_grid *g)
 {
   const char *names[SWEEP_MAX_KEYS + 1], *values[SWEEP_MAX_KEYS + 1];
   char err[2 * RUN_PATH_MAX];
-  long j;
+  long most = 1, c, n;
   int k;
-  (void)o;
-  for (j = 0; j < g->njobs; j++) {
+  for (k = 0; k < g->nax; k++)
+    if (g->ax[k]->n > most) most = g->ax[k]->n;
+  n = most < START_CHECKS ? most : START_CHECKS;
+  for (c = 0; c < n; c++) {
+    long v = c * most / n, j = 0;
+    /* job with value v mod n_k on every axis k (first axis slowest) */
+    for (k = 0; k < g->nax; k++) j = j * g->ax[k]->n + v % g->ax[k]->n;
     job_values(g, j, names, values);
     if (!run_config_write(NULL, g->nax, names, values, err, sizeof err)) {
       fprintf(stderr, "afv sweep: job");
@@ -535,8 +744,149 @@ static int check_jobs(const sweep_grid *g, const sweep_opts *o)
   return 1;
 }
 
-/* mkdir -p path. */
-static int make_dirs(const char *path)
+/* The analysis (--steady-from from, --lag lag if lag_given) fits a run of
+** steps steps of dt with a frame every `every` steps (frames at steps 0,
+** every, 2 every, ... <= steps, at t = step dt, as afv analyze reads
+** them): the steady window holds 2 frames, the lag lies within it and is
+** no shorter than a frame interval.  0 with the reason in err. */
+static int analysis_fits(double steps, double dt, double every, double from,
+                         double lag, int lag_given, char *err, size_t errlen)
+{
+  double last, first;
+  if (!(every > 0)) {
+    afv_errorf(err, errlen, "frame_every %g: the run writes no trajectory to "
+               "analyze", every);
+    return 0;
+  }
+  last = floor(steps / every) * every * dt;
+  /* the first frame at t >= from: step k every, k from its estimate up */
+  first = fmax(0, floor(from / (every * dt)) - 1);
+  while (first * every * dt < from) first++;
+  first *= every * dt;
+  if (!(first < last)) {
+    afv_errorf(err, errlen, "--steady-from %g: the run ends at t = %g (steps "
+               "%.0f, dt %g, a frame every %.0f steps): the steady window "
+               "needs 2 frames or more", from, last, steps, dt, every);
+    return 0;
+  }
+  if (lag_given && (lag > (last - first) * (1 + 1e-9)
+                    || lag < 0.5 * every * dt)) {
+    afv_errorf(err, errlen, "--lag %g: the steady window t = %g .. %g (steps "
+               "%.0f, dt %g, a frame every %.0f steps) holds lags %g .. %g "
+               "only", lag, first, last, steps, dt, every, every * dt,
+               last - first);
+    return 0;
+  }
+  return 1;
+}
+
+/* The value of key for job j: its axis value if the key is swept or
+** fixed, else def. */
+static double job_number(const sweep_grid *g, long j, const char *key,
+                         double def)
+{
+  const char *names[SWEEP_MAX_KEYS + 1], *values[SWEEP_MAX_KEYS + 1];
+  double v;
+  int k;
+  job_values(g, j, names, values);
+  for (k = 0; k < g->nax; k++)
+    if (!strcmp(names[k], key)) return whole_double(values[k], &v) ? v : def;
+  return def;
+}
+
+/* Reads steps, dt, frame_every and N of a job file into v[0..3]. */
+static int job_file_numbers(const char *path, double *v)
+{
+  static const char *key[] = {"steps", "dt", "frame_every", "N"};
+  int k;
+  for (k = 0; k < 4; k++)
+    if (run_param(path, key[k], &v[k]) != 1) return 0;
+  return 1;
+}
+
+/* Every job's analysis fits its run (analysis_fits); the largest N and
+** steps into g (for the SLURM time).  dir/jobs/ID.conf of the first job
+** gives the keys not given. */
+static int check_analysis(sweep_grid *g, const sweep_opts *o, const char *dir)
+{
+  char path[PATH_MAX + 64], id[16], err[1024];
+  double d[4], from = 0, lag = 0;
+  long j;
+  job_id(id, 0, g->njobs);
+  snprintf(path, sizeof path, "%s/jobs/%s.conf", dir, id);
+  if (!job_file_numbers(path, d))
+    return !fprintf(stderr, "afv sweep: %s: cannot read steps, dt, "
+                    "frame_every, N\n", path);
+  if (o->steady_from) whole_double(o->steady_from, &from);
+  if (o->lag) whole_double(o->lag, &lag);
+  for (j = 0; j < g->njobs; j++) {
+    double steps = job_number(g, j, "steps", d[0]);
+    double n = job_number(g, j, "N", d[3]);
+    if (steps > g->max_steps) g->max_steps = steps;
+    if (n > g->max_cells) g->max_cells = n;
+    if (!analysis_fits(steps, job_number(g, j, "dt", d[1]),
+                       job_number(g, j, "frame_every", d[2]), from, lag,
+                       o->lag != NULL, err, sizeof err)) {
+      job_id(id, j, g->njobs);
+      return !fprintf(stderr, "afv sweep: %s (job %s)\n", err, id);
+    }
+  }
+  return 1;
+}
+
+/* ---- the sweep's folder ------------------------------------------------------ */
+/* The absolute path out will have, without creating anything: the real
+** path of its deepest existing ancestor and the rest; 0 (message printed)
+** if out exists, its ancestor is not a folder, or the rest holds "." or
+** "..". */
+static int future_path(const char *out, char *abs)
+{
+  char head[PATH_MAX], real[PATH_MAX];
+  const char *rest;
+  struct stat sb;
+  size_t m = strlen(out);
+  if (m == 0 || m >= PATH_MAX - 64) return !bad_input("sweep: --out: empty "
+                                                      "or too long");
+  if (stat(out, &sb) == 0)
+    return !fprintf(stderr, "afv sweep: %s exists: choose a new --out (to "
+                    "finish a sweep, run its runner again)\n", out);
+  snprintf(head, sizeof head, "%s", out);
+  while (m > 1 && head[m - 1] == '/') head[--m] = 0;
+  for (;;) {
+    char *slash = strrchr(head, '/');
+    if (!slash) { snprintf(head, sizeof head, "."); break; }
+    if (slash == head) { head[1] = 0; break; }
+    *slash = 0;
+    if (stat(head, &sb) == 0) break;
+  }
+  if (stat(head, &sb) != 0 || !S_ISDIR(sb.st_mode) || !realpath(head, real))
+    return !fprintf(stderr, "afv sweep: --out %s: %s is not a folder\n", out,
+                    head);
+  rest = !strcmp(head, ".") && out[0] != '.' ? out : out + strlen(head);
+  while (*rest == '/') rest++;
+  if (!strcmp(head, ".") && !strncmp(out, "./", 2)) rest = out + 2;
+  {
+    char r[PATH_MAX], *c;
+    snprintf(r, sizeof r, "/%s/", rest);
+    for (c = r; (c = strstr(c, "/.")) != NULL; c++)
+      if (c[2] == '/' || (c[2] == '.' && c[3] == '/'))
+        return !fprintf(stderr, "afv sweep: --out %s: '.' or '..' in the "
+                        "part of the path that does not exist yet\n", out);
+  }
+  if (strlen(real) + strlen(rest) + 2 > RUN_PATH_MAX - 64)
+    return !bad_input("sweep: --out: path too long");
+  strcpy(abs, real);
+  if (strcmp(real, "/")) strcat(abs, "/");
+  strcat(abs, rest);
+  m = strlen(abs);
+  while (m > 1 && abs[m - 1] == '/') abs[--m] = 0;
+  return 1;
+}
+
+/* mkdir -p path: the folders it created into made (at most max; the
+** count into *nmade, outermost first). */
+static int make_dirs(const char *path, char (*made)[PATH_MAX], int max,
+                     int *nmade)
 {
   char p[PATH_MAX];
   size_t k;
@@ -546,7 +896,9 @@ static int make_dirs(const char *path)
     {
       char c = p[k];
       p[k] = 0;
-      if (mkdir(p, 0777) != 0 && errno != EEXIST) {
+      if (mkdir(p, 0777) == 0 && *nmade < max)
+        snprintf(made[(*nmade)++], PATH_MAX, "%s", p);
+      else if (errno != EEXIST) {
         fprintf(stderr, "afv sweep: cannot create %s: %s\n", p,
                 strerror(errno));
         return 0;
@@ -556,30 +908,33 @@ static int make_dirs(const char *path)
   }
 }
 
-/* Creates DIR, DIR/jobs, DIR/runs, DIR/logs; the absolute DIR into abs. */
-static int make_sweep_dir(const char *out, char *abs)
+/* The files and folders a sweep holds when written (removed again if the
+** sweep cannot be written whole). */
+static const char *sweep_files[] = {"points.csv", "jobs.txt", "analysis.txt",
+                                    "Makefile", "slurm.sh"};
+static const char *sweep_dirs[] = {"jobs", "runs", "logs"};
+#define N_OF(a) ((int)(sizeof a / sizeof a[0]))
+
+/* Removes what a sweep being written in dir holds, then dir. */
+static void remove_partial(const char *dir, long njobs)
 {
-  static const char *sub[] = {"jobs", "runs", "logs"};
-  char p[PATH_MAX + 16];
-  struct stat sb;
+  char path[PATH_MAX + 64], id[16];
+  long j;
   int k;
-  if (stat(out, &sb) == 0) {
-    fprintf(stderr, "afv sweep: %s exists: choose a new --out (to finish a "
-            "sweep, run its runner again)\n", out);
-    return 0;
+  for (j = 0; j < njobs; j++) {
+    job_id(id, j, njobs);
+    snprintf(path, sizeof path, "%s/jobs/%s.conf", dir, id);
+    unlink(path);
   }
-  if (!make_dirs(out) || !realpath(out, abs)) {
-    fprintf(stderr, "afv sweep: cannot create %s\n", out);
-    return 0;
+  for (k = 0; k < N_OF(sweep_files); k++) {
+    snprintf(path, sizeof path, "%s/%s", dir, sweep_files[k]);
+    unlink(path);
   }
-  for (k = 0; k < 3; k++) {
-    snprintf(p, sizeof p, "%s/%s", abs, sub[k]);
-    if (mkdir(p, 0777) != 0) {
-      fprintf(stderr, "afv sweep: cannot create %s: %s\n", p, strerror(errno));
-      return 0;
-    }
+  for (k = 0; k < N_OF(sweep_dirs); k++) {
+    snprintf(path, sizeof path, "%s/%s", dir, sweep_dirs[k]);
+    rmdir(path);
   }
-  return 1;
+  rmdir(dir);
 }
 
 static int write_job_configs(const sweep_grid *g, const char *dir)
@@ -587,16 +942,52 @@ static int write_job_configs(const sweep_grid *g, const char *dir)
   const char *names[SWEEP_MAX_KEYS + 1], *values[SWEEP_MAX_KEYS + 1];
   char path[PATH_MAX + 64], id[16], err[2 * RUN_PATH_MAX];
   long j;
+  int k;
   for (j = 0; j < g->njobs; j++) {
     job_values(g, j, names, values);
     job_id(id, j, g->njobs);
     snprintf(path, sizeof path, "%s/jobs/%s.conf", dir, id);
     if (!run_config_write(path, g->nax, names, values, err, sizeof err)) {
-      fprintf(stderr, "afv sweep: %s\n", err);
+      fprintf(stderr, "afv sweep: job %s (", id);
+      for (k = 0; k < g->nax; k++)
+        fprintf(stderr, "%s%s=%s", k ? " " : "", names[k], values[k]);
+      fprintf(stderr, "): %s\n", err);
       return 0;
     }
   }
   return 1;
+}
+
+/* Writes the sweep into tmp (a new folder beside dir), checks every job's
+** keys and analysis on the way, then renames tmp to dir: a sweep is there
+** whole or not at all. */
+static int write_sweep(sweep_grid *g, const sweep_opts *o, const char *afv,
+                       const char *dir)
+{
+  char tmp[RUN_PATH_MAX], p[RUN_PATH_MAX + 16];
+  int k, ok;
+  snprintf(tmp, sizeof tmp, "%.*s.writing-%ld", RUN_PATH_MAX - 64, dir,
+           (long)getpid());
+  if (mkdir(tmp, 0777) != 0)
+    return !fprintf(stderr, "afv sweep: cannot create %s: %s\n", tmp,
+                    strerror(errno));
+  for (k = 0, ok = 1; ok && k < N_OF(sweep_dirs); k++) {
+    snprintf(p, sizeof p, "%s/%s", tmp, sweep_dirs[k]);
+    if (mkdir(p, 0777) != 0)
+      ok = !fprintf(stderr, "afv sweep: cannot create %s: %s\n", p,
+                    strerror(errno));
+  }
+  ok = ok && write_job_configs(g, tmp) && check_analysis(g, o, tmp)
+       && write_file(tmp, "points.csv", write_points, g, o, afv)
+       && write_file(tmp, "jobs.txt", write_jobs, g, o, afv)
+       && write_file(tmp, "analysis.txt", write_analysis, g, o, afv)
+       && write_file(tmp, "Makefile", write_makefile, g, o, afv)
+       && write_file(tmp, "slurm.sh", write_slurm, g, o, afv);
+  if (ok && rename(tmp, dir) != 0)
+    ok = !fprintf(stderr, "afv sweep: cannot rename %s to %s: %s\n", tmp, dir,
+                  strerror(errno));
+  if (!ok) remove_partial(tmp, g->njobs);
+  return ok;
 }
 
 /* Relative cells paths become absolute (the job files live elsewhere). */
@@ -619,31 +1010,98 @@ static int absolute_cells(sweep_opts *o, char *buf)
   return 1;
 }
 
+/* ---- afv sweep --reanalyze DIR ------------------------------------------------ */
+/* Checks the new analysis against every job of the sweep in dir (its
+** jobs/ID.conf, by the ids of points.csv), then rewrites dir/analysis.txt;
+** the runners then analyse every run again (make: summary.txt older than
+** analysis.txt), and rerun none. */
+static int reanalyze(const sweep_opts *o)
+{
+  char path[PATH_MAX + 64], line[4096], err[1024];
+  double d[4], from = 0, lag = 0;
+  long n = 0, lineno = 1;
+  FILE *fp;
+  struct stat sb;
+  snprintf(path, sizeof path, "%s/analysis.txt", o->reanalyze);
+  if (strlen(o->reanalyze) > PATH_MAX - 128 || stat(path, &sb) != 0)
+    return fprintf(stderr, "afv sweep: --reanalyze %s: no analysis.txt: not "
+                   "a sweep (or one written by an older afv sweep)\n",
+                   o->reanalyze), EXIT_BAD_INPUT;
+  if (o->steady_from) whole_double(o->steady_from, &from);
+  if (o->lag) whole_double(o->lag, &lag);
+  snprintf(path, sizeof path, "%s/points.csv", o->reanalyze);
+  if (stat(path, &sb) != 0 || !S_ISREG(sb.st_mode) || !(fp = fopen(path, "r")))
+    return fprintf(stderr, "afv sweep: %s: cannot read\n", path),
+           EXIT_BAD_INPUT;
+  fgets(line, sizeof line, fp);
+  while (fgets(line, sizeof line, fp)) {
+    char conf[PATH_MAX + 96];
+    size_t m = strcspn(line, ",\r\n");
+    lineno++;
+    line[m] = 0;
+    snprintf(conf, sizeof conf, "%s/jobs/%s.conf", o->reanalyze, line);
+    if (!m || strchr(line, '/') || !job_file_numbers(conf, d)) {
+      fclose(fp);
+      return fprintf(stderr, "afv sweep: %s:%ld: no job file %s with steps, "
+                     "dt, frame_every\n", path, lineno, conf), EXIT_BAD_INPUT;
+    }
+    if (!analysis_fits(d[0], d[1], d[2], from, lag, o->lag != NULL, err,
+                       sizeof err)) {
+      fclose(fp);
+      return fprintf(stderr, "afv sweep: %s (job %s)\n", err, line),
+             EXIT_BAD_INPUT;
+    }
+    n++;
+  }
+  fclose(fp);
+  if (!write_file(o->reanalyze, "analysis.txt", write_analysis, NULL, o, ""))
+    return EXIT_BAD_INPUT;
+  printf("%ld jobs of %s will be analysed with '%s%s%s%s' when their "
+         "runner runs again:\n  make -C %s -j 2   (or cd %s && parallel -j 2 "
+         "< jobs.txt, or sh %s/slurm.sh)\nthen: afv collect %s\n", n,
+         o->reanalyze, o->steady_from ? "--steady-from " : "",
+         o->steady_from ? o->steady_from : "", o->lag ? " --lag " : "",
+         o->lag ? o->lag : "", o->reanalyze, o->reanalyze, o->reanalyze,
+         o->reanalyze);
+  return 0;
+}
+
 int cmd_sweep(int argc, char **argv)
 {
   sweep_opts o;
   sweep_grid g;
-  char afv[PATH_MAX], dir[PATH_MAX];
-  int m = sweep_parse(argc, argv, &o), ok;
+  char afv[PATH_MAX], dir[PATH_MAX], made[16][PATH_MAX], est[32];
+  int m = sweep_parse(argc, argv, &o), ok, nmade = 0;
   if (m <= 0) {
     free_opts(&o);
     return m < 0 ? 0 : EXIT_BAD_INPUT;
   }
-  ok = grid_make(&g, &o) && absolute_cells(&o, dir) && check_jobs(&g, &o)
+  if (o.reanalyze) return reanalyze(&o);
+  ok = grid_make(&g, &o) && absolute_cells(&o, dir)
+       && future_path(o.out, dir) && plain_path("--out", dir)
+       && (strlen(dir) < RUN_PATH_MAX - 64 || !bad_input("sweep: --out: path "
+                                                          "too long"))
        && afv_program(o.afv, afv) && plain_path("--afv", afv)
-       && plain_path("--out", o.out)
-       && (strlen(o.out) < RUN_PATH_MAX - 64 || !bad_input("--out: path too long"));
-  /* everything is checked: only now is anything created */
-  if (ok) ok = make_sweep_dir(o.out, dir) && plain_path("--out", dir);
-  if (ok) ok = write_job_configs(&g, dir)
-               && write_file(dir, "points.csv", write_points, &g, &o, afv)
-               && write_file(dir, "jobs.txt", write_jobs, &g, &o, afv)
-               && write_file(dir, "Makefile", write_makefile, &g, &o, afv)
-               && write_file(dir, "slurm.sh", write_slurm, &g, &o, afv);
-  if (ok)
+       && check_starts(&g);
+  /* only now is anything created: the parents, then the sweep whole */
+  if (ok) {
+    char parent[PATH_MAX];
+    snprintf(parent, sizeof parent, "%s", dir);
+    *strrchr(parent, '/') = 0;
+    ok = make_dirs(parent[0] ? parent : "/", made, 16, &nmade)
+         && write_sweep(&g, &o, afv, dir);
+    while (!ok && nmade > 0) rmdir(made[--nmade]);
+  }
+  if (ok) {
+    double sec = estimate_time(&g, &o, est, sizeof est);
     printf("%ld jobs in %s; run them with one of\n  make -C %s -j 2\n  "
-           "parallel -j 2 < %s/jobs.txt\n  sbatch %s/slurm.sh\nthen: afv "
-           "collect %s\n", g.njobs, dir, dir, dir, dir, dir);
+           "cd %s && parallel -j 2 < jobs.txt\n  sh %s/slurm.sh   (SLURM: "
+           "%ld job array(s), --time %s per task%s)\nthen: afv collect %s\n",
+           g.njobs, dir, dir, dir, dir,
+           ((g.njobs + o.per_task - 1) / o.per_task + o.array_max - 1)
+           / o.array_max, o.time ? o.time : est, o.time ? ", as given"
+           : sec > 0 ? ", estimated" : "", dir);
+  }
   free(g.seeds.value);
   free_opts(&o);
   return ok ? 0 : EXIT_BAD_INPUT;

@@ -12,9 +12,10 @@
 #    needed), no accounting, daemons running as root;
 # 3. starts munged (authentication; unless one runs already), slurmctld
 #    (the controller) and slurmd (the node), and waits for the node;
-# 4. writes a small sweep (afv sweep, 2 jobs per array task), submits its
-#    slurm.sh with sbatch --wait, and collects it (afv collect: exit 0 only
-#    if every job finished);
+# 4. writes a small sweep (afv sweep, 2 jobs per array task, 1 task per
+#    array, an account and a partition), submits it from
+#    another directory with sh slurm.sh --wait (two arrays), and collects
+#    it (afv collect: exit 0 only if every job finished and was verified);
 # 5. stops the daemons it started, by their process ids, and removes the
 #    folder.
 # Exit status 0 if the sweep finished through SLURM.
@@ -105,12 +106,23 @@ if [ "$state" != idle ]; then
 fi
 echo "SLURM up: node $host, $cpus CPUs, partition local"
 
+# 4 jobs, 2 per array task, at most 1 task per array: slurm.sh submits two
+# arrays; the account and partition go into its #SBATCH lines (with no
+# accounting database SLURM takes any account name).
 "$afv" sweep --out "$work/sweep" --P0 4,8 --v0 0.5,2.6 --N 100 --steps 2000 \
   --frame_every 100 --svg_every 0 --steady-from 5 --lag 5 --per-task 2 \
+  --array-max 1 --account afvtest --partition local \
   > /dev/null
-grep '^#SBATCH --array' "$work/sweep/slurm.sh"
+grep '^#SBATCH' "$work/sweep/slurm.sh"
 start=$(date +%s)
-timeout 300 sbatch --wait --time=10:00 "$work/sweep/slurm.sh"
-echo "array job finished in $(( $(date +%s) - start )) s"
+# submitted from another directory: every path of a job is relative to the
+# sweep's folder (sbatch --chdir); --wait and --time pass through to sbatch
+(cd / && timeout 300 sh "$work/sweep/slurm.sh" --wait --time=10:00)
+echo "array jobs finished in $(( $(date +%s) - start )) s"
+arrays=$(ls "$work"/sweep/logs/slurm-*_0.out | wc -l)
+if [ "$arrays" != 2 ]; then
+  echo "slurm_local.sh: $arrays job arrays ran, want 2 (--array-max 1)" >&2
+  exit 1
+fi
 "$afv" collect "$work/sweep"
 cut -d, -f1-5,18- "$work/sweep/table.csv"

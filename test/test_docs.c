@@ -8,6 +8,8 @@
 **     the constants it quotes are the code's (AFV_MAX_SUBSTEPS, ...);
 **   - the defaults printed by eval's and analyze's --help agree with them;
 **   - the man page doc/afv.1 names every command and every option;
+**   - every function, constant, key, figure and file that README.md,
+**     doc/ (its .md files) and doc/afv.1 name exists in the tree;
 **   - the quench of the README and afv.h: v0 (or per-cell v0) changed
 **     between afv_sim_step calls continues as a run started with the new
 **     value from that state, and a model parameter changed between steps
@@ -604,6 +606,295 @@ static void test_parameter_change_needs_refresh(void)
   afv_sim_free(&fresh);
 }
 
+/* ---- every name in the docs exists in the tree -------------------------- */
+/* README.md, doc/ (its .md files) and doc/afv.1 name functions, constants,
+** keys and files; a rename leaves them behind.  Checked:
+**   - a `backticked` span of a .md file that is a C identifier with an
+**     underscore (a function, a constant, a key, a figure: afv_compute,
+**     AFV_CONTACT_TOL, relax_tol, fig2a_ngc_vs_v0; "()" after it allowed)
+**     occurs as a whole word in the tree's sources (.c, .h, scripts,
+**     Makefile, .ci/run);
+**   - a file named exists: a path into one of the tree's folders
+**     (`test/twins.c`, fuzz/fuzz_*.c: from the root or from doc/, by
+**     glob), ending in .c, .h, .md, .sh or .py; a bare name ending in .c,
+**     .h or .md (geom.c), anywhere in the tree.
+** Not checked: words without an underscore (`cap`, `euler`: too common),
+** paths into folders the tree does not have (a run's out/run/, an
+** install's include/afv.h), and examples: fenced (``` lines) or indented
+** code blocks, and backticked commands (spans with a space). */
+#include <dirent.h>
+#include <glob.h>
+#include <sys/stat.h>
+
+#define TREE_TEXT (8 << 20)
+
+typedef struct tree_text {
+  char *src;        /* the sources' text, concatenated */
+  size_t src_len;
+  char *paths;      /* "\n" + every file's path, one per line */
+  size_t paths_len;
+} tree_text;
+
+/* 1 if s ends with suffix. */
+static int ends_with(const char *s, const char *suffix)
+{
+  size_t n = strlen(s), m = strlen(suffix);
+  return n >= m && !strcmp(s + n - m, suffix);
+}
+
+static int is_source(const char *path)
+{
+  return ends_with(path, ".c") || ends_with(path, ".h")
+         || ends_with(path, ".sh") || ends_with(path, ".py")
+         || ends_with(path, "/Makefile") || ends_with(path, "/.ci/run");
+}
+
+/* Appends len bytes of text to buf (of capacity TREE_TEXT). */
+static void append(char *buf, size_t *at, const char *text, size_t len)
+{
+  if (*at + len + 1 >= TREE_TEXT) return;
+  memcpy(buf + *at, text, len);
+  *at += len;
+  buf[*at] = 0;
+}
+
+/* Every file under dir (a path from the root, "." for it) into T: its path,
+** and its text if a source.  Skips .git, build and output folders. */
+static void walk_tree(const char *dir, tree_text *T)
+{
+  static const char *const skip[] = {"./.git", "./fuzz/build", "./fuzz/corpus",
+                                     "./out", "./runs", "./paper"};
+  DIR *d = opendir(dir);
+  struct dirent *e;
+  size_t k;
+  for (k = 0; k < sizeof skip / sizeof skip[0]; k++)
+    if (!strcmp(dir, skip[k])) {
+      if (d) closedir(d);
+      return;
+    }
+  while (d && (e = readdir(d)) != NULL) {
+    char path[1024];
+    struct stat st;
+    if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+    snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+    if (stat(path, &st) != 0) continue;
+    if (S_ISDIR(st.st_mode)) {
+      walk_tree(path, T);
+      continue;
+    }
+    append(T->paths, &T->paths_len, path + 1, strlen(path + 1));  /* "/x" */
+    append(T->paths, &T->paths_len, "\n", 1);
+    if (is_source(path)) {
+      FILE *fp = fopen(path, "r");
+      size_t n;
+      if (!fp) continue;
+      n = fread(T->src + T->src_len, 1, TREE_TEXT - T->src_len - 2, fp);
+      T->src_len += n;
+      T->src[T->src_len++] = '\n';
+      T->src[T->src_len] = 0;
+      fclose(fp);
+    }
+  }
+  if (d) closedir(d);
+}
+
+static int word_char(int c)
+{
+  return c == '_' || (c >= '0' && c <= '9') || (c >= 'a' && c <= 'z')
+         || (c >= 'A' && c <= 'Z');
+}
+
+/* 1 if name occurs in text as a whole word (after a "\n" or "\t" of a
+** C string too). */
+static int has_word(const char *text, const char *name)
+{
+  size_t n = strlen(name);
+  const char *p = text;
+  while ((p = strstr(p, name)) != NULL) {
+    int escape = p - text >= 2 && p[-2] == '\\';
+    if ((p == text || escape || !word_char((unsigned char)p[-1]))
+        && !word_char((unsigned char)p[n]))
+      return 1;
+    p++;
+  }
+  return 0;
+}
+
+/* 1 if the file named exists: with a '/', as a path from the root or
+** from doc/ (glob patterns allowed); without, anywhere in the tree. */
+/* 1 if path starts with a folder of the tree (at the root or in doc/). */
+static int into_tree(const char *path)
+{
+  char dir[300];
+  const char *slash = strchr(path, '/');
+  struct stat st;
+  size_t n = slash ? (size_t)(slash - path) : 0;
+  if (n == 0 || n + 5 >= sizeof dir) return 0;
+  memcpy(dir, path, n);
+  dir[n] = 0;
+  if (stat(dir, &st) == 0 && S_ISDIR(st.st_mode)) return 1;
+  snprintf(dir, sizeof dir, "doc/%.*s", (int)n, path);
+  return stat(dir, &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+static int file_exists(const tree_text *T, const char *name)
+{
+  char pat[600];
+  const char *const base[] = {"", "doc/"};
+  size_t k;
+  if (!strchr(name, '/')) {
+    snprintf(pat, sizeof pat, "/%s\n", name);
+    return strstr(T->paths, pat) != NULL;
+  }
+  for (k = 0; k < 2; k++) {
+    glob_t g;
+    int found;
+    snprintf(pat, sizeof pat, "%s%s", base[k], name);
+    found = glob(pat, 0, NULL, &g) == 0 && g.gl_pathc > 0;
+    globfree(&g);
+    if (found) return 1;
+  }
+  return 0;
+}
+
+/* A C identifier with an underscore (after "()" is stripped). */
+static int is_identifier(const char *s)
+{
+  const char *p;
+  if (!word_char((unsigned char)*s) || (*s >= '0' && *s <= '9')) return 0;
+  for (p = s; *p; p++)
+    if (!word_char((unsigned char)*p)) return 0;
+  return strchr(s, '_') != NULL;
+}
+
+/* A file of the tree, by its name: see the header of this part. */
+static int is_file_name(const char *s)
+{
+  const char *base = strrchr(s, '/') ? strrchr(s, '/') + 1 : s;
+  if (strchr(s, ' ') || base[0] == '.') return 0;   /* ".md": no name */
+  if (strchr(s, '/'))
+    return into_tree(s) && (ends_with(s, ".c") || ends_with(s, ".h")
+                            || ends_with(s, ".md") || ends_with(s, ".sh")
+                            || ends_with(s, ".py"));
+  return ends_with(s, ".c") || ends_with(s, ".h") || ends_with(s, ".md");
+}
+
+/* Checks one name of doc (line) against the tree; counts what is missing. */
+static void check_name(const tree_text *T, const char *doc, int line,
+                       const char *name, int backticked, int *missing)
+{
+  if (is_file_name(name)) {
+    if (file_exists(T, name)) return;
+    CHECK(0, "%s:%d names the file %s, which is not in the tree", doc, line,
+          name);
+    (*missing)++;
+  } else if (backticked && is_identifier(name) && !has_word(T->src, name)) {
+    CHECK(0, "%s:%d names `%s`, which no source file holds", doc, line, name);
+    (*missing)++;
+  }
+}
+
+/* The words of a line that may be file names: runs of letters, digits and
+** _ . / * -, without a trailing '.' (a full stop); not inside a backticked
+** command (a span with a space). */
+static void check_bare_files(const tree_text *T, const char *doc, int line,
+                             const char *text, int *missing)
+{
+  const char *p = text;
+  int in_span = 0, command = 0;
+  while (*p) {
+    if (*p == '`') {
+      const char *end = strchr(p + 1, '`');
+      in_span = !in_span;
+      /* (a span left open runs on to the next line) */
+      command = in_span && (end ? memchr(p + 1, ' ', (size_t)(end - p - 1))
+                                  != NULL
+                                : strchr(p + 1, ' ') != NULL);
+      p++;
+      continue;
+    }
+    if (command) {
+      p++;
+      continue;
+    }
+    char w[256];
+    size_t n = 0;
+    while (*p && (word_char((unsigned char)*p) || strchr("./*-", *p))) {
+      if (n + 1 < sizeof w) w[n++] = *p;
+      p++;
+    }
+    while (n > 0 && w[n - 1] == '.') n--;
+    w[n] = 0;
+    if (n > 0 && strchr(w, '.')) check_name(T, doc, line, w, 0, missing);
+    if (*p) p++;
+  }
+}
+
+/* Every name of one document: backticked spans (.md) and file words. */
+static void check_document(const tree_text *T, const char *doc, char *text,
+                           int *names, int *missing)
+{
+  char *line = text, *next;
+  int number = 0, fenced = 0, md = ends_with(doc, ".md");
+  for (; line; line = next) {
+    char *tick;
+    next = strchr(line, '\n');
+    if (next) *next++ = 0;
+    number++;
+    if (md && !strncmp(line, "```", 3)) {
+      fenced = !fenced;
+      continue;
+    }
+    if (fenced || (md && !strncmp(line, "    ", 4))) continue;
+    check_bare_files(T, doc, number, line, missing);
+    for (tick = md ? strchr(line, '`') : NULL; tick; ) {
+      char *end = strchr(tick + 1, '`'), span[256];
+      size_t n;
+      if (!end) break;
+      n = (size_t)(end - tick - 1);
+      if (n < sizeof span) {
+        memcpy(span, tick + 1, n);
+        span[n] = 0;
+        if (n > 2 && !strcmp(span + n - 2, "()")) span[n - 2] = 0;
+        check_name(T, doc, number, span, 1, missing);
+        (*names)++;
+      }
+      tick = strchr(end + 1, '`');
+    }
+  }
+}
+
+static void test_doc_names_exist(void)
+{
+  tree_text T;
+  glob_t docs;
+  char *text = malloc(TEXT_MAX * 4);
+  size_t k;
+  int names = 0, missing = 0;
+  T.src = malloc(TREE_TEXT);
+  T.paths = malloc(TREE_TEXT);
+  T.src_len = T.paths_len = 0;
+  CHECK(text && T.src && T.paths, "out of memory");
+  if (!text || !T.src || !T.paths) goto out;
+  T.src[0] = 0;
+  append(T.paths, &T.paths_len, "\n", 1);
+  walk_tree(".", &T);
+  if (glob("doc/*.md", 0, NULL, &docs) != 0) docs.gl_pathc = 0;
+  for (k = 0; k < docs.gl_pathc + 2; k++) {
+    const char *doc = k == 0 ? "README.md" : k == 1 ? MAN_PAGE
+                    : docs.gl_pathv[k - 2];
+    read_text(doc, text, TEXT_MAX * 4);
+    CHECK(text[0], "%s: cannot read", doc);
+    check_document(&T, doc, text, &names, &missing);
+  }
+  if (docs.gl_pathc) globfree(&docs);
+  printf("  %d backticked names, %d missing\n", names, missing);
+out:
+  free(text);
+  free(T.src);
+  free(T.paths);
+}
+
 void suite_docs(void)
 {
   char cmd[96];
@@ -620,6 +911,7 @@ void suite_docs(void)
   RUN(test_quench_v0_between_steps);
   RUN(test_quench_per_cell_v0);
   RUN(test_parameter_change_needs_refresh);
+  RUN(test_doc_names_exist);
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);   /* mkdtemp's own dir */
   if (system(cmd) != 0) printf("  note: could not remove %s\n", tmp);
 }

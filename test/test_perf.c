@@ -453,10 +453,6 @@ static double max_diff(const double *a, const double *b, int n, int *nbits)
 ** near 2l. */
 static void test_candidates_change_nothing(void)
 {
-  if (AFV_REFERENCE_MODE) {   /* make REFERENCE=1 */
-    SKIP("reference build: no Verlet candidates to test");
-    return;
-  }
   afv_params p;
   afv_box b;
   afv_geom kept, fresh;
@@ -580,10 +576,6 @@ static void check_pairs(const double *r, int n, const afv_params *p,
 
 static void test_candidates_with_movers(void)
 {
-  if (AFV_REFERENCE_MODE) {   /* make REFERENCE=1 */
-    SKIP("reference build: no Verlet candidates to test");
-    return;
-  }
   afv_params p;
   afv_box b;
   int n = 1500, trial, skipped = 0, rebuilt = 0, bad;

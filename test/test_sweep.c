@@ -118,7 +118,8 @@ static void sweep_grid_ranges_and_lists(void)
   int n = 0;
   if (!have_afv()) return;
   CHECK(afv("sweep --out %s/g1 --P0 4:5:0.5 --v0 0.1:0.3:0.1 --seeds 2 "
-            "--steps 10 --Dr 0.2 --per-task 5") == 0, "sweep: %s", err_text);
+            "--steps 10 --frame_every 5 --Dr 0.2 --per-task 5") == 0,
+        "sweep: %s", err_text);
   read_rel("g1/points.csv", buf);
   {
     const char *head = "id,P0,v0,seed\n0001,4,0.1,1\n0002,4,0.1,2\n"
@@ -145,9 +146,9 @@ static void sweep_grid_ranges_and_lists(void)
   }
   CHECK(n == 18, "%d job lines read", n);
   read_rel("g1/slurm.sh", buf);
-  CHECK(strstr(buf, "#SBATCH --array=0-3\n") && strstr(buf, "per_task=5\n"),
-        "slurm.sh: 18 jobs, 5 per task: want array 0-3");
-  CHECK(afv("sweep --out %s/g2 --P0 4:8.8:0.2 --seed 7,9") == 0, "%s",
+  CHECK(strstr(buf, "\ntasks=4\n") && strstr(buf, "per_task=5\n"),
+        "slurm.sh: 18 jobs, 5 per task: want 4 tasks");
+  CHECK(afv("sweep --out %s/g2 --P0 4:8.8:0.2 --seed 7,9 --N 30") == 0, "%s",
         err_text);
   read_rel("g2/points.csv", buf);
   CHECK(count_lines(buf) == 1 + 25 * 2 && strstr(buf, ",8.8,9\n")
@@ -165,6 +166,22 @@ static void sweep_bad_values(void)
     "--N 0", "--N 50,0", "--bogus 1", "--box square", "--steps 1.5",
     "--seeds 0", "--seeds 2 --seed 1,2", "--P0 4 --P0 5", "--lag 0",
     "--seed -1", "--phi 0,0.5", "--P0", "--KA 1,1e300",
+    /* repeated state points (issue 31): as text, as numbers, at the 10
+    ** digits of a range */
+    "--seed 1,1", "--seed 1,01", "--P0 4,4.0,4.00",
+    "--P0 4:4.000000001:1e-10",
+    /* a newline or a space in a value would split jobs.txt */
+    "--P0 '\n4'", "--v0 ' 0.5'", "--v0 0.5,'1 '",
+    /* an analysis the runs cannot give (issue 30): a window past the end,
+    ** a lag longer than the window or shorter than a frame, no frames */
+    "--steps 2000 --steady-from 1000 --lag 5000",
+    "--steps 2000 --frame_every 100 --lag 50",
+    "--steps 2000 --frame_every 100 --lag 0.2",
+    "--steps 2000 --frame_every 100 --P0 4,8 --steps 1000,100 "
+    "--steady-from 0.5",
+    "--frame_every 0",
+    /* SLURM resources */
+    "--account 'a b'", "--mem 4X", "--time abc", "--array-max 0",
   };
   char args[256];
   int k;
@@ -176,20 +193,144 @@ static void sweep_bad_values(void)
           "'%s': stderr not one line: %s", bad[k], err_text);
     CHECK(!exists("bad"), "'%s': DIR created", bad[k]);
   }
+  CHECK(system("ls -d /tmp/afv_sweep_test_*/bad* >/dev/null 2>&1") != 0,
+        "a refused sweep left a folder");
+  /* a path the runners cannot use is refused before any folder exists */
+  CHECK(afv("sweep --out '%s/x y/s' --P0 4") == 2 && !exists("x y")
+        && count_lines(err_text) == 1, "a path with a space: %s", err_text);
   CHECK(afv("sweep --P0 4") == 2 && strstr(err_text, "--out"),
         "no --out: %s", err_text);
   CHECK(afv("sweep --out %s/g1 --P0 4") == 2 || exists("g1"), "existing DIR");
 }
 
-/* ---- collect ------------------------------------------------------------------ */
-/* A summary.txt as afv analyze writes it, with the values collect reads. */
-static void fake_summary(const char *id, double ngc, double ncl, double om,
-                         double deff, double tau, double t1, double beta)
+/* A stand-in for sbatch in DIR/bin: records its arguments in
+** bin/sbatch.log, then runs the array's tasks one after the other in
+** --chdir with the environment SLURM gives them. */
+static void fake_sbatch(void)
 {
-  char rel[128], text[1024], cmd[256];
-  snprintf(cmd, sizeof cmd, "mkdir -p %s/c/runs/%s/analysis", base, id);
+  write_rel("bin/sbatch", "#!/bin/sh\n"
+            "echo \"$*\" >> \"$(dirname \"$0\")/sbatch.log\"\n"
+            "for a in \"$@\"; do\n"
+            "  case $a in\n"
+            "    --chdir=*) dir=${a#--chdir=} ;;\n"
+            "    --array=0-*) last=${a#--array=0-} ;;\n"
+            "    --export=ALL,AFV_TASK_OFFSET=*) "
+            "off=${a#--export=ALL,AFV_TASK_OFFSET=} ;;\n"
+            "  esac\n"
+            "  script=$a\n"
+            "done\n"
+            "t=0\n"
+            "while [ \"$t\" -le \"$last\" ]; do\n"
+            "  (cd \"$dir\" && SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=$t "
+            "AFV_TASK_OFFSET=$off sh \"$script\") || exit 1\n"
+            "  t=$((t + 1))\n"
+            "done\n");
+  shell("chmod +x %s/bin/sbatch%.0s", base);
+}
+
+/* slurm.sh (issue 30): submitted from another directory, it splits the
+** tasks into arrays of at most --array-max, passes sbatch options on,
+** runs the jobs in the sweep's folder (paths relative to it) and holds
+** the resources given; without --time it holds and prints an estimate.
+** Then a new analysis of the finished sweep (--reanalyze): checked
+** against the runs, nothing rerun, collect flags the old summaries, make
+** analyses again and collect tables the new analysis. */
+static void sweep_slurm_and_reanalyze(void)
+{
+  static char buf[TEXT_MAX], log[TEXT_MAX], runlog[TEXT_MAX];
+  char cmd[512];
+  if (!have_afv()) return;
+  shell("mkdir -p %s/bin%.0s", base);
+  fake_sbatch();
+  CHECK(afv("sweep --out %s/sl --P0 4,8 --seeds 3 --N 10 --steps 20 "
+            "--frame_every 10 --svg_every 0 --steady-from 0 --lag 0.1 "
+            "--per-task 2 --array-max 2 --account acc --partition part "
+            "--mem 500M --time 0:05:00") == 0, "%s", err_text);
+  read_rel("sl/slurm.sh", buf);
+  CHECK(strstr(buf, "#SBATCH --account=acc\n")
+        && strstr(buf, "#SBATCH --partition=part\n")
+        && strstr(buf, "#SBATCH --mem=500M\n")
+        && strstr(buf, "#SBATCH --time=0:05:00\n"), "resources:\n%s", buf);
+  snprintf(cmd, sizeof cmd, "cd / && PATH=%s/bin:$PATH sh %s/sl/slurm.sh "
+           "--qos=test >/dev/null", base, base);
   CHECK(system(cmd) == 0, "%s failed", cmd);
-  snprintf(text, sizeof text, "# afv analyze: fake\ncells 400\n"
+  read_rel("bin/sbatch.log", log);
+  CHECK(count_lines(log) == 2 && strstr(log, "--array=0-1 "
+        "--export=ALL,AFV_TASK_OFFSET=0 --qos=test")
+        && strstr(log, "--array=0-0 --export=ALL,AFV_TASK_OFFSET=2 "
+        "--qos=test"), "6 jobs, 2 per task, arrays of 2 tasks: want arrays "
+        "0-1 and 0-0 (offset 2):\n%s", log);
+  CHECK(afv("collect %s/sl") == 0, "the jobs through slurm.sh: %s",
+        err_text);
+  read_rel("sl/runs/0006/log.txt", runlog);
+  /* without --time: an estimate, printed and in slurm.sh */
+  CHECK(afv("sweep --out %s/sl2 --N 400 --steps 100000") == 0, "%s",
+        err_text);
+  read_rel("stdout", buf);
+  CHECK(strstr(buf, "--time 0:") && strstr(buf, "estimated"), "no estimate "
+        "printed:\n%s", buf);
+  read_rel("sl2/slurm.sh", buf);
+  CHECK(strstr(buf, "--time is estimated") && strstr(buf, "400 cells x "
+        "(100000 steps"), "slurm.sh without the estimate:\n%.2000s", buf);
+  /* a new analysis: refused if the runs cannot give it, nothing changed */
+  read_rel("sl/analysis.txt", buf);
+  CHECK(afv("sweep --reanalyze %s/sl --steady-from 0.15") == 2
+        && count_lines(err_text) == 1 && strstr(err_text, "--steady-from"),
+        "a window of one frame: %s", err_text);
+  CHECK(!strcmp(read_rel("sl/analysis.txt", log), buf), "a refused "
+        "--reanalyze changed analysis.txt");
+  CHECK(afv("sweep --reanalyze %s/sl --steady-from 0.1") == 0, "%s",
+        err_text);
+  CHECK(afv("collect %s/sl") == 1 && strstr(err_text, "analysed before "
+        "analysis.txt"), "old analyses tabled after --reanalyze: %s",
+        err_text);
+  shell("make -s -C %s/sl >/dev/null 2>&1%.0s", base);
+  CHECK(afv("collect %s/sl") == 0, "after the new analysis: %s", err_text);
+  read_rel("sl/runs/0001/analysis/summary.txt", buf);
+  CHECK(strstr(buf, "\nsteady_from 0.1\n") != NULL, "not the new window:\n%s",
+        buf);
+  CHECK(!strcmp(read_rel("sl/runs/0006/log.txt", buf), runlog),
+        "the new analysis ran a simulation again");
+}
+
+/* A sweep of cells files: each run records its copy (cells.txt) in
+** params.txt, and collect verifies it against the file the sweep names. */
+static void sweep_of_cells_files(void)
+{
+  if (!have_afv()) return;
+  write_rel("five.txt", "# x y\n1 1\n3 1\n1 3\n3 3\n5 5\n");
+  write_rel("four.txt", "# x y\n1 1\n3 1\n1 3\n3 3\n");
+  CHECK(afv("sweep --out %s/cf --cells %s/five.txt,%s/four.txt --box open "
+            "--steps 20 --frame_every 10 --svg_every 0 --quiet 1") == 0, "%s",
+        err_text);
+  shell("make -s -C %s/cf >/dev/null 2>&1%.0s", base);
+  CHECK(afv("collect %s/cf") == 0, "a sweep of cells files: %s", err_text);
+}
+
+/* ---- collect ------------------------------------------------------------------ */
+/* A finished run of 10 cells and 20 steps (3 frames) in c/template: the
+** run of every fake job. */
+static void template_run(void)
+{
+  CHECK(afv("run --out %s/c/template --N 10 --steps 20 --frame_every 10 "
+            "--svg_every 0 --quiet") == 0, "template run: %s", err_text);
+}
+
+/* Job id of sweep c: the template run with P0, v0 and seed set in its
+** params.txt, and a summary.txt as afv analyze writes it, with the
+** values collect reads (of 3 frames, the whole run). */
+static void fake_job(const char *id, const char *p0, const char *v0,
+                     const char *seed, double ngc, double ncl, double om,
+                     double deff, double tau, double t1, double beta)
+{
+  char rel[128], text[1024], cmd[512];
+  snprintf(cmd, sizeof cmd, "rm -rf %s/c/runs/%s && mkdir -p %s/c/runs && "
+           "cp -r %s/c/template %s/c/runs/%s && mkdir -p "
+           "%s/c/runs/%s/analysis && sed -i -e 's/^P0 .*/P0 %s/' -e "
+           "'s/^v0 .*/v0 %s/' -e 's/^seed .*/seed %s/' %s/c/runs/%s/params.txt",
+           base, id, base, base, base, id, base, id, p0, v0, seed, base, id);
+  CHECK(system(cmd) == 0, "%s failed", cmd);
+  snprintf(text, sizeof text, "# afv analyze: fake\ncells 10\nframes 3\n"
            "ngc_frac_mean %.17g\nngc_frac_sd 0.1\nn_clusters_mean %.17g\n"
            "omega_mean %.17g\nD_eff %.17g\ntau_NGC %.17g\nt1_rate %.17g\n"
            "msd_beta %.17g\n", ngc, ncl, om, deff, tau, t1, beta);
@@ -220,16 +361,17 @@ static void collect_known_summaries(void)
   const double s2 = sqrt(2.0);
   if (!have_afv()) return;
   shell("mkdir -p %s/c/logs", base);
+  template_run();
   write_rel("c/points.csv", "id,P0,v0,seed\n0001,4,0,1\n0002,4,0,2\n"
             "0003,4,1,1\n0004,4,1,2\n0005,8,1,1\n0006,8,1,2\n");
   /* point (4, 0): v0 = 0, D_eff nan (no D_0) */
-  fake_summary("0001", 1, 1, 0.6, NAN, HUGE_VAL, 0.01, 0.1);
-  fake_summary("0002", 1, 1, 0.4, NAN, HUGE_VAL, 0.03, 0.3);
+  fake_job("0001", "4", "0", "1", 1, 1, 0.6, NAN, HUGE_VAL, 0.01, 0.1);
+  fake_job("0002", "4", "0", "2", 1, 1, 0.4, NAN, HUGE_VAL, 0.03, 0.3);
   /* point (4, 1): seeds 0.98 and 1.0 */
-  fake_summary("0003", 0.98, 2, 0.5, 1e-9, 10, 0.2, 0.9);
-  fake_summary("0004", 1.00, 1, 0.5, 3e-9, 30, 0.4, 1.1);
+  fake_job("0003", "4", "1", "1", 0.98, 2, 0.5, 1e-9, 10, 0.2, 0.9);
+  fake_job("0004", "4", "1", "2", 1.00, 1, 0.5, 3e-9, 30, 0.4, 1.1);
   /* point (8, 1): one seed; 0006 failed */
-  fake_summary("0005", 0.5, 7, 0.1, 0.2, 5, 0.5, 0.95);
+  fake_job("0005", "8", "1", "1", 0.5, 7, 0.1, 0.2, 5, 0.5, 0.95);
   write_rel("c/logs/0006.log", "afv run: relaxation at v0 = 0: ...\n"
             "afv run: step 12: cell 3 would move 9 l: the time step is too "
             "large\n\n");
@@ -274,9 +416,117 @@ static void collect_known_summaries(void)
                "0.95,nan,dispersed,mesenchymal,fluid,fluid\n") != NULL,
         "row (8, 1), one seed:\n%s", table);
   /* every job finished: exit 0 */
-  fake_summary("0006", 0.7, 5, 0.1, 0.2, 5, 0.5, 0.95);
+  fake_job("0006", "8", "1", "2", 0.7, 5, 0.1, 0.2, 5, 0.5, 0.95);
   CHECK(afv("collect %s/c") == 0, "collect of a complete sweep: %s", err_text);
   CHECK(afv("collect %s/nonexistent") == 2, "collect of no sweep: not exit 2");
+}
+
+/* collect's stderr and missing.txt name job id as damaged for reason,
+** with exit status 1, and the table still holds every point, from the
+** other seeds. */
+static void expect_damaged(const char *what, const char *id,
+                           const char *reason)
+{
+  static char miss[TEXT_MAX], table[TEXT_MAX];
+  char want[128];
+  CHECK(afv("collect %s/c") == 1, "%s: not exit 1 (%s)", what, err_text);
+  snprintf(want, sizeof want, "damaged job %s: ", id);
+  CHECK(strstr(err_text, want) && strstr(err_text, reason), "%s: stderr "
+        "does not name job %s as damaged for '%s': %s", what, id, reason,
+        err_text);
+  read_rel("c/missing.txt", miss);
+  snprintf(want, sizeof want, "\n%s ", id);
+  CHECK(strstr(miss, want) && strstr(miss, reason), "%s: missing.txt:\n%s",
+        what, miss);
+  read_rel("c/table.csv", table);
+  CHECK(count_lines(table) == 4 && !strstr(table, ",nan,nan,nan,nan,"),
+        "%s: a point lost or NaN:\n%s", what, table);
+}
+
+/* Runs collect on sweep c with a time limit; its exit status (124: it
+** hung). */
+static int collect_within(int seconds)
+{
+  char cmd[512];
+  int st;
+  snprintf(cmd, sizeof cmd, "timeout %d ./afv collect %s/c >%s/stdout "
+           "2>%s/stderr", seconds, base, base, base);
+  st = system(cmd);
+  read_rel("stderr", err_text);
+  return st != -1 && WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* collect tables only what it verified (issue 31): an empty, truncated or
+** random summary, a foreign run, a run that did not finish, an analysis
+** of part of a run are each damaged (exit 1, the reason named, the point
+** still tabled from its other seed); a nan value in points.csv, a
+** repeated id or (point, seed), a FIFO for points.csv are refused (exit 2,
+** one line), not a crash or a hang.  All of these were tabled, crashed or
+** hung before. */
+static void collect_verifies_jobs(void)
+{
+  static char table[TEXT_MAX], buf[TEXT_MAX];
+  static const char *points = "id,P0,v0,seed\n0001,4,0,1\n0002,4,0,2\n"
+    "0003,4,1,1\n0004,4,1,2\n0005,8,1,1\n0006,8,1,2\n";
+  char w[64];
+  if (!have_afv()) return;
+  CHECK(afv("collect %s/c") == 0, "the complete sweep: %s", err_text);
+  read_rel("c/table.csv", table);
+  /* damaged summaries of 0004 */
+  write_rel("c/runs/0004/analysis/summary.txt", "");
+  expect_damaged("empty summary", "0004", "lacks ngc_frac_mean");
+  read_rel("c/table.csv", buf);
+  CHECK_CLOSE(table_field(buf, "\n4,1,", 2, w), 1, 0, 0, "n_seeds of (4, 1) "
+              "with a damaged seed");
+  CHECK_CLOSE(table_field(buf, "\n4,1,", 3, w), 0.98, 1e-9, 0, "ngc_frac of "
+              "(4, 1): its good seed's");
+  write_rel("c/runs/0004/analysis/summary.txt", "cells 10\nframes 3\n"
+            "ngc_frac_mean 1\nn_clusters_mean 1\nomega_mean 0.5\nD_eff 3e-9\n"
+            "tau_NGC 30\nt1_rate 0.4\n");
+  expect_damaged("truncated summary", "0004", "lacks msd_beta");
+  write_rel("c/runs/0004/analysis/summary.txt", "\x8f\x01\xffz\n\x13 q\n");
+  expect_damaged("random summary", "0004", "is not KEY VALUE");
+  write_rel("c/runs/0004/analysis/summary.txt", "cells 10\nframes 3\n"
+            "ngc_frac_mean nan\nn_clusters_mean 1\nomega_mean 0.5\n"
+            "D_eff 3e-9\ntau_NGC 30\nt1_rate 0.4\nmsd_beta 1\n");
+  expect_damaged("nan N_GC", "0004", "ngc_frac_mean nan is not finite");
+  /* a foreign run (P0 4.8) copied into runs/0004 */
+  fake_job("0004", "4.8", "1", "2", 1.00, 1, 0.5, 3e-9, 30, 0.4, 1.1);
+  expect_damaged("foreign run", "0004", "params.txt has P0 4.8, points.csv 4");
+  /* a run stopped at step 20 of 40 and analysed by hand */
+  fake_job("0004", "4", "1", "2", 1.00, 1, 0.5, 3e-9, 30, 0.4, 1.1);
+  shell("sed -i 's/^steps .*/steps 40/' %s/c/runs/0004/params.txt%.0s", base);
+  expect_damaged("unfinished run", "0004", "at step 20 of 40 (unfinished, "
+                 "yet analysed: remove runs/0004/analysis");
+  /* an analysis of 2 of its 3 frames */
+  fake_job("0004", "4", "1", "2", 1.00, 1, 0.5, 3e-9, 30, 0.4, 1.1);
+  shell("sed -i 's/^frames 3/frames 2/' %s/c/runs/0004/analysis/summary.txt"
+        "%.0s", base);
+  expect_damaged("partial analysis", "0004", "analysed 2 frames of the "
+                 "finished run's 3");
+  fake_job("0004", "4", "1", "2", 1.00, 1, 0.5, 3e-9, 30, 0.4, 1.1);
+  CHECK(afv("collect %s/c") == 0 && !strcmp(read_rel("c/table.csv", buf),
+        table), "the repaired sweep: not the table of before (%s)", err_text);
+  /* bad points.csv: refused, one line, the table left as it was */
+  write_rel("c/points.csv", "id,P0,v0,seed\n0001,nan,0.5,1\n0002,4,0.5,1\n");
+  CHECK(afv("collect %s/c") == 2 && count_lines(err_text) == 1
+        && strstr(err_text, "points.csv:2: P0"), "nan P0: %s", err_text);
+  write_rel("c/points.csv", "id,P0,v0,seed\n0001,4,0,1\n0002,4,0,2\n"
+            "0002,4,0,2\n");
+  CHECK(afv("collect %s/c") == 2 && count_lines(err_text) == 1
+        && strstr(err_text, "points.csv:4: id 0002 repeats line 3"),
+        "repeated id: %s", err_text);
+  write_rel("c/points.csv", "id,P0,v0,seed\n0001,4,0,1\n0002,4.0,0,1\n");
+  CHECK(afv("collect %s/c") == 2 && count_lines(err_text) == 1
+        && strstr(err_text, "repeat line 2"), "repeated point and seed: %s",
+        err_text);
+  CHECK(!strcmp(read_rel("c/table.csv", buf), table), "a refused collect "
+        "changed table.csv");
+  shell("rm %s/c/points.csv && mkfifo %s/c/points.csv", base);
+  CHECK(collect_within(10) == 2 && strstr(err_text, "not a regular file"),
+        "points.csv a FIFO: %s", err_text);
+  shell("rm %s/c/points.csv%.0s", base);
+  write_rel("c/points.csv", points);
 }
 
 /* ---- the boundary fit -------------------------------------------------------- */
@@ -522,7 +772,10 @@ void suite_sweep(void)
   }
   RUN(sweep_grid_ranges_and_lists);
   RUN(sweep_bad_values);
+  RUN(sweep_slurm_and_reanalyze);
+  RUN(sweep_of_cells_files);
   RUN(collect_known_summaries);
+  RUN(collect_verifies_jobs);
   RUN(boundary_fit_recovers);
   RUN(crossing_interpolates);
   RUN(t1_rate_counts_changes);
