@@ -171,6 +171,17 @@ int unknown_option(const char *opt, const char *help_text,
   return EXIT_BAD_INPUT;
 }
 
+const char *exact_text(double x, char *buf, size_t len)
+{
+  int digits;
+  for (digits = 1; digits < 17; digits++) {
+    snprintf(buf, len, "%.*g", digits, x);
+    if (strtod(buf, NULL) == x) return buf;
+  }
+  snprintf(buf, len, "%.17g", x);
+  return buf;
+}
+
 /* Parses a whole string as a finite double; message names the option. */
 int parse_double(const char *opt, const char *text, double *out)
 {

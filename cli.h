@@ -73,6 +73,9 @@ const char *nearest_option(const char *opt, const char *help_text);
 ** may be NULL); returns EXIT_BAD_INPUT. */
 int unknown_option(const char *opt, const char *help_text,
                    const char *more_text);
+/* x in the fewest digits that read back as x (20.0000001, not "20"),
+** into buf; returns buf. */
+const char *exact_text(double x, char *buf, size_t len);
 /* Every option of afv run ("--out ... --N --phi ..."), for afv sweep. */
 const char *run_option_names(void);
 /* Parses a whole string as a finite double; message names the option. */

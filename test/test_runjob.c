@@ -689,6 +689,22 @@ static void test_bounds_printed_in_full(void)
   }
 }
 
+/* A lag a hair past the window is printed in full (the code before: "--lag
+** 2: ... holds lags 0.1 .. 2 only" for --lag 2.0000001). */
+static void test_lag_printed_in_full(void)
+{
+  char *e;
+  int st;
+  CHECK(test_sh("./afv run " FAST " --steps 200 --out %s/lag", root) == 0,
+        "the run");
+  st = test_sh("./afv analyze %s/lag --steady-from 0 --lag 2.0000001 "
+               "> /dev/null 2> %s/err.txt", root, root);
+  e = last_err();
+  CHECK(st == 2 && strstr(e, "--lag 2.0000001:") && strstr(e, ".. 2 only"),
+        "exit %d: %s", st, e);
+  free(e);
+}
+
 void suite_runjob(void)
 {
   snprintf(root, sizeof root, "/tmp/afv_test_runjob.%ld", (long)getpid());
@@ -703,5 +719,6 @@ void suite_runjob(void)
   RUN(test_unfinished_run_rerunnable);
   RUN(test_io_error_names_file_and_reason);
   RUN(test_bounds_printed_in_full);
+  RUN(test_lag_printed_in_full);
   test_sh("rm -rf %s", root);
 }
