@@ -1492,8 +1492,22 @@ static void show_progress(run_state *R, int final)
 static void monitor_relax(void *ctx, long iter, double E, double fmax)
 {
   run_state *R = ctx;
-  double now;
-  if (!R->progress || (now = wall_seconds()) - R->last_progress < 0.5) return;
+  double now = wall_seconds();
+  if (!R->progress) {   /* a log, a SLURM output: a line every 30 s, and
+                        ** in log.txt, so a slow relaxation is never mute */
+    if (now - R->last_progress < PROGRESS_LOG_SECONDS) return;
+    R->last_progress = now;
+    if (R->log) {
+      fprintf(R->log, "relaxing: step %ld of at most %lld, E %.10g, max |F| "
+              "%.3e\n", iter, R->cfg.relax_max_steps, E, fmax);
+      fflush(R->log);
+    }
+    if (!R->cfg.quiet)
+      fprintf(stderr, "afv run: relaxing: step %ld of at most %lld, E %.10g, "
+              "max |F| %.3e\n", iter, R->cfg.relax_max_steps, E, fmax);
+    return;
+  }
+  if (now - R->last_progress < 0.5) return;
   R->last_progress = now;
   fprintf(stderr, "\rrelaxing: step %ld  E %.10g  max|F| %.3e   ", iter, E,
           fmax);
