@@ -82,6 +82,22 @@ afv: $(CLI_OBJ) libafv.a .build-flags
 
 $(CLI_OBJ): cli.h
 
+# The git commit of the sources, when built from a git checkout ("-dirty"
+# with uncommitted changes): cli.c records it in params.txt, log.txt and
+# afv --version.  A build from a tarball (no git) records the version only.
+# .build-commit changes only with the commit, so only cli.o is rebuilt.
+AFV_COMMIT := $(shell git rev-parse --short=12 HEAD 2>/dev/null)$(shell \
+  git rev-parse --git-dir >/dev/null 2>&1 && ! git diff-index --quiet HEAD \
+  -- 2>/dev/null && echo -dirty)
+
+.build-commit: FORCE
+	@printf '%s\n' '$(AFV_COMMIT)' | cmp -s - $@ \
+	  || printf '%s\n' '$(AFV_COMMIT)' > $@
+
+cli.o: cli.c afv.h afv_internal.h cli.h .build-flags .build-commit
+	$(CC) $(CFLAGS) $(if $(AFV_COMMIT),-DAFV_COMMIT='"$(AFV_COMMIT)"') \
+	  -c -o $@ cli.c
+
 # The shared library: the same sources compiled again as position-
 # independent code into *.pic.o, so the static library and the program
 # keep their objects (and their speed) exactly as without it.

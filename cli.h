@@ -48,8 +48,36 @@ int cmd_paper(int argc, char **argv);
 extern const char *program_name;
 
 /* ---- cli.c -------------------------------------------------------------- */
-/* Prints "afv: MSG" on stderr and returns EXIT_BAD_INPUT. */
+/* afv's version and, when built from a git checkout, its commit:
+** "0.2.0 (commit 0123456789ab)", or "0.2.0". */
+const char *afv_build_version(void);
+/* The running command ("run", "sweep", ...; main.c sets it): every message
+** starts "afv COMMAND: ". */
+extern const char *command_name;
+/* Prints "afv COMMAND: MSG" on stderr and returns EXIT_BAD_INPUT. */
 int bad_input(const char *msg);
+/* Prints "afv COMMAND: " and the formatted message, then a newline. */
+void cli_errorf(const char *fmt, ...);
+/* NULL if text is a whole finite normal double (or 0), stored in *out;
+** else why not ("is not a number", ...), to follow "KEY: 'TEXT' ". */
+const char *real_problem(const char *text, double *out);
+/* NULL if text is an integer in lo .. hi, written as one (12) or as a
+** real with no fractional part (1e5, 2.0); else why not. */
+const char *integral_problem(const char *text, long long lo, long long hi,
+                             long long *out);
+/* The option of help_text ("--NAME" words) nearest to opt by edit
+** distance (at most 2, and less than opt's length), or NULL. */
+const char *nearest_option(const char *opt, const char *help_text);
+/* "afv CMD: unknown option 'OPT' (did you mean --NEAR? see afv CMD
+** --help)", NEAR the nearest option of help_text and more_text (which
+** may be NULL); returns EXIT_BAD_INPUT. */
+int unknown_option(const char *opt, const char *help_text,
+                   const char *more_text);
+/* x in the fewest digits that read back as x (20.0000001, not "20"),
+** into buf; returns buf. */
+const char *exact_text(double x, char *buf, size_t len);
+/* Every option of afv run ("--out ... --N --phi ..."), for afv sweep. */
+const char *run_option_names(void);
 /* Parses a whole string as a finite double; message names the option. */
 int parse_double(const char *opt, const char *text, double *out);
 /* --help text of the model options shared by eval, check and draw. */

@@ -1227,8 +1227,7 @@ int cmd_collect(int argc, char **argv)
       return 0;
     }
     if (argv[k][0] == '-')
-      return fprintf(stderr, "afv collect: unknown option '%s' (see afv "
-                     "collect --help)\n", argv[k]), EXIT_BAD_INPUT;
+      return unknown_option(argv[k], collect_usage, NULL);
     if (T.dir) return bad_input("collect: more than one DIR given");
     T.dir = argv[k];
   }

@@ -43,9 +43,7 @@ int cmd_eval(int argc, char **argv)
     if ((m = model_option(argc, argv, &k, &p, &b)) < 0) return EXIT_BAD_INPUT;
     if (m) continue;
     if (argv[k][0] == '-' && argv[k][1]) {
-      fprintf(stderr, "afv eval: unknown option '%s' (see afv eval --help)\n",
-              argv[k]);
-      return EXIT_BAD_INPUT;
+      return unknown_option(argv[k], model_help, NULL);
     }
     if (path) return bad_input("eval: more than one POINTS file given");
     path = argv[k];
@@ -118,21 +116,19 @@ int cmd_check(int argc, char **argv)
     if ((strcmp(argv[k], "--h") == 0 || strcmp(argv[k], "--tol") == 0)) {
       double *dst = argv[k][2] == 'h' ? &h : &tol;
       if (k + 1 >= argc) {
-        fprintf(stderr, "afv: %s needs a value\n", argv[k]);
+        cli_errorf("%s needs a value", argv[k]);
         return EXIT_BAD_INPUT;
       }
       if (!parse_double(argv[k], argv[k + 1], dst)) return EXIT_BAD_INPUT;
       if (*dst <= 0) {
-        fprintf(stderr, "afv: %s: must be > 0\n", argv[k]);
+        cli_errorf("%s: must be > 0", argv[k]);
         return EXIT_BAD_INPUT;
       }
       k++;
       continue;
     }
     if (argv[k][0] == '-' && argv[k][1]) {
-      fprintf(stderr, "afv check: unknown option '%s' (see afv check "
-              "--help)\n", argv[k]);
-      return EXIT_BAD_INPUT;
+      return unknown_option(argv[k], model_help, "--h --tol");
     }
     if (path) return bad_input("check: more than one POINTS file given");
     path = argv[k];
@@ -250,8 +246,8 @@ static int parse_crop(const char *text, afv_draw_opts *o)
     s = end + 1;
   }
   if (k < 4 || !(v[0] < v[2]) || !(v[1] < v[3])) {
-    fprintf(stderr, "afv: --crop: '%s' is not X0,Y0,X1,Y1 with X0 < X1 and "
-            "Y0 < Y1\n", text);
+    cli_errorf("--crop: '%s' is not X0,Y0,X1,Y1 with X0 < X1 and Y0 < Y1",
+               text);
     return 0;
   }
   o->crop = 1;
@@ -263,7 +259,7 @@ static const char *const color_names[] = {"cluster", "v0", "P0", "KA", "KP",
                                           "A0", "Dr"};
 #define N_COLOR_BY 7
 
-/* Prints "afv: MSG" and returns -1 (a bad option value). */
+/* Prints "afv draw: MSG" and returns -1 (a bad option value). */
 static int bad_value(const char *msg)
 {
   bad_input(msg);
@@ -282,7 +278,7 @@ static int draw_option(int argc, char **argv, int *k, draw_job *J)
       && strcmp(opt, "--color-by") && strcmp(opt, "--cells"))
     return 0;
   if (*k + 1 >= argc) {
-    fprintf(stderr, "afv: %s needs a value\n", opt);
+    cli_errorf("%s needs a value", opt);
     return -1;
   }
   val = argv[++*k];
@@ -304,8 +300,8 @@ static int draw_option(int argc, char **argv, int *k, draw_job *J)
   } else if (strcmp(opt, "--color-by") == 0) {
     for (m = 0; m < N_COLOR_BY && strcmp(val, color_names[m]); m++) {}
     if (m == N_COLOR_BY) {
-      fprintf(stderr, "afv: --color-by: '%s' is not one of cluster, v0, "
-              "P0, KA, KP, A0, Dr\n", val);
+      cli_errorf("--color-by: '%s' is not one of cluster, v0, P0, KA, KP, "
+                 "A0, Dr", val);
       return -1;
     }
     J->color_by = color_names[m];
@@ -325,8 +321,7 @@ static int draw_parse(int argc, char **argv, draw_job *J)
     if ((m = draw_option(argc, argv, &k, J)) < 0) return 0;
     if (m) continue;
     if (argv[k][0] == '-' && argv[k][1]) {
-      fprintf(stderr, "afv draw: unknown option '%s' (see afv draw --help)\n",
-              argv[k]);
+      unknown_option(argv[k], draw_usage, model_help);
       return 0;
     }
     if (J->path) return !bad_input("draw: more than one FILE given");

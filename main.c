@@ -18,7 +18,9 @@
 #include "afv.h"
 #include "cli.h"
 
+#include <ctype.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const char *usage_text =
@@ -62,6 +64,40 @@ static const command commands[] = {
 
 const char *program_name = "afv";
 
+/* 1 if arg is --KEY=VALUE with KEY a word (letters, digits, _ and -). */
+static int is_key_value(const char *arg)
+{
+  const char *p = arg + 2;
+  if (strncmp(arg, "--", 2) != 0 || !isalpha((unsigned char)*p)) return 0;
+  while (isalnum((unsigned char)*p) || *p == '_' || *p == '-') p++;
+  return *p == '=';
+}
+
+/* argv with every --KEY=VALUE split into --KEY and VALUE (at the first
+** '='), so that each command takes both forms; *argc_out its length.
+** NULL if out of memory. */
+static char **split_key_values(int argc, char **argv, int *argc_out)
+{
+  char **out = malloc((size_t)(2 * argc + 1) * sizeof *out);
+  int k, m = 0;
+  if (!out) return NULL;
+  for (k = 0; k < argc; k++) {
+    if (is_key_value(argv[k])) {
+      size_t len = (size_t)(strchr(argv[k], '=') - argv[k]);
+      char *key = malloc(len + 1);
+      if (!key) return NULL;
+      memcpy(key, argv[k], len);
+      key[len] = 0;
+      out[m++] = key;
+      out[m++] = argv[k] + len + 1;
+    } else
+      out[m++] = argv[k];
+  }
+  out[m] = NULL;
+  *argc_out = m;
+  return out;
+}
+
 int main(int argc, char **argv)
 {
   size_t c;
@@ -73,12 +109,19 @@ int main(int argc, char **argv)
     return argc < 2 ? EXIT_BAD_INPUT : 0;
   }
   if (strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "version") == 0) {
-    printf("afv %s\n", AFV_VERSION);
+    printf("afv %s\n", afv_build_version());
     return 0;
   }
   for (c = 0; c < sizeof commands / sizeof commands[0]; c++)
-    if (strcmp(argv[1], commands[c].name) == 0)
-      return commands[c].run(argc - 1, argv + 1);
+    if (strcmp(argv[1], commands[c].name) == 0) {
+      char **args = split_key_values(argc - 1, argv + 1, &argc);
+      if (!args) {
+        fputs("afv: out of memory\n", stderr);
+        return EXIT_BAD_INPUT;
+      }
+      command_name = commands[c].name;
+      return commands[c].run(argc, args);
+    }
   fprintf(stderr, "afv: unknown command '%s' (see afv --help)\n", argv[1]);
   return EXIT_BAD_INPUT;
 }

@@ -75,9 +75,12 @@ static int window_holds(const afv_traj *tr, const char *path, double from,
   span = tr->t[last] - tr->t[first];
   if (lag_given && (lag > span * (1 + 1e-9)
                     || lag < 0.5 * (tr->t[first + 1] - tr->t[first]))) {
-    fprintf(stderr, "afv analyze: --lag %g: the steady window t = %g .. %g "
-            "of %s holds lags %g .. %g only\n", lag, tr->t[first],
-            tr->t[last], path, tr->t[first + 1] - tr->t[first], span);
+    char lag_text[32], span_text[32];   /* in full: 20.0000001 > 20 */
+    fprintf(stderr, "afv analyze: --lag %s: the steady window t = %g .. %g "
+            "of %s holds lags %g .. %s only\n",
+            exact_text(lag, lag_text, sizeof lag_text), tr->t[first],
+            tr->t[last], path, tr->t[first + 1] - tr->t[first],
+            exact_text(span, span_text, sizeof span_text));
     return 0;
   }
   return 1;
@@ -178,9 +181,7 @@ int cmd_analyze(int argc, char **argv)
         || double_option(argc, argv, &k, "--Dr", &Dr_o, &bad))
       continue;
     if (argv[k][0] == '-' && argv[k][1]) {
-      fprintf(stderr, "afv analyze: unknown option '%s' (see afv analyze "
-              "--help)\n", argv[k]);
-      return EXIT_BAD_INPUT;
+      return unknown_option(argv[k], analyze_usage, NULL);
     }
     if (dir) return bad_input("analyze: more than one DIR given");
     dir = argv[k];

@@ -8,6 +8,7 @@
 ** error message; afv.h's accessors would do, at about 100 call sites. */
 #include "afv_internal.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <float.h>
 #include <fcntl.h>
@@ -75,10 +76,11 @@ static const run_key run_keys[] = {
      "length); must be > 0"),
   RK("KA", K_REAL, KA, "1", "energy/l^4", "area modulus; must be >= 0"),
   RK("KP", K_REAL, KP, "1", "energy/l^2", "perimeter modulus; must be >= 0"),
-  RK("A0", K_REAL, A0, "3.1415926535897931", "l^2", "preferred area (pi l^2); any finite "
-     "number"),
+  RK("A0", K_REAL, A0, "3.1415926535897931", "l^2", "preferred area (the "
+     "default is pi, a disk of radius 1; it does not follow l); must be > 0 "
+     "(where KA > 0; any number where KA = 0)"),
   RK("P0", K_REAL, P0, "4.8", "l", "preferred perimeter (main knob); "
-     "any finite number"),
+     "must be > 0 (where KP > 0; any number where KP = 0)"),
   RK("Lambda", K_REAL, Lambda, "0.2", "energy/l", "extra tension of the "
      "free (arc) boundary; any finite number"),
   RK("cap", K_REAL, cap, "0", "l", "contact cap delta, defined as PyAFV's "
@@ -88,8 +90,9 @@ static const run_key run_keys[] = {
      "PyAFV's default is 0.45); 0 = exact -grad E; must be >= 0"),
   RK("mu", K_REAL, mu, "1", "l/(time force)", "mobility; must be > 0"),
   RK("v0", K_REAL, v0, "0.5", "l/time", "self-propulsion speed (main "
-     "knob); any finite number (integrator substeps: a step with |v0| dt > "
-     AFV_STR(AFV_MAX_STEP_DISP) " l is refused)"),
+     "knob); any finite number (with integrator substeps a run with |v0| "
+     "dt > " AFV_STR(AFV_MAX_STEP_DISP) " l is refused, with euler one "
+     "whose |v0| dt exceeds the box side L)"),
   RK("Dr", K_REAL, Dr, "0.1", "1/time", "rotational diffusion of the "
      "polarity; must be >= 0"),
   RK("dt", K_REAL, dt, "0.01", "time", "time step (Euler-Maruyama); must be "
@@ -195,21 +198,27 @@ static int set_key(run_cfg *cfg, const run_key *K, const char *text,
                    const char *base, char *err, size_t errlen)
 {
   char *p = (char *)cfg + K->off, *end;
+  const char *why = NULL;
+  double x;
   errno = 0;
   switch (K->kind) {
   case K_REAL:
-    *(double *)p = strtod(text, &end);
-    if (end == text || *end || errno == ERANGE || !isfinite(*(double *)p))
-      break;
+    if ((why = real_problem(text, (double *)p)) != NULL) break;
     return 1;
   case K_INT:
-    *(long long *)p = strtoll(text, &end, 10);
-    if (end == text || *end || errno == ERANGE) break;
+    if ((why = integral_problem(text, LLONG_MIN, LLONG_MAX,
+                                (long long *)p)) != NULL) break;
     return 1;
-  case K_SEED:
+  case K_SEED:   /* digits (the whole 0 .. 2^64-1), or an integral real */
     *(unsigned long long *)p = strtoull(text, &end, 10);
-    if (end == text || *end || errno == ERANGE || strchr(text, '-')) break;
-    return 1;
+    if (end != text && !*end && errno != ERANGE && !strchr(text, '-'))
+      return 1;
+    if (!real_problem(text, &x) && x == floor(x) && x >= 0
+        && x < 18446744073709551616.0) {
+      *(unsigned long long *)p = (unsigned long long)x;
+      return 1;
+    }
+    break;
   case K_BOOL:
     if (strcmp(text, "0") && strcmp(text, "1")) break;
     *(int *)p = text[0] == '1';
@@ -224,10 +233,12 @@ static int set_key(run_cfg *cfg, const run_key *K, const char *text,
                RUN_PATH_MAX - 1);
     return 0;
   }
+  if (why) {
+    afv_errorf(err, errlen, "%s: '%s' %s", K->name, text, why);
+    return 0;
+  }
   afv_errorf(err, errlen, "%s: '%s' is not %s", K->name, text,
-             K->kind == K_REAL ? "a finite number"
-             : K->kind == K_INT ? "an integer"
-             : K->kind == K_SEED ? "an integer in 0 .. 2^64-1"
+             K->kind == K_SEED ? "an integer in 0 .. 2^64-1"
              : K->kind == K_BOOL ? "0 or 1" : "one of the choices");
   if (K->kind == K_WORD && err) {
     size_t m = strlen(err);
@@ -318,6 +329,84 @@ static void locate_error(char *err, size_t errlen, const int *set,
   afv_errorf(err, errlen, "%s:%d: %s", path, set[K - run_keys], copy);
 }
 
+/* The value of key (column col of the cells file, if it has one, else
+** the run's) for cell i, and its label for a message. */
+static double cell_value(const afv_cells *cl, int col, double run_value,
+                         int i, const char *key, char *label, size_t len)
+{
+  if (cl->has[col]) {
+    snprintf(label, len, "%s (cells file, cell %d)", key, i);
+    return cl->col[col][i];
+  }
+  snprintf(label, len, "%s", key);
+  return run_value;
+}
+
+/* The targets the relaxation pulls to must be reachable: a cell's area
+** and perimeter are positive, so A0 <= 0 (with KA > 0) or P0 <= 0 (with
+** KP > 0) drives every cell to shrink without end, and the relaxation
+** crawls through ever more crowded, ever slower steps for its whole
+** relax_max_steps (afv run --N 50 --P0 0 sat silent for minutes). */
+static int targets_positive(const run_cfg *c, const afv_cells *cl,
+                            char *err, size_t errlen)
+{
+  static const struct { const char *target, *modulus; int tcol, mcol; }
+    pairs[2] = {{"A0", "KA", AFV_COL_A0, AFV_COL_KA},
+                {"P0", "KP", AFV_COL_P0, AFV_COL_KP}};
+  int n = cl->n > 0 ? cl->n : 1, i, k;
+  for (k = 0; k < 2; k++)
+    for (i = 0; i < n; i++) {
+      char tl[64], ml[64];
+      double t = cell_value(cl, pairs[k].tcol, k ? c->P0 : c->A0, i,
+                            pairs[k].target, tl, sizeof tl);
+      double m = cell_value(cl, pairs[k].mcol, k ? c->KP : c->KA, i,
+                            pairs[k].modulus, ml, sizeof ml);
+      if (m > 0 && !(t > 0)) {
+        afv_errorf(err, errlen, "%s: must be > 0 where %s > 0 (got %g): a "
+                   "cell's %s is positive, and a target of %g would shrink "
+                   "every cell without end", tl, ml, t, k ? "perimeter"
+                   : "area", t);
+        return 0;
+      }
+    }
+  return 1;
+}
+
+/* Every active step moves a cell by v0 dt of self-propulsion alone.  With
+** the sub-steps a step that moves a cell more than AFV_MAX_STEP_DISP l is
+** refused (dynamics.c, too_fast), so with |v0| dt beyond that the very
+** first step would stop the run; with Euler steps a self-propulsion that
+** carries a cell across the whole box (side L) in one step makes the
+** step meaningless.  Either is refused before anything is made. */
+static int steps_meaningful(const run_cfg *c, const int *set,
+                            const afv_cells *cl, char *err, size_t errlen)
+{
+  int n = cl->n > 0 ? cl->n : 1, i;
+  int dt_named = set[find_key("dt") - run_keys] && !cl->has[AFV_COL_V0]
+                 && !set[find_key("v0") - run_keys];
+  int euler = strcmp(c->integrator, "substeps") != 0;
+  double limit = euler ? box_side(c) : AFV_MAX_STEP_DISP * c->l;
+  const char *what = euler ? "the box side L" : "the most a step of the "
+                     "sub-steps may move a cell";
+  if (c->steps == 0) return 1;   /* a run of no step moves nothing */
+  for (i = 0; i < n; i++) {
+    char label[64];
+    double v0 = cell_value(cl, AFV_COL_V0, c->v0, i, "v0", label,
+                           sizeof label);
+    if (!(fabs(v0) * c->dt > limit)) continue;
+    if (dt_named)   /* the key the user gave */
+      afv_errorf(err, errlen, "dt: %g: a step's self-propulsion |v0| dt = "
+                 "%g l (v0 = %g) exceeds %g l, %s: lower dt", c->dt,
+                 fabs(v0) * c->dt / c->l, v0, limit / c->l, what);
+    else
+      afv_errorf(err, errlen, "%s: %g: a step's self-propulsion |v0| dt = "
+                 "%g l (dt = %g) exceeds %g l, %s: lower v0 or dt", label,
+                 v0, fabs(v0) * c->dt / c->l, c->dt, limit / c->l, what);
+    return 0;
+  }
+  return 1;
+}
+
 /* Range checks, one message naming the key.  Reads the cells file (cl). */
 static int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
                         size_t errlen)
@@ -362,12 +451,34 @@ static int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
   if (c->frame_every < 0) BAD("frame_every: must be >= 0");
   if (c->checkpoint_every < 0) BAD("checkpoint_every: must be >= 0");
   if (c->svg_every < 0) BAD("svg_every: must be >= 0");
+  if (!(c->l * c->l >= DBL_MIN && isfinite(c->l * c->l)))
+    BAD("l: %g: l^2 = %g %s the range of doubles; the geometry computes "
+        "with l^2 (areas)", c->l, c->l * c->l, c->l < 1 ? "underflows" :
+        "overflows");
+  if (!isfinite(box_side(c)))
+    BAD("phi: %g: the box side L = sqrt(N pi l^2/phi) overflows", c->phi);
   if (strcmp(c->box, "periodic") == 0 && box_side(c) < 4 * c->l)
     BAD("phi: the box side L = sqrt(N pi l^2/phi) = %.17g is smaller than "
         "4l = %.17g (minimum image); use more cells or a smaller phi",
         box_side(c), 4 * c->l);
-  return 1;
+  return targets_positive(c, cl, err, errlen)
+         && steps_meaningful(c, set, cl, err, errlen);
 #undef BAD
+}
+
+/* The value of key K in c as params.txt writes it (reals in %.17g). */
+static void key_text(const run_cfg *c, const run_key *K, char *buf,
+                     size_t len)
+{
+  const char *p = (const char *)c + K->off;
+  switch (K->kind) {
+  case K_REAL: snprintf(buf, len, "%.17g", *(const double *)p); break;
+  case K_INT: snprintf(buf, len, "%lld", *(const long long *)p); break;
+  case K_SEED: snprintf(buf, len, "%llu", *(const unsigned long long *)p);
+    break;
+  case K_BOOL: snprintf(buf, len, "%d", *(const int *)p); break;
+  case K_WORD: case K_PATH: snprintf(buf, len, "%s", p); break;
+  }
 }
 
 /* Writes every key to path as KEY VALUE (reals in %.17g: they read back
@@ -379,20 +490,13 @@ static int write_params_to(const char *path, const run_cfg *c,
   FILE *fp;
   int k;
   if (!(fp = afv_atomic_open(path, tmp, sizeof tmp))) return AFV_EIO;
-  fprintf(fp, "# afv run parameters: afv run --config THIS_FILE --out DIR "
-          "repeats the run\n");
+  fprintf(fp, "# afv run parameters, written by afv %s: afv run --config "
+          "THIS_FILE --out DIR repeats the run\n", afv_build_version());
   for (k = 0; k < N_RUN_KEYS; k++) {
     const run_key *K = &run_keys[k];
-    const char *p = (const char *)c + K->off;
-    fprintf(fp, "%-16s ", K->name);
-    switch (K->kind) {
-    case K_REAL: fprintf(fp, "%.17g\n", *(const double *)p); break;
-    case K_INT: fprintf(fp, "%lld\n", *(const long long *)p); break;
-    case K_SEED: fprintf(fp, "%llu\n", *(const unsigned long long *)p); break;
-    case K_BOOL: fprintf(fp, "%d\n", *(const int *)p); break;
-    case K_WORD: fprintf(fp, "%s\n", p); break;
-    case K_PATH: fprintf(fp, "%s\n", cells); break;
-    }
+    char value[RUN_PATH_MAX + 32];
+    key_text(c, K, value, sizeof value);
+    fprintf(fp, "%-16s %s\n", K->name, K->kind == K_PATH ? cells : value);
   }
   if (strcmp(c->box, "periodic") == 0)
     fprintf(fp, "# box side L = %.17g\n", box_side(c));
@@ -465,8 +569,8 @@ typedef struct run_state {
                            ** reduced if the cluster would not fit the
                            ** box); 0 for other starts */
   obs_analysis an;         /* analysis columns of observables.csv */
-  int lock_fd;             /* DIR/lock while this process holds the run
-                           ** directory's lock, else -1 */
+  int lock_fd;             /* DIR/observables.csv while this process holds
+                           ** the run directory's lock, else -1 */
   char io_path[RUN_PATH_MAX + 96];  /* the file whose writing failed */
   int io_errno;            /* and why (errno then) */
 } run_state;
@@ -495,6 +599,16 @@ static void run_log(run_state *R, const char *fmt, ...)
     vfprintf(stderr, fmt, ap);
     va_end(ap);
   }
+}
+
+/* log.txt (only): the program that writes what follows, "afv 0.2.0
+** (commit ...): a fresh run" or "...: resumed", so each part of a run can
+** be traced to its code. */
+static void log_build(run_state *R, const char *what)
+{
+  if (!R->log) return;
+  fprintf(R->log, "afv %s: %s\n", afv_build_version(), what);
+  fflush(R->log);
 }
 
 /* Model and dynamics parameters of the configuration, per-cell arrays
@@ -1093,6 +1207,213 @@ static int recorded_sizes_hold(const run_state *R, const afv_checkpoint *ck,
   return 1;
 }
 
+/* ---- a checkpoint agrees with the files it describes ------------------- */
+/* A checkpoint is trusted only when it agrees with its files, checked
+** before any byte changes: its time is step x dt (the run sets t so), and
+** each append-only file, cut at the recorded size, ends with the record
+** of the last output step at or before the checkpoint's step: the
+** observables.csv row of that step and time (the header alone without
+** samples), the whole trajectory.dat frame of that step and time (the
+** header line alone without frames), and the trajectory.xyz frame of that
+** step.  When the row is of the checkpoint's own step, its energy must
+** equal the checkpointed state's, bit for bit (%.17g reads back exactly):
+** a checksum of the state.  A checkpoint that fails any of this (edited,
+** or of another run) would have cut the files to a wrong place or
+** continued a different state. */
+
+/* Reads bytes [from, to) of fd into buf (to - from <= cap - 1, NUL
+** added).  1 if all were read. */
+static int read_span(int fd, long long from, long long to, char *buf,
+                     size_t cap)
+{
+  size_t want = (size_t)(to - from), got = 0;
+  if (to < from || want >= cap) return 0;
+  while (got < want) {
+    ssize_t m = pread(fd, buf + got, want - got, (off_t)(from + (long long)got));
+    if (m <= 0) return 0;
+    got += (size_t)m;
+  }
+  buf[want] = 0;
+  return 1;
+}
+
+/* The start of the k-th line (k >= 1) before end, which must follow a
+** newline: -1 if the file does not end a line at end or has fewer lines.
+** Reads backwards in blocks, so a frame costs its own size. */
+static long long line_back(int fd, long long end, long long k)
+{
+  char buf[65536];
+  long long pos = end - 1, seen = 0;
+  if (end <= 0 || !read_span(fd, end - 1, end, buf, sizeof buf)
+      || buf[0] != '\n')
+    return -1;
+  while (pos > 0) {
+    long long from = pos - (long long)sizeof buf + 1 > 0
+                     ? pos - (long long)sizeof buf + 1 : 0;
+    long long j;
+    if (!read_span(fd, from, pos, buf, sizeof buf)) return -1;
+    for (j = pos - 1; j >= from; j--)
+      if (buf[j - from] == '\n' && ++seen == k) return j + 1;
+    pos = from;
+  }
+  return seen == k - 1 ? 0 : -1;
+}
+
+/* The line of fd starting at start (at most cap - 1 bytes, without its
+** newline) into buf; 1 if read. */
+static int line_at(int fd, long long start, long long end, char *buf,
+                   size_t cap)
+{
+  long long to = end - start < (long long)cap - 1 ? end : start +
+                 (long long)cap - 1;
+  char *nl;
+  if (!read_span(fd, start, to, buf, cap)) return 0;
+  if ((nl = strchr(buf, '\n'))) *nl = 0;
+  return 1;
+}
+
+/* The last output step at or before step for an interval (0: none). */
+static long long last_due(long long step, long long every)
+{
+  return every > 0 ? step / every * every : -1;
+}
+
+typedef struct ckpt_trust {
+  const run_state *R;
+  const afv_checkpoint *ck;
+  char *err;
+  size_t errlen;
+  double energy;       /* observables' energy at the checkpoint's step */
+  int has_energy;      /* 1 if the last row is of the checkpoint's step */
+} ckpt_trust;
+
+/* "checkpoint.txt:LINE: bytes FILE B: the file there WHY: not ..." */
+static int untrusted(ckpt_trust *T, int k, const char *why)
+{
+  afv_errorf(T->err, T->errlen, "%s/checkpoint.txt:%d: bytes %s %lld: %s "
+             "there %s: the checkpoint does not describe these files (edited,"
+             " or another run's); nothing was changed", T->R->dir,
+             AFV_CKPT_BYTES_LINE + k, afv_checkpoint_files[k],
+             T->ck->bytes[k], afv_checkpoint_files[k], why);
+  return 0;
+}
+
+/* observables.csv (read through the lock's descriptor: closing another
+** would drop the lock): its last line before the recorded size. */
+static int obs_agrees(ckpt_trust *T)
+{
+  const run_state *R = T->R;
+  long long end = T->ck->bytes[OUT_OBS], due_step = last_due(T->ck->step,
+                  R->cfg.sample_every), start = line_back(R->lock_fd, end, 1);
+  char line[4096], why[160];
+  long long step;
+  double t, e;
+  if (start < 0 || !line_at(R->lock_fd, start, end, line, sizeof line))
+    return untrusted(T, OUT_OBS, "does not end a line");
+  if (due_step < 0)
+    return start == 0 && strncmp(line, "step,", 5) == 0
+           ? 1 : untrusted(T, OUT_OBS, "is not the header alone "
+                           "(sample_every 0)");
+  if (sscanf(line, "%lld,%lf,%lf,", &step, &t, &e) != 3 || step != due_step
+      || t != (double)step * R->cfg.dt) {
+    snprintf(why, sizeof why, "does not end with the row of step %lld "
+             "(t = %.17g)", due_step, (double)due_step * R->cfg.dt);
+    return untrusted(T, OUT_OBS, why);
+  }
+  T->has_energy = step == T->ck->step;
+  T->energy = e;
+  return 1;
+}
+
+/* The header line "# step S time T" of the frame of lines lines that
+** ends at end, in file k (fd), checked against the last frame step. */
+static int frame_agrees(ckpt_trust *T, int k, int fd, long long lines,
+                        const char *fmt, int with_time)
+{
+  const run_state *R = T->R;
+  long long end = T->ck->bytes[k], due_step = last_due(T->ck->step,
+                  R->cfg.frame_every), start, step = -1;
+  char line[4096], why[160];
+  double t = -1;
+  if (due_step < 0) {   /* no frames: the header line alone */
+    start = line_back(fd, end, 1);
+    return start == 0 || (k == OUT_XYZ && end == 0)
+           ? 1 : untrusted(T, k, "is not the header alone (frame_every 0)");
+  }
+  start = line_back(fd, end, lines);
+  if (start < 0 || !line_at(fd, start, end, line, sizeof line)
+      || sscanf(line, fmt, &step, &t) < 1 || step != due_step
+      || (with_time && t != (double)step * R->cfg.dt)) {
+    snprintf(why, sizeof why, "does not end with the whole frame of step "
+             "%lld", due_step);
+    return untrusted(T, k, why);
+  }
+  return 1;
+}
+
+/* trajectory.dat: a frame is its header, N rows and two blank lines;
+** trajectory.xyz: the count line, a comment with Step=S and N rows. */
+static int frames_agree(ckpt_trust *T)
+{
+  const run_state *R = T->R;
+  char path[RUN_PATH_MAX + 32], tail[4];
+  int ok, fd;
+  long long n = R->cfg.N, end = T->ck->bytes[OUT_TRAJ];
+  snprintf(path, sizeof path, "%s/%s", R->dir, afv_checkpoint_files[OUT_TRAJ]);
+  if ((fd = open(path, O_RDONLY)) < 0)
+    return untrusted(T, OUT_TRAJ, "cannot be read");
+  ok = last_due(T->ck->step, R->cfg.frame_every) < 0
+       || (end >= 3 && read_span(fd, end - 3, end, tail, sizeof tail)
+           && strcmp(tail, "\n\n\n") == 0);
+  ok = ok ? frame_agrees(T, OUT_TRAJ, fd, n + 3, "# step %lld time %lf", 1)
+       : untrusted(T, OUT_TRAJ, "does not end a frame");
+  close(fd);
+  if (!ok || !R->cfg.xyz) return ok;
+  snprintf(path, sizeof path, "%s/%s", R->dir, afv_checkpoint_files[OUT_XYZ]);
+  if ((fd = open(path, O_RDONLY)) < 0)
+    return untrusted(T, OUT_XYZ, "cannot be read");
+  {   /* the comment line: "... Properties=... Time=T Step=S" */
+    long long start = line_back(fd, T->ck->bytes[OUT_XYZ], n + 1);
+    char line[4096], *at;
+    long long step = -1, due_step = last_due(T->ck->step, R->cfg.frame_every);
+    if (due_step < 0)
+      ok = T->ck->bytes[OUT_XYZ] == 0
+           || untrusted(T, OUT_XYZ, "holds frames (frame_every 0)");
+    else if (start < 0 || !line_at(fd, start, T->ck->bytes[OUT_XYZ], line,
+                                   sizeof line)
+             || !(at = strstr(line, "Step=")) || sscanf(at, "Step=%lld",
+                                                        &step) != 1
+             || step != due_step) {
+      char why[96];
+      snprintf(why, sizeof why, "does not end with the whole frame of step "
+               "%lld", due_step);
+      ok = untrusted(T, OUT_XYZ, why);
+    }
+  }
+  close(fd);
+  return ok;
+}
+
+/* The checkpoint's clock and each file's last record (above).  1, or 0
+** with the reason in err. */
+static int checkpoint_agrees(const run_state *R, const afv_checkpoint *ck,
+                             ckpt_trust *T, char *err, size_t errlen)
+{
+  memset(T, 0, sizeof *T);
+  T->R = R;
+  T->ck = ck;
+  T->err = err;
+  T->errlen = errlen;
+  if (ck->t != (double)ck->step * R->cfg.dt) {
+    afv_errorf(err, errlen, "%s/checkpoint.txt:4: time %.17g, but step %lld "
+               "x dt %g is %.17g: the checkpoint does not describe this run "
+               "(edited, or another run's); nothing was changed", R->dir,
+               ck->t, ck->step, R->cfg.dt, (double)ck->step * R->cfg.dt);
+    return 0;
+  }
+  return obs_agrees(T) && frames_agree(T);
+}
+
 /* Opens the append-only files: fresh (with headers) or cut back to the
 ** sizes of the checkpoint (recorded_sizes_hold checked them) and appended
 ** to. */
@@ -1171,8 +1492,22 @@ static void show_progress(run_state *R, int final)
 static void monitor_relax(void *ctx, long iter, double E, double fmax)
 {
   run_state *R = ctx;
-  double now;
-  if (!R->progress || (now = wall_seconds()) - R->last_progress < 0.5) return;
+  double now = wall_seconds();
+  if (!R->progress) {   /* a log, a SLURM output: a line every 30 s, and
+                        ** in log.txt, so a slow relaxation is never mute */
+    if (now - R->last_progress < PROGRESS_LOG_SECONDS) return;
+    R->last_progress = now;
+    if (R->log) {
+      fprintf(R->log, "relaxing: step %ld of at most %lld, E %.10g, max |F| "
+              "%.3e\n", iter, R->cfg.relax_max_steps, E, fmax);
+      fflush(R->log);
+    }
+    if (!R->cfg.quiet)
+      fprintf(stderr, "afv run: relaxing: step %ld of at most %lld, E %.10g, "
+              "max |F| %.3e\n", iter, R->cfg.relax_max_steps, E, fmax);
+    return;
+  }
+  if (now - R->last_progress < 0.5) return;
   R->last_progress = now;
   fprintf(stderr, "\rrelaxing: step %ld  E %.10g  max|F| %.3e   ", iter, E,
           fmax);
@@ -1214,10 +1549,10 @@ static void log_relax(run_state *R, const afv_relax_report *rep)
   else if (rep->refused)
     run_log(R, "relaxation: stopped at step %ld, which it cannot take: cell "
             "%d would move %g l (> %g l) even in a time %g (forces too large "
-            "for dt = %g: check KA, KP, Lambda); relax_tol %g NOT reached, "
-            "the run goes on from here\n", rep->iterations + 1,
+            "for mu = %g, dt = %g: check mu, KA, KP, Lambda); relax_tol %g "
+            "NOT reached, the run goes on from here\n", rep->iterations + 1,
             R->sim.bad_cell, R->sim.bad_disp, AFV_MAX_STEP_DISP,
-            R->sim.bad_time, R->sim.dyn.dt, R->cfg.relax_tol);
+            R->sim.bad_time, R->sim.dyn.mu, R->sim.dyn.dt, R->cfg.relax_tol);
   else
     run_log(R, "relaxation: NOT reached within relax_max_steps %lld: max "
             "|F| %.3e > relax_tol %g, no kink shown (last window: mean "
@@ -1245,6 +1580,29 @@ static int relax_start(run_state *R)
   return AFV_OK;
 }
 
+/* The end of a stop message: where the run can go on from.  A run whose
+** last checkpoint is at step 0 (or that has none yet) would stop the same
+** way from it (a run depends on its seed and parameters only), so that
+** checkpoint is removed: DIR then holds a run that stopped before its
+** first checkpoint, which a fresh run, with other parameters, replaces
+** (before, such a directory was dead: a retry was refused as "already
+** holds a run" and a resume stopped again). */
+static const char *resume_point(const run_state *R, char *buf, size_t len)
+{
+  char path[RUN_PATH_MAX + 32];
+  if (R->ckpt_step > 0) {
+    snprintf(buf, len, "last good checkpoint: %s/checkpoint.txt (step %lld)",
+             R->dir, R->ckpt_step);
+    return buf;
+  }
+  snprintf(path, sizeof path, "%s/checkpoint.txt", R->dir);
+  remove(path);
+  snprintf(buf, len, "no checkpoint kept (from its start the run would stop "
+           "the same way): afv run --out %s with other parameters replaces "
+           "this run", R->dir);
+  return buf;
+}
+
 /* The state became non-finite (a step failed on it, or it was about to be
 ** written): names the cells and what of them; nothing of it is written.
 ** Exit status 3, like an unstable step: the last checkpoint resumes. */
@@ -1255,10 +1613,10 @@ static int report_nonfinite(run_state *R)
   if (state_finite(s, what, sizeof what))
     snprintf(what, sizeof what, "a step made a position NaN or infinite "
              "(and was undone)");
+  char where[RUN_PATH_MAX + 256];
   fprintf(stderr, "%safv run: step %lld (t = %g): %s; not written, the run "
-          "stops; last good checkpoint: %s/checkpoint.txt (step %lld)\n",
-          R->progress ? "\n" : "", s->step, s->t, what, R->dir,
-          R->ckpt_step);
+          "stops; %s\n", R->progress ? "\n" : "", s->step, s->t, what,
+          resume_point(R, where, sizeof where));
   if (R->log) fprintf(R->log, "stopped at step %lld: %s\n", s->step, what);
   return EXIT_UNSTABLE;
 }
@@ -1272,8 +1630,8 @@ static const char *unstable_reason(const afv_sim *s)
            "step): the parameters are far too stiff for dt (check KA, KP, "
            "Lambda, mu)";
   if (s->bad_time < s->dyn.dt)
-    return "the forces are too large for any time step, even in the "
-           "smallest half of dt (check KA, KP, Lambda, P0)";
+    return "the moves mu dt F are too large for any time step, even in "
+           "the smallest half of dt (check mu, then KA, KP, Lambda, P0)";
   return "self-propulsion alone, v0 dt, exceeds that: the time step is too "
          "large";
 }
@@ -1282,7 +1640,7 @@ static const char *unstable_reason(const afv_sim *s)
 static int run_loop(run_state *R)
 {
   afv_sim *s = &R->sim;
-  char what[512];
+  char what[512], where[RUN_PATH_MAX + 256];
   int st = AFV_OK;
   R->start_step = s->step;
   R->wall0 = R->last_progress = wall_seconds();
@@ -1294,11 +1652,10 @@ static int run_loop(run_state *R)
   if (st == AFV_EUNSTABLE) {
     int i = s->bad_cell;
     fprintf(stderr, "%safv run: step %lld (t = %g): cell %d would move %g l "
-            "(> %g l) in a time %g: %s; last good checkpoint: "
-            "%s/checkpoint.txt (step %lld)\n",
+            "(> %g l) in a time %g: %s; %s\n",
             R->progress ? "\n" : "", s->step + 1, s->t, i, s->bad_disp,
             AFV_MAX_STEP_DISP, s->bad_time,
-            unstable_reason(s), R->dir, R->ckpt_step);
+            unstable_reason(s), resume_point(R, where, sizeof where));
     if (R->log) fprintf(R->log, "stopped: unstable step %lld, cell %d\n",
                         s->step + 1, i);
     return EXIT_UNSTABLE;
@@ -1308,10 +1665,10 @@ static int run_loop(run_state *R)
     st = AFV_ENONFINITE;   /* the final checkpoint would record it */
   if (st == AFV_ECOINCIDENT) {   /* after a step */
     fprintf(stderr, "%safv run: step %lld: %s (cells %d and %d): the time "
-            "step dt = %g is probably too large; last good checkpoint: "
-            "%s/checkpoint.txt (step %lld)\n", R->progress ? "\n" : "",
-            s->step, afv_strerror(st), s->geom.bad_i, s->geom.bad_j,
-            s->dyn.dt, R->dir, R->ckpt_step);
+            "step dt = %g is probably too large; %s\n",
+            R->progress ? "\n" : "", s->step, afv_strerror(st),
+            s->geom.bad_i, s->geom.bad_j, s->dyn.dt,
+            resume_point(R, where, sizeof where));
     return EXIT_UNSTABLE;
   }
   if (st == AFV_ENONFINITE) return report_nonfinite(R);
@@ -1363,14 +1720,23 @@ static const char *run_usage =
   "log.txt, t1_reference.txt (C(0) for the t1 column) (and cells.txt,\n"
   "trajectory.xyz).  --resume continues from the\n"
   "last checkpoint, to the run's steps or MORE steps past the checkpoint;\n"
-  "it checks every file first and changes none if one does not match.\n"
-  "One process at a time writes in DIR (a lock on DIR/lock, which ends\n"
-  "with the process); another is refused, naming it.  DIR may exist, but\n"
+  "it checks every file first and changes none if one does not match\n"
+  "(the checkpoint must agree with the files: time = step x dt, each file\n"
+  "ending with the row or frame of the last output step, that row's\n"
+  "energy the state's).\n"
+  "One process at a time writes in DIR (a lock on DIR/observables.csv,\n"
+  "the run's data, which ends with the process); another is refused,\n"
+  "naming it.  DIR may exist, but\n"
   "a fresh run refuses one with a checkpoint.txt (a run that stopped\n"
-  "before its first checkpoint is replaced).  --continue makes the command\n"
+  "before its first checkpoint is replaced) and one holding files of a\n"
+  "run's names without afv's params.txt (a user's own log.txt, say).  A\n"
+  "run that stops (exit 3) from its step-0 checkpoint keeps none: from it\n"
+  "the run would stop the same way, and a fresh run may use DIR.  --continue makes the command\n"
   "idempotent (the jobs of afv sweep): a new run if DIR holds none (or one\n"
   "that stopped before its first checkpoint), a resumed one if DIR holds\n"
-  "an unfinished run, nothing if it is finished.  Missing parent folders\n"
+  "an unfinished run, nothing if it is finished; parameters other than\n"
+  "the run's in DIR (any key but quiet and checkpoint_every) are refused,\n"
+  "naming the key.  Missing parent folders\n"
   "of DIR are created.\n"
   "Exit status: 0 done, 2 bad input or an I/O error, 3 unstable step (a\n"
   "force not finite, v0 dt > l/2, or forces too large even for dt/256) or\n"
@@ -1387,6 +1753,23 @@ static void run_help(void)
            run_keys[k].unit);
     print_wrapped(run_keys[k].help);
   }
+}
+
+/* "--out --resume ... --N --phi ...": every option of afv run, for the
+** nearest one to an unknown option. */
+const char *run_option_names(void)
+{
+  static char names[2048];
+  size_t m;
+  int k;
+  if (names[0]) return names;
+  snprintf(names, sizeof names, "--out --resume --config --continue "
+           "--quiet --help");
+  for (k = 0; k < N_RUN_KEYS; k++) {
+    m = strlen(names);
+    snprintf(names + m, sizeof names - m, " --%s", run_keys[k].name);
+  }
+  return names;
 }
 
 /* Command-line arguments of afv run. */
@@ -1423,8 +1806,7 @@ static int scan_args(int argc, char **argv, run_args *a)
     if (strncmp(o, "--", 2) != 0
         || (!find_key(o + 2) && strcmp(o, "--out") && strcmp(o, "--resume")
             && strcmp(o, "--config"))) {
-      fprintf(stderr, "afv run: unknown option '%s' (see afv run --help)\n",
-              o);
+      unknown_option(o, run_option_names(), NULL);
       return 0;
     }
     if (k + 1 >= argc || strncmp(argv[k + 1], "--", 2) == 0) {
@@ -1498,18 +1880,26 @@ static int make_parents(const char *dir)
 
 /* ---- one writer per run directory -------------------------------------- */
 /* A run holds a POSIX record lock (fcntl, a write lock on the whole file)
-** on DIR/lock from before its first check of DIR's files to its end, so a
-** second `afv run` on DIR (fresh or --resume) is refused at once, naming
-** the holder's process id (F_GETLK).  The kernel drops the lock when the
-** process ends, however it ends (SIGKILL included): no stale lock is ever
-** left to clean up.  The file itself stays (empty); only the lock on it
-** counts.  1 if this process now holds the lock (R->lock_fd), else 0 with
-** a message. */
+** on DIR/observables.csv, the run's own data file, from before its first
+** check of DIR's files to its end, so a second `afv run` on DIR (fresh or
+** --resume) is refused at once, naming the holder's process id (F_GETLK).
+** The kernel drops the lock when the process ends, however it ends
+** (SIGKILL included): no stale lock is ever left to clean up.  The lock is
+** on a file a user has no reason to delete or replace while the run
+** lives (deleting it deletes the results), not on an empty file of its
+** own that invites cleaning (a deleted lock file let a second writer in).
+** observables.csv keeps its inode for the whole run: a fresh run opens it
+** with O_TRUNC, a resume cuts it back with truncate(2), and nothing else
+** replaces it.  fcntl locks belong to the process and the file: closing
+** any descriptor of observables.csv before the end would drop the lock,
+** so within a run the file is read only through R->lock_fd. */
+#define LOCK_FILE "observables.csv"
+
 static int report_in_use(const char *dir, long pid)
 {
-  fprintf(stderr, "afv run: %s is in use by process %ld (it holds %s/lock): "
-          "a run directory has one writer at a time; wait for that run to "
-          "end, or stop it\n", dir, pid, dir);
+  fprintf(stderr, "afv run: %s is in use by process %ld (it holds the lock "
+          "on %s/" LOCK_FILE "): a run directory has one writer at a time; "
+          "wait for that run to end, or stop it\n", dir, pid, dir);
   return EXIT_BAD_INPUT;
 }
 
@@ -1521,8 +1911,8 @@ static long lock_holder(const char *dir)
   char path[RUN_PATH_MAX + 32];
   struct flock fl;
   int fd;
-  snprintf(path, sizeof path, "%s/lock", dir);
-  if ((fd = open(path, O_RDWR)) < 0) return 0;
+  snprintf(path, sizeof path, "%s/" LOCK_FILE, dir);
+  if ((fd = open(path, O_RDWR | O_NOFOLLOW)) < 0) return 0;
   memset(&fl, 0, sizeof fl);
   fl.l_type = F_WRLCK;
   fl.l_whence = SEEK_SET;
@@ -1531,16 +1921,38 @@ static long lock_holder(const char *dir)
   return fl.l_type == F_UNLCK ? 0 : (long)fl.l_pid;
 }
 
-static int lock_run_dir(run_state *R)
+/* Opens DIR's lock file: created if missing only for a fresh run (create
+** = 1; a resume changes nothing before its checks pass), never through a
+** symbolic link (a dangling one would make afv create its target), and
+** only a regular file.  The descriptor, or -1 with a message. */
+static int open_lock_file(const char *path, int create)
+{
+  struct stat sb;
+  int fd = open(path, O_RDWR | O_NOFOLLOW | (create ? O_CREAT : 0), 0666);
+  if (fd < 0) {
+    fprintf(stderr, "afv run: %s: cannot open%s: %s\n", path,
+            create ? "" : " (a run directory has it from its start)",
+            errno == ELOOP ? "a symbolic link (afv writes only its own "
+            "files)" : strerror(errno));
+    return -1;
+  }
+  if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+    fprintf(stderr, "afv run: %s: not a regular file\n", path);
+    close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+/* Takes DIR's lock (create: see open_lock_file).  1 if this process now
+** holds it (R->lock_fd), else 0 with a message. */
+static int lock_run_dir(run_state *R, int create)
 {
   char path[RUN_PATH_MAX + 32];
   struct flock fl;
   int fd, tries;
-  snprintf(path, sizeof path, "%s/lock", R->dir);
-  if ((fd = open(path, O_RDWR | O_CREAT, 0666)) < 0) {
-    fprintf(stderr, "afv run: %s: cannot open: %s\n", path, strerror(errno));
-    return 0;
-  }
+  snprintf(path, sizeof path, "%s/" LOCK_FILE, R->dir);
+  if ((fd = open_lock_file(path, create)) < 0) return 0;
   for (tries = 0; tries < 100; tries++) {
     memset(&fl, 0, sizeof fl);
     fl.l_type = F_WRLCK;
@@ -1593,19 +2005,87 @@ static int holds_run(const run_state *R)
   return 1;
 }
 
+/* 1 if name is a snapshot's, snap_DIGITS.svg. */
+static int is_snapshot(const char *name)
+{
+  size_t m = strlen(name);
+  return strncmp(name, "snap_", 5) == 0 && m > 9
+         && strcmp(name + m - 4, ".svg") == 0
+         && strspn(name + 5, "0123456789") == m - 9;
+}
+
 /* Files a run that stopped before its first checkpoint may have left and
 ** a fresh run does not always rewrite (the others it rewrites). */
 static void clear_unfinished_run(const char *dir)
 {
   static const char *const left[] = {"log.txt", "cells.txt",
-                                      "trajectory.xyz", "snap_000000000.svg",
-                                      "final.svg"};
-  char path[RUN_PATH_MAX + 32];
+                                      "trajectory.xyz", "final.svg"};
+  char path[RUN_PATH_MAX + 300];
   size_t k;
+  DIR *d;
+  struct dirent *e;
   for (k = 0; k < sizeof left / sizeof left[0]; k++) {
     snprintf(path, sizeof path, "%s/%s", dir, left[k]);
     remove(path);
   }
+  if (!(d = opendir(dir))) return;
+  while ((e = readdir(d)) != NULL)   /* its snapshots, of any step */
+    if (is_snapshot(e->d_name)) {
+      snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+      remove(path);
+    }
+  closedir(d);
+}
+
+/* The files afv run writes in DIR (besides snap_*.svg). */
+static const char *const run_files[] = {
+  "params.txt", "checkpoint.txt", "trajectory.dat", LOCK_FILE,
+  "trajectory.xyz", "log.txt", "t1_reference.txt", "cells.txt", "final.svg"};
+
+/* 1 (with a message) if DIR holds files of a run's names that afv did not
+** write: a params.txt that is not afv's, or any of run_files, or a
+** snapshot, without a params.txt.  A fresh run would overwrite them
+** (before, a user's own log.txt and trajectory.dat were, without a
+** word).  An empty observables.csv is the lock of a run being started
+** (it writes params.txt next), not a user's file. */
+static int foreign_files(const char *dir)
+{
+  char path[RUN_PATH_MAX + 300], line[64] = "";
+  struct stat sb;
+  size_t k;
+  FILE *fp;
+  DIR *d;
+  struct dirent *e;
+  const char *found = NULL;
+  snprintf(path, sizeof path, "%s/params.txt", dir);
+  if (lstat(path, &sb) == 0) {
+    if ((fp = fopen(path, "r"))) {
+      if (!fgets(line, sizeof line, fp)) line[0] = 0;
+      fclose(fp);
+    }
+    if (strncmp(line, "# afv run parameters", 20) == 0) return 0;
+    fprintf(stderr, "afv run: %s is not afv's (it does not start with '# afv "
+            "run parameters'): afv run writes only into a new or empty "
+            "directory or a run directory of its own; choose another "
+            "--out\n", path);
+    return 1;
+  }
+  for (k = 0; !found && k < sizeof run_files / sizeof run_files[0]; k++) {
+    snprintf(path, sizeof path, "%s/%s", dir, run_files[k]);
+    if (lstat(path, &sb) == 0 && !(strcmp(run_files[k], LOCK_FILE) == 0
+                                   && S_ISREG(sb.st_mode) && sb.st_size == 0))
+      found = run_files[k];
+  }
+  if (!found && (d = opendir(dir))) {
+    while (!found && (e = readdir(d)) != NULL)
+      if (is_snapshot(e->d_name)) found = "a snapshot snap_*.svg";
+    closedir(d);
+  }
+  if (!found) return 0;
+  fprintf(stderr, "afv run: %s holds %s but no params.txt: not a run "
+          "directory of afv, and a run would overwrite it; choose another "
+          "--out, or move that file away\n", dir, found);
+  return 1;
 }
 
 /* Creates DIR for a fresh run and takes its lock.  DIR may exist, but must
@@ -1615,13 +2095,14 @@ static void clear_unfinished_run(const char *dir)
 static int make_out_dir(run_state *R)
 {
   const char *dir = R->dir;
-  if (holds_run(R)) return 0;       /* refused before anything changes */
+  if (holds_run(R) || foreign_files(dir))
+    return 0;                       /* refused before anything changes */
   if (!make_parents(dir)) return 0;
   if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
     fprintf(stderr, "afv run: cannot create %s: %s\n", dir, strerror(errno));
     return 0;
   }
-  if (!lock_run_dir(R) || holds_run(R)) return 0;
+  if (!lock_run_dir(R, 1) || holds_run(R)) return 0;
   clear_unfinished_run(dir);
   return 1;
 }
@@ -1636,6 +2117,24 @@ static int write_failed(run_state *R, const char *name)
   return report_io(R);
 }
 
+/* The parameters the command line asks for: the defaults, --config FILE,
+** the --KEY VALUE overrides, checked (cfg_validate; the cells file read
+** into cl); set[k] records where key k came from.  0, or an exit status
+** with the message printed. */
+static int requested_cfg(run_cfg *cfg, afv_cells *cl, const run_args *a,
+                         int argc, char **argv, int *set)
+{
+  char err[2 * RUN_PATH_MAX] = "";
+  if (a->config && !read_config(a->config, cfg, set, err, sizeof err))
+    return bad_input(err);
+  if (!apply_args(argc, argv, cfg, set)) return EXIT_BAD_INPUT;
+  if (!cfg_validate(cfg, set, cl, err, sizeof err)) {
+    locate_error(err, sizeof err, set, a->config);
+    return bad_input(err);
+  }
+  return 0;
+}
+
 static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
 {
   char err[2 * RUN_PATH_MAX] = "";
@@ -1646,13 +2145,8 @@ static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
   snprintf(R->dir, sizeof R->dir, "%s", a->out);
   if ((holder = lock_holder(R->dir)) > 0)   /* at once, before the start */
     return report_in_use(R->dir, holder);
-  if (a->config && !read_config(a->config, &R->cfg, set, err, sizeof err))
-    return bad_input(err);
-  if (!apply_args(argc, argv, &R->cfg, set)) return EXIT_BAD_INPUT;
-  if (!cfg_validate(&R->cfg, set, &R->cells, err, sizeof err)) {
-    locate_error(err, sizeof err, set, a->config);
-    return bad_input(err);
-  }
+  if ((st = requested_cfg(&R->cfg, &R->cells, a, argc, argv, set)) != 0)
+    return st;
   if (run_start(R, err, sizeof err) != AFV_OK) return bad_input(err);
   if (!run_computable(R, "the start", err, sizeof err)) {
     locate_error(err, sizeof err, set, a->config);
@@ -1661,15 +2155,17 @@ static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
   /* everything is checked: only now is anything created */
   if (!make_out_dir(R)) return EXIT_BAD_INPUT;
   R->progress = !R->cfg.quiet && isatty(STDERR_FILENO);
-  if (R->cells.n && write_cells_copy(R->dir, &R->cells) != AFV_OK)
-    return write_failed(R, "cells.txt");
+  /* params.txt first: a directory with it is afv's (foreign_files) */
   if (write_params(R->dir, &R->cfg, R->cells.n ? "cells.txt" : "none")
       != AFV_OK)
     return write_failed(R, "params.txt");
+  if (R->cells.n && write_cells_copy(R->dir, &R->cells) != AFV_OK)
+    return write_failed(R, "cells.txt");
   if (!open_outputs(R, NULL, err, sizeof err)) {
     fprintf(stderr, "afv run: %s\n", err);
     return EXIT_BAD_INPUT;
   }
+  log_build(R, "a fresh run");
   if (R->start_spacing > 0
       && R->start_spacing < R->cfg.spacing * (1 - 1e-9))
     run_log(R, "cluster start: spacing %.6g l instead of %.6g l, so that "
@@ -1691,12 +2187,10 @@ static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
 /* --steps MORE of a resume: a count of steps, 0 .. 2^63 - 1. */
 static int parse_more_steps(const char *text, long long *more)
 {
-  char *end;
-  errno = 0;
-  *more = strtoll(text, &end, 10);
-  if (end != text && !*end && !errno && *more >= 0) return 1;
-  fprintf(stderr, "afv: --steps: '%s' is not a count of steps (an integer "
-          "from 0 to %lld)\n", text, LLONG_MAX);
+  const char *why = integral_problem(text, 0, LLONG_MAX, more);
+  if (!why) return 1;
+  cli_errorf("--steps: '%s' %s: not a count of steps (an integer from 0 to "
+             "%lld)", text, why, LLONG_MAX);
   return 0;
 }
 
@@ -1727,7 +2221,8 @@ static int resume_params(run_state *R, const run_args *a, int *set,
 ** then has the new count).  0, or an exit status with the message
 ** printed. */
 static int resume_checkpoint(run_state *R, long long more, const char *ckpt,
-                             afv_checkpoint *ck, int *new_steps)
+                             afv_checkpoint *ck, int *new_steps,
+                             ckpt_trust *T)
 {
   char err[2 * RUN_PATH_MAX];
   if (access(ckpt, F_OK) != 0) {
@@ -1750,14 +2245,16 @@ static int resume_checkpoint(run_state *R, long long more, const char *ckpt,
     return EXIT_BAD_INPUT;
   }
   if (more >= 0 && more > LLONG_MAX - ck->step) {
-    fprintf(stderr, "afv: --steps: %lld more steps past the checkpoint's "
-            "step %lld exceed the largest step count (%lld)\n", more,
-            ck->step, LLONG_MAX);
+    cli_errorf("--steps: %lld more steps past the checkpoint's step %lld "
+               "exceed the largest step count (%lld)", more, ck->step,
+               LLONG_MAX);
     return EXIT_BAD_INPUT;
   }
   *new_steps = more >= 0 && R->cfg.steps != ck->step + more;
   if (more >= 0) R->cfg.steps = ck->step + more;
-  if (!recorded_sizes_hold(R, ck, err, sizeof err)) return bad_input(err);
+  if (!recorded_sizes_hold(R, ck, err, sizeof err)
+      || !checkpoint_agrees(R, ck, T, err, sizeof err))
+    return bad_input(err);
   return 0;
 }
 
@@ -1765,7 +2262,8 @@ static int resume_checkpoint(run_state *R, long long more, const char *ckpt,
 ** run can compute with (run_computable), and the T1 reference.  0, or an
 ** exit status with the message printed. */
 static int resume_state(run_state *R, const afv_checkpoint *ck,
-                        const char *ckpt, const int *set, const char *params)
+                        const char *ckpt, const int *set, const char *params,
+                        const ckpt_trust *T)
 {
   char err[2 * RUN_PATH_MAX];
   afv_params p;
@@ -1787,6 +2285,14 @@ static int resume_state(run_state *R, const afv_checkpoint *ck,
     locate_error(err, sizeof err, set, params);  /* a key: its line */
     return bad_input(err);
   }
+  if (T->has_energy && T->energy != R->sim.geom.energy) {
+    fprintf(stderr, "afv run: %s: its state has the energy %.17g under "
+            "params.txt, but observables.csv's row of step %lld has %.17g: "
+            "the checkpoint and params.txt do not describe these files "
+            "(edited, or another run's); nothing was changed\n", ckpt,
+            R->sim.geom.energy, ck->step, T->energy);
+    return EXIT_BAD_INPUT;
+  }
   if (!obs_t1_reference(&R->an, &R->sim, R->dir, 1)) return EXIT_BAD_INPUT;
   return 0;
 }
@@ -1801,13 +2307,15 @@ static int resume_checks(run_state *R, const run_args *a, long long more,
 {
   char params[RUN_PATH_MAX + 32], ckpt[RUN_PATH_MAX + 32];
   int set[N_RUN_KEYS], st;
+  ckpt_trust T;
   memset(set, 0, sizeof set);
+  memset(&T, 0, sizeof T);
   snprintf(params, sizeof params, "%s/params.txt", R->dir);
   snprintf(ckpt, sizeof ckpt, "%s/checkpoint.txt", R->dir);
   if ((st = resume_params(R, a, set, params)) != 0
-      || (st = resume_checkpoint(R, more, ckpt, ck, new_steps)) != 0)
+      || (st = resume_checkpoint(R, more, ckpt, ck, new_steps, &T)) != 0)
     return st;
-  return resume_state(R, ck, ckpt, set, params);
+  return resume_state(R, ck, ckpt, set, params, &T);
 }
 
 static int run_resume(run_state *R, const run_args *a)
@@ -1829,7 +2337,7 @@ static int run_resume(run_state *R, const run_args *a)
             "directory)\n", path, strerror(errno));
     return EXIT_BAD_INPUT;
   }
-  if (!lock_run_dir(R)) return EXIT_BAD_INPUT;
+  if (!lock_run_dir(R, 0)) return EXIT_BAD_INPUT;
   memset(&ck, 0, sizeof ck);
   st = resume_checks(R, a, more, &ck, &new_steps);
   /* all checked: from here on files change (params.txt atomically) */
@@ -1844,6 +2352,7 @@ static int run_resume(run_state *R, const run_args *a)
   afv_checkpoint_free(&ck);
   if (st != 0) return st;
   R->progress = !R->cfg.quiet && isatty(STDERR_FILENO);
+  log_build(R, "resumed");
   run_log(R, "resuming at step %lld (t = %.6g), to step %lld\n", R->sim.step,
           R->sim.t, R->cfg.steps);
   return run_loop(R);
@@ -1872,6 +2381,79 @@ static int run_finished(const char *dir)
   return done;
 }
 
+/* 1 if the cells files a and b hold the same columns and values. */
+static int same_cells(const afv_cells *a, const afv_cells *b)
+{
+  int k;
+  if (a->n != b->n) return 0;
+  for (k = 0; k < AFV_NCOLS; k++)
+    if (a->has[k] != b->has[k] || (a->has[k] && memcmp(a->col[k], b->col[k],
+                                   (size_t)a->n * sizeof(double)) != 0))
+      return 0;
+  return 1;
+}
+
+/* --continue on DIR with a run: the parameters asked for must be the
+** run's (DIR/params.txt, and its cells.txt against the cells file
+** given), every key but quiet and checkpoint_every; else refused, naming the first key that
+** differs (before, they were ignored: --P0 5 on a finished P0 4 run said
+** "finished already", and an unfinished one resumed with the old N, P0,
+** v0).  0 if they agree, else an exit status with the message printed. */
+static int same_run_asked(const run_args *a, int argc, char **argv)
+{
+  char path[RUN_PATH_MAX + 32], err[2 * RUN_PATH_MAX];
+  char want[RUN_PATH_MAX + 32], have[RUN_PATH_MAX + 32];
+  run_cfg asked, run;
+  afv_cells asked_cells, run_cells;
+  int set_asked[N_RUN_KEYS], set_run[N_RUN_KEYS], k, st = 0;
+  memset(set_asked, 0, sizeof set_asked);
+  memset(set_run, 0, sizeof set_run);
+  memset(&asked_cells, 0, sizeof asked_cells);
+  memset(&run_cells, 0, sizeof run_cells);
+  cfg_defaults(&asked);
+  cfg_defaults(&run);
+  snprintf(path, sizeof path, "%s/params.txt", a->out);
+  if ((st = requested_cfg(&asked, &asked_cells, a, argc, argv, set_asked)))
+    goto done;
+  if (!read_config(path, &run, set_run, err, sizeof err)) {
+    st = bad_input(err);
+    goto done;
+  }
+  if (!set_run[find_key("integrator") - run_keys])   /* as resume_params */
+    snprintf(run.integrator, sizeof run.integrator, "substeps");
+  if (!cfg_validate(&run, set_run, &run_cells, err, sizeof err)) {
+    locate_error(err, sizeof err, set_run, path);
+    st = bad_input(err);
+    goto done;
+  }
+  for (k = 0; k < N_RUN_KEYS && !st; k++) {
+    const run_key *K = &run_keys[k];
+    if (strcmp(K->name, "quiet") == 0
+        || strcmp(K->name, "checkpoint_every") == 0)
+      continue;   /* neither changes what the run computes or records */
+    key_text(&asked, K, want, sizeof want);
+    key_text(&run, K, have, sizeof have);
+    if (K->kind == K_PATH ? same_cells(&asked_cells, &run_cells)
+        : strcmp(want, have) == 0)
+      continue;
+    if (K->kind == K_PATH)
+      cli_errorf("--continue: cells: the cells file %s differs from the "
+                 "run's (%s/cells.txt): %s holds another run; choose another "
+                 "--out", want, a->out, a->out);
+    else
+      cli_errorf("--continue: %s: %s asked, but %s has %s: %s holds another "
+                 "run; choose another --out, or ask for its parameters%s",
+                 K->name, want, path, have, a->out,
+                 strcmp(K->name, "steps") == 0 ? " (to run it longer: afv "
+                 "run --resume DIR --steps MORE)" : "");
+    st = EXIT_BAD_INPUT;
+  }
+done:
+  afv_cells_free(&asked_cells);
+  afv_cells_free(&run_cells);
+  return st;
+}
+
 /* --continue --out DIR: the idempotent job of afv sweep.  No checkpoint in
 ** DIR (no run, or one that stopped before its first checkpoint, which a
 ** fresh run replaces): a fresh run.  A checkpointed run short of its
@@ -1886,6 +2468,7 @@ static int run_continue(run_state *R, run_args *a, int argc, char **argv)
   if (strlen(a->out) > RUN_PATH_MAX - 64) return bad_input("--out: path too long");
   snprintf(ckpt, sizeof ckpt, "%s/checkpoint.txt", a->out);
   if (access(ckpt, F_OK) != 0) return run_fresh(R, a, argc, argv);
+  if ((done = same_run_asked(a, argc, argv)) != 0) return done;
   if ((done = run_finished(a->out)) != 0) {
     if (done > 0 && !a->quiet)
       fprintf(stderr, "afv run: %s: finished already\n", a->out);

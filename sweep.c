@@ -346,8 +346,7 @@ static int sweep_option(sweep_opts *o, const char *opt, const char *val)
     x->text = val;
     o->nax++;
     if (!run_key_check(x->key, "0", err, sizeof err) && strstr(err, "unknown"))
-      return !fprintf(stderr, "afv sweep: unknown option '%s' (not an afv "
-                      "run key; see afv sweep --help)\n", opt);
+      return !unknown_option(opt, sweep_usage, run_option_names());
     err[0] = 0;
     if (!sweep_axis_parse(x, err, sizeof err))
       return !fprintf(stderr, "afv sweep: %s\n", err);

@@ -294,15 +294,96 @@ static void test_cli_bad_input(void)
   expect_bad("frobnicate", "frobnicate", NULL);
 }
 
+/* ---- argument habits ------------------------------------------------------ */
+/* --KEY=VALUE is --KEY VALUE; an unknown option gets the nearest one; an
+** integer key takes an integral real (1e2) and refuses 2.5 saying why; a
+** subnormal value is named as such, not "not a finite number"; every
+** message starts with the command; the help does not promise that A0
+** follows l.  (The code before: "unknown option '--P0=4.2'", no "did you
+** mean", "'1e2' is not an integer", "afv: " for a config file's error,
+** "(default ... = pi l^2)".) */
+static void test_cli_argument_habits(void)
+{
+  static char params[OUT_MAX];
+  const char *a0;
+  write_file("good.xy", good_points);
+  write_file("bad.conf", "N 20\nv00 1\n");
+  CHECK(afv("run --N=20 --steps=1e2 --P0=4.25 --relax_max_steps 1e1 "
+            "--quiet --out %s/hab") == 0, "afv run with --KEY=VALUE and 1e2 "
+        "steps: %s", err);
+  slurp("hab/params.txt", params);
+  CHECK(strstr(params, "\nsteps            100\n")
+        && strstr(params, "\nP0               4.25\n")
+        && strstr(params, "\nrelax_max_steps  10\n"), "params.txt: %s",
+        params);
+  expect_bad("run --vo 1 --out %s/x", "afv run: ", "did you mean --v0");
+  expect_bad("run --stpes 10 --out %s/x", "did you mean --steps", NULL);
+  expect_bad("eval %s/good.xy --Lamda 1", "afv eval: ", "did you mean "
+             "--Lambda");
+  expect_bad("check %s/good.xy --toll 1", "afv check: ", "did you mean "
+             "--tol");
+  expect_bad("draw %s/good.xy --widht 300", "afv draw: ", "did you mean "
+             "--width");
+  expect_bad("sweep --out %s/sw --vo 1,2", "afv sweep: ", "did you mean "
+             "--v0");
+  expect_bad("analyze %s/a %s/b", "afv analyze: more than one DIR", NULL);
+  expect_bad("run --steps 2.5 --out %s/x", "afv run: steps: '2.5'",
+             "fractional");
+  expect_bad("run --P0 1e-320 --out %s/x", "afv run: P0: '1e-320'",
+             "smallest normal double");
+  expect_bad("run --config %s/bad.conf --out %s/x", "afv run: ", "v00");
+  expect_bad("eval %s/good.xy --P0=abc", "afv eval: --P0: 'abc'", NULL);
+  expect_bad("eval %s/good.xy --KA", "afv eval: --KA needs a value", NULL);
+  CHECK(afv("eval %s/good.xy --P0=5 --box=20,20") == 0, "afv eval "
+        "--P0=5 --box=20,20: %s", err);
+  CHECK(afv("run --help") == 0 && (a0 = strstr(out, "\n  A0 "))
+        && (!strstr(a0, "pi l^2") || strstr(a0, "pi l^2") > strstr(a0,
+            "\n  P0 ")), "afv run --help says A0 is pi l^2");
+  CHECK(afv("eval --help") == 0 && (a0 = strstr(out, "--A0"))
+        && (!strstr(a0, "pi l^2") || strstr(a0, "pi l^2") > strstr(a0,
+            "--P0")), "afv eval --help says A0 is pi l^2");
+}
+
+/* params.txt and log.txt name the program that wrote them: afv's version
+** and, built from a git checkout, its commit (the code before: neither). */
+static void test_cli_run_records_version(void)
+{
+  static char params[OUT_MAX], log[OUT_MAX];
+  char want[64], commit[64] = "";
+  FILE *git = popen("git rev-parse --short=12 HEAD 2>/dev/null", "r");
+  if (git) {
+    if (!fgets(commit, sizeof commit, git)) commit[0] = 0;
+    commit[strcspn(commit, "\n")] = 0;
+    pclose(git);
+  }
+  CHECK(afv("run --N 12 --steps 2 --quiet --out %s/ver") == 0, "afv run: %s",
+        err);
+  slurp("ver/params.txt", params);
+  slurp("ver/log.txt", log);
+  snprintf(want, sizeof want, "# afv run parameters, written by afv %s",
+           AFV_VERSION);
+  CHECK(strstr(params, want) != NULL, "params.txt lacks '%s':\n%.300s", want,
+        params);
+  snprintf(want, sizeof want, "afv %s", AFV_VERSION);
+  CHECK(strncmp(log, want, strlen(want)) == 0, "log.txt does not start with "
+        "'%s':\n%.300s", want, log);
+  if (commit[0])   /* a git checkout: the commit the tests were built at */
+    CHECK(strstr(params, commit) && strstr(log, commit), "params.txt or "
+          "log.txt lacks the commit %s", commit);
+  test_sh("rm -rf %s/ver", dir);
+}
+
 static void remove_dir(void)
 {
   static const char *names[] = {"stdout", "stderr", "good.xy", "word.xy",
+                                "bad.conf",
                                 "cols.xy", "one.xy", "nan.xy", "inf.xy",
                                 "same.xy", "sameimg.xy", "wrap.xy"};
   char p[128];
   size_t k;
   for (k = 0; k < sizeof names / sizeof names[0]; k++)
     remove(path_in(p, sizeof p, names[k]));
+  test_sh("rm -rf %s", path_in(p, sizeof p, "hab"));
   if (rmdir(dir) != 0) printf("  note: could not remove %s\n", dir);
 }
 
@@ -327,5 +408,7 @@ void suite_cli(void)
   RUN(test_cli_eval_options);
   RUN(test_cli_check);
   RUN(test_cli_bad_input);
+  RUN(test_cli_argument_habits);
+  RUN(test_cli_run_records_version);
   remove_dir();
 }

@@ -173,6 +173,29 @@ static int exit_status(pid_t pid)
 #define FAST "--N 64 --P0 4.5 --v0 0.3 --sample_every 5 --frame_every 10 " \
              "--checkpoint_every 5 --svg_every 0 --quiet"
 
+/* Starts a long run of FAST's system into root/sub (out receives the
+** path) and waits for its first checkpoint; returns the writer's pid and
+** puts "process PID" into want. */
+static pid_t start_live_writer(const char *sub, char *out, size_t outlen,
+                               char *want, size_t wantlen)
+{
+  const char *argv[] = {"afv", "run", "--N", "64", "--P0", "4.5", "--v0",
+                        "0.3", "--sample_every", "5", "--frame_every", "10",
+                        "--checkpoint_every", "5", "--svg_every", "0",
+                        "--quiet", "--steps", "100000000", "--out", out, NULL};
+  char ckpt[96];
+  pid_t pid;
+  int waited;
+  snprintf(out, outlen, "%s/%s", root, sub);
+  snprintf(ckpt, sizeof ckpt, "%s/checkpoint.txt", sub);
+  pid = start_afv(argv, "writer.txt", NULL);
+  for (waited = 0; waited < 20000 && !exists(ckpt); waited += 5)
+    sleep_ms(5);
+  CHECK(exists(ckpt), "the writer never checkpointed");
+  snprintf(want, wantlen, "process %ld", (long)pid);
+  return pid;
+}
+
 /* ---- one writer per run directory --------------------------------------- */
 /* While a run writes in DIR, a resume and a fresh run on DIR are refused at
 ** once (exit 2, naming the writer's pid) and leave it alone; SIGKILLed,
@@ -182,18 +205,8 @@ static int exit_status(pid_t pid)
 static void test_second_writer_refused(void)
 {
   char out[512], want[64], *e;
-  const char *argv[] = {"afv", "run", "--N", "64", "--P0", "4.5", "--v0",
-                        "0.3", "--sample_every", "5", "--frame_every", "10",
-                        "--checkpoint_every", "5", "--svg_every", "0",
-                        "--quiet", "--steps", "100000000", "--out", out, NULL};
-  pid_t pid;
-  int waited, st;
-  snprintf(out, sizeof out, "%s/w", root);
-  pid = start_afv(argv, "writer.txt", NULL);
-  for (waited = 0; waited < 20000 && !exists("w/checkpoint.txt"); waited += 5)
-    sleep_ms(5);
-  CHECK(exists("w/checkpoint.txt"), "the writer never checkpointed");
-  snprintf(want, sizeof want, "process %ld", (long)pid);
+  pid_t pid = start_live_writer("w", out, sizeof out, want, sizeof want);
+  int st;
   st = test_sh("./afv run --resume %s --steps 10 --quiet 2> %s/err.txt", out,
               root);
   e = last_err();
@@ -222,6 +235,41 @@ static void test_second_writer_refused(void)
         "differs from one straight run");
   CHECK(same_file("w", "w_ref", "checkpoint.txt"), "checkpoint.txt differs "
         "from one straight run");
+}
+
+/* The lock cannot be cleaned away: with a run live in DIR, deleting
+** DIR/lock (the empty file the code before locked, which stayed after
+** every run) and putting a symbolic link in its place leaves a resume
+** refused (the code before: the resume exited 0 beside the live run,
+** rewrote params.txt's steps and tore trajectory.dat).  A dangling
+** symbolic link in a fresh run's directory never makes afv create its
+** target (the code before created the target of DIR/lock). */
+static void test_lock_survives_cleaning(void)
+{
+  char out[512], want[64], *e;
+  pid_t pid = start_live_writer("lk", out, sizeof out, want, sizeof want);
+  int st;
+  test_sh("rm -f %s/lock && ln -s %s/lock_target %s/lock", out, root, out);
+  st = test_sh("./afv run --resume %s --steps 10 --quiet 2> %s/err.txt", out,
+               root);
+  e = last_err();
+  CHECK(st == 2 && strstr(e, want), "resume beside a live writer whose "
+        "lock file was cleaned: exit %d, want 2 naming %s: %s", st, want, e);
+  free(e);
+  kill(pid, SIGKILL);
+  exit_status(pid);
+  CHECK(!exists("lock_target"), "afv created the target of a link");
+  /* fresh runs into directories holding dangling links */
+  CHECK(test_sh("mkdir -p %s/lk2 && ln -s %s/lock_target2 %s/lk2/lock && "
+                "./afv run " FAST " --steps 10 --out %s/lk2 2> %s/err.txt",
+                root, root, root, root, root) == 0, "a fresh run beside a "
+        "stray link");
+  CHECK(!exists("lock_target2"), "afv created the target of DIR/lock");
+  st = test_sh("mkdir -p %s/lk3 && ln -s %s/obs_target %s/lk3/observables.csv"
+               " && ./afv run " FAST " --steps 10 --out %s/lk3 2> %s/err.txt",
+               root, root, root, root, root);
+  CHECK(st == 2 && !exists("obs_target"), "a link at observables.csv: exit "
+        "%d, want 2, and its target not made", st);
 }
 
 /* 1 if the stderr a refused run left in root/name says why, rightly: the
@@ -326,7 +374,23 @@ static void test_failed_resume_changes_nothing(void)
      "--steps 50", "params.txt:6: KA: 1e+200"},
     /* cell 5's angle (line 14 of the checkpoint) not finite */
     {"awk 'NR == 14 { $3 = \"inf\" } { print }' checkpoint.txt > c.tmp && "
-     "mv c.tmp checkpoint.txt", "--steps 50", "checkpoint.txt"}};
+     "mv c.tmp checkpoint.txt", "--steps 50", "checkpoint.txt"},
+    /* well-formed checkpoints that do not describe the files (the code
+    ** before cut trajectory.dat to nothing, glued a frame onto a line,
+    ** and appended frames after later ones) */
+    {"awk '/^bytes trajectory.dat/ { $3 = 0 } { print }' checkpoint.txt > "
+     "c.tmp && mv c.tmp checkpoint.txt", "", "bytes trajectory.dat 0"},
+    {"awk '/^bytes trajectory.dat/ { $3 -= 5 } { print }' checkpoint.txt > "
+     "c.tmp && mv c.tmp checkpoint.txt", "--steps 50", "bytes trajectory.dat"},
+    {"awk '/^bytes observables.csv/ { $3 -= 9 } { print }' checkpoint.txt > "
+     "c.tmp && mv c.tmp checkpoint.txt", "", "bytes observables.csv"},
+    {"awk '/^step/ { $2 = 90 } { print }' checkpoint.txt > c.tmp && "
+     "mv c.tmp checkpoint.txt", "--steps 50", "checkpoint.txt:4: time"},
+    {"awk '/^step/ { $2 = 90 } /^time/ { $2 = \"0x1.ccccccccccccdp-1\" } "
+     "{ print }' checkpoint.txt > c.tmp && mv c.tmp checkpoint.txt",
+     "--steps 50", "row of step 90"},
+    {"awk 'NR == 12 { $1 = \"0x1p+3\" } { print }' checkpoint.txt > c.tmp "
+     "&& mv c.tmp checkpoint.txt", "--steps 50", "energy"}};
   size_t c;
   CHECK(test_sh("./afv run " FAST " --xyz 1 --steps 100 --out %s/base",
                root) == 0, "the base run");
@@ -362,6 +426,47 @@ static void test_failed_resume_changes_nothing(void)
         "after a refused --steps the run no longer resumes");
 }
 
+/* A cells file root/name of one column: n cells, all usual but cell odd. */
+static void write_column(const char *name, const char *column, int n,
+                         int odd, const char *odd_value, const char *usual)
+{
+  char path[512];
+  FILE *fp;
+  int i;
+  snprintf(path, sizeof path, "%s/%s", root, name);
+  if (!(fp = fopen(path, "w"))) {
+    CHECK(0, "cannot write %s", path);
+    return;
+  }
+  fprintf(fp, "# %s\n", column);
+  for (i = 0; i < n; i++) fprintf(fp, "%s\n", i == odd ? odd_value : usual);
+  fclose(fp);
+}
+
+/* `afv run --N n --steps 20 ARGS --out root/bad` ('@' in ARGS stands for
+** the suite's directory), within 20 s: exit 2, one line "afv run: ..."
+** naming want, and no directory made. */
+static void check_refused_up_front(int n, const char *args_at,
+                                   const char *want)
+{
+  char args[512], *e, *at;
+  int st;
+  snprintf(args, sizeof args, "%s", args_at);
+  if ((at = strchr(args, '@')))
+    snprintf(at, sizeof args - (size_t)(at - args), "%s%s", root,
+             strchr(args_at, '@') + 1);
+  st = test_sh("timeout 20 ./afv run --N %d --steps 20 --quiet %s --out "
+               "%s/bad 2> %s/err.txt", n, args, root, root);
+  e = last_err();
+  CHECK(st == 2, "'%s': exit %d, want 2", args, st);
+  CHECK(strncmp(e, "afv run: ", 9) == 0 && strstr(e, want)
+        && strchr(e, '\n') == e + strlen(e) - 1, "'%s': message not one "
+        "line 'afv run: ...' naming '%s': %s", args, want, e);
+  CHECK(!exists("bad"), "'%s': the directory was made", args);
+  free(e);
+  test_sh("rm -rf %s/bad", root);
+}
+
 /* ---- what the run can compute ------------------------------------------- */
 /* Values the checks let through before, but whose energy, force, step
 ** factors or angle noise overflow: refused with one line naming the key
@@ -375,44 +480,127 @@ static void test_uncomputable_parameters_refused(void)
     {"--KA 1e200", "KA:"}, {"--KA 1e308", "KA:"}, {"--A0 1e200", "A0:"},
     {"--P0 1e200", "P0:"}, {"--KP 1e300", "KP:"},
     {"--Lambda 1e300", "Lambda:"}, {"--Dr 1e308", "Dr:"},
-    {"--mu 1e300 --dt 1e10", "mu:"}, {"--v0 1e308 --dt 10", "v0:"},
+    {"--mu 1e300 --dt 1e10 --v0 0", "mu:"}, {"--v0 1e308 --dt 10", "v0:"},
     {"--cells @/dr.txt", "Dr (cells file, cell 3): 1e+308:"},
-    {"--config @/cfg.txt", "cfg.txt:2: KA:"}};
+    {"--config @/cfg.txt", "cfg.txt:2: KA:"},
+    /* meaningless: a target no cell can reach (P0 <= 0, A0 <= 0 with a
+    ** positive modulus: the relaxation crawled on, silent, for minutes), a
+    ** step that moves a cell farther than a step may (v0 dt: a dead
+    ** directory, exit 3), an l whose square leaves the doubles (the code
+    ** before: --P0 0 ran past the timeout; --l 1e200 said "start:
+    ** parameter out of range", --l 1e-200 blamed phi) */
+    {"--P0 0", "P0:"}, {"--P0 -100", "P0:"}, {"--A0 -10", "A0:"},
+    {"--v0 1e6", "v0:"}, {"--dt 100", "dt:"},
+    {"--dt 10 --integrator substeps", "dt:"},
+    {"--v0 -60 --integrator substeps", "v0:"},
+    {"--cells @/p0.txt", "P0 (cells file, cell 2):"},
+    {"--l 1e200", "l: 1e+200"}, {"--l 1e-200", "l: 1e-200"}};
   char path[512];
   size_t c;
   FILE *fp;
-  int i;
   snprintf(path, sizeof path, "%s/cfg.txt", root);
   if ((fp = fopen(path, "w"))) {
     fputs("N 30\nKA 1e200\n", fp);
     fclose(fp);
   }
-  snprintf(path, sizeof path, "%s/dr.txt", root);
-  if ((fp = fopen(path, "w"))) {
-    fputs("# Dr\n", fp);
-    for (i = 0; i < 30; i++) fputs(i == 3 ? "1e308\n" : "0.1\n", fp);
-    fclose(fp);
-  }
-  for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
-    char args[512], *e, *at;
-    int st;
-    snprintf(args, sizeof args, "%s", cases[c][0]);
-    if ((at = strchr(args, '@')))   /* '@' stands for the suite's directory */
-      snprintf(at, sizeof args - (size_t)(at - args), "%s%s", root,
-               strchr(cases[c][0], '@') + 1);
-    st = test_sh("./afv run --N 30 --steps 20 --quiet %s --out %s/bad "
-                "2> %s/err.txt", args, root, root);
-    e = last_err();
-    CHECK(st == 2, "'%s': exit %d, want 2", args, st);
-    CHECK(strstr(e, cases[c][1]) && strchr(e, '\n') == e + strlen(e) - 1,
-          "'%s': message not one line naming '%s': %s", args, cases[c][1], e);
-    CHECK(!exists("bad"), "'%s': the directory was made", args);
-    free(e);
-    test_sh("rm -rf %s/bad", root);
-  }
-  /* just inside: the paper's values scaled far up still run */
+  write_column("dr.txt", "Dr", 30, 3, "1e308", "0.1");
+  write_column("p0.txt", "P0", 30, 2, "0", "4.5");
+  for (c = 0; c < sizeof cases / sizeof cases[0]; c++)
+    check_refused_up_front(30, cases[c][0], cases[c][1]);
+  /* just inside: the paper's values scaled far up still run; the model
+  ** needs no positive target without its modulus */
   CHECK(test_sh("./afv run --N 30 --steps 0 --KA 1e100 --quiet --out %s/big "
                "2> %s/err.txt", root, root) == 0, "KA 1e100 refused");
+  CHECK(test_sh("./afv run --N 20 --steps 5 --KP 0 --P0 0 --quiet --out "
+                "%s/kp0 2> %s/err.txt", root, root) == 0, "KP 0 P0 0 refused");
+}
+
+/* ---- --continue holds to the run in DIR ---------------------------------- */
+/* --continue with parameters other than DIR's run: refused (exit 2, one
+** line naming the key), the directory unchanged, whether the run is
+** finished or not; with its own parameters (and a copy of its cells file)
+** it goes on.  (The code before: "finished already", exit 0, for --P0 5
+** on a P0 4 run, and an unfinished run resumed with its old N, P0, v0.) */
+static void test_continue_other_parameters_refused(void)
+{
+  static const char *const cases[][2] = {
+    {"--P0 5", "P0: 5 asked"}, {"--v0 2 --mu 3", "mu: 3 asked"},
+    {"--steps 40", "steps: 40 asked"},
+    {"--cells @/c2.txt", "cells: the cells file"}};
+  size_t c;
+  write_column("c1.txt", "v0", 30, 1, "0.2", "0.3");
+  write_column("c2.txt", "v0", 30, 1, "0.25", "0.3");
+  CHECK(test_sh("./afv run " FAST " --N 30 --cells %s/c1.txt --steps 20 "
+                "--out %s/co && rm %s/co/final.svg", root, root, root) == 0,
+        "the run, made unfinished");
+  for (c = 0; c < 2 * sizeof cases / sizeof cases[0]; c++) {
+    const char *const *k = cases[c % 4];
+    char args[512], *at, *before, *after, *e;
+    long nb, na;
+    int st;
+    snprintf(args, sizeof args, "--cells @/c1.txt %s", k[0]);
+    while ((at = strchr(args, '@'))) {   /* '@': the suite's directory */
+      char rest[512];
+      snprintf(rest, sizeof rest, "%s", at + 1);
+      snprintf(at, sizeof args - (size_t)(at - args), "%s%s", root, rest);
+    }
+    if (c == 4)   /* the second round: the run finished */
+      CHECK(test_sh("./afv run --resume %s/co --quiet", root) == 0,
+            "finishing the run");
+    before = picture("co", &nb);
+    st = test_sh("./afv run " FAST " --N 30 --steps 20 %s --continue --out "
+                 "%s/co 2> %s/err.txt", args, root, root);
+    after = picture("co", &na);
+    e = last_err();
+    CHECK(st == 2 && strstr(e, k[1]) && strchr(e, '\n') == e + strlen(e) - 1,
+          "'%s' (%s run): exit %d, want 2 and one line naming '%s': %s",
+          args, c >= 4 ? "finished" : "unfinished", st, k[1], e);
+    CHECK(na == nb && memcmp(before, after, (size_t)nb) == 0, "'%s': the "
+          "run's directory changed", args);
+    free(before);
+    free(after);
+    free(e);
+  }
+  CHECK(test_sh("cp %s/c1.txt %s/c1copy.txt && ./afv run " FAST " --N 30 "
+                "--cells %s/c1copy.txt --steps 20 --continue --out %s/co",
+                root, root, root, root) == 0, "--continue with the run's own "
+        "parameters");
+}
+
+/* ---- a directory that is not a run's ----------------------------------- */
+/* A user's own log.txt and trajectory.dat (no params.txt), or a params.txt
+** that afv did not write: a fresh run is refused (exit 2, naming the
+** file) and every file stays as it was.  (The code before overwrote them
+** without a word.) */
+static void test_foreign_directory_kept(void)
+{
+  static const char *const setups[][2] = {
+    {"echo mine > log.txt && echo 1 2 3 > trajectory.dat", "trajectory.dat"},
+    {"echo 'N 5' > params.txt && echo mine > notes.txt", "params.txt"},
+    {"echo '<svg/>' > snap_000000100.svg", "snap"}};
+  size_t c;
+  for (c = 0; c < sizeof setups / sizeof setups[0]; c++) {
+    char sub[32], *before, *after, *e;
+    long nb, na;
+    int st;
+    snprintf(sub, sizeof sub, "own%d", (int)c);
+    CHECK(test_sh("mkdir -p %s/%s && cd %s/%s && %s", root, sub, root, sub,
+                  setups[c][0]) == 0, "setup %d", (int)c);
+    before = picture(sub, &nb);
+    st = test_sh("./afv run " FAST " --steps 10 --out %s/%s 2> %s/err.txt",
+                 root, sub, root);
+    after = picture(sub, &na);
+    e = last_err();
+    CHECK(st == 2, "case %d: exit %d, want 2", (int)c, st);
+    CHECK(na == nb && memcmp(before, after, (size_t)nb) == 0, "case %d: "
+          "the user's files changed", (int)c);
+    CHECK(strstr(e, setups[c][1]) && strchr(e, '\n') == e + strlen(e) - 1,
+          "case %d: message not one line naming %s: %s", (int)c,
+          setups[c][1], e);
+    free(before);
+    free(after);
+    free(e);
+  }
 }
 
 /* ---- a run that stopped before its first checkpoint ---------------------- */
@@ -430,8 +618,10 @@ static void test_unfinished_run_rerunnable(void)
     SKIP("no /dev/full");
     return;
   }
-  CHECK(test_sh("mkdir -p %s/u && ln -s /dev/full %s/u/trajectory.dat",
-               root, root) == 0, "making the full disk");
+  /* (a params.txt of afv's: the directory is a run's, not a user's) */
+  CHECK(test_sh("mkdir -p %s/u && ln -s /dev/full %s/u/trajectory.dat && "
+                "echo '# afv run parameters' > %s/u/params.txt", root, root,
+                root) == 0, "making the full disk");
   check_write_failure(FAST " --steps 50", "u", "u/trajectory.dat", ENOSPC);
   CHECK(!exists("u/checkpoint.txt") && exists("u/params.txt"),
         "not the state of a run stopped before its first checkpoint");
@@ -499,16 +689,36 @@ static void test_bounds_printed_in_full(void)
   }
 }
 
+/* A lag a hair past the window is printed in full (the code before: "--lag
+** 2: ... holds lags 0.1 .. 2 only" for --lag 2.0000001). */
+static void test_lag_printed_in_full(void)
+{
+  char *e;
+  int st;
+  CHECK(test_sh("./afv run " FAST " --steps 200 --out %s/lag", root) == 0,
+        "the run");
+  st = test_sh("./afv analyze %s/lag --steady-from 0 --lag 2.0000001 "
+               "> /dev/null 2> %s/err.txt", root, root);
+  e = last_err();
+  CHECK(st == 2 && strstr(e, "--lag 2.0000001:") && strstr(e, ".. 2 only"),
+        "exit %d: %s", st, e);
+  free(e);
+}
+
 void suite_runjob(void)
 {
   snprintf(root, sizeof root, "/tmp/afv_test_runjob.%ld", (long)getpid());
   test_sh("rm -rf %s && mkdir -p %s", root, root);
   RUN(test_second_writer_refused);
   RUN(test_concurrent_fresh_runs);
+  RUN(test_lock_survives_cleaning);
   RUN(test_failed_resume_changes_nothing);
   RUN(test_uncomputable_parameters_refused);
+  RUN(test_foreign_directory_kept);
+  RUN(test_continue_other_parameters_refused);
   RUN(test_unfinished_run_rerunnable);
   RUN(test_io_error_names_file_and_reason);
   RUN(test_bounds_printed_in_full);
+  RUN(test_lag_printed_in_full);
   test_sh("rm -rf %s", root);
 }
