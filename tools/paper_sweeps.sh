@@ -12,7 +12,10 @@
 # full    the paper's: P0 4:8.8:0.2 x v0 0:2.7:0.1, 2 seeds, 1e6 steps
 #
 # Every run starts from afv run's default start (init cluster: the
-# authors' protocol) and relaxes at v0 = 0 before the active steps.
+# authors' protocol) and relaxes at v0 = 0 before the active steps.  Every
+# run integrates as the paper did: Euler steps of dt = 0.01 with the exact
+# force (integrator euler, cap 0), whatever afv run's defaults; how the
+# results move with dt: doc/reproduction/convergence.md.
 set -e
 SCALE=${1:?usage: tools/paper_sweeps.sh SCALE OUT AFV}
 OUT=${2:?usage: tools/paper_sweeps.sh SCALE OUT AFV}
@@ -41,8 +44,10 @@ quick)
   # lattice (relaxed in seconds) for every N, because the authors' random
   # square costs far more than linearly in N to relax (measured: the first
   # 2000 relaxation steps at P0 = 8 take 6.9 s at N = 400, 231 s at
-  # N = 1600: 87 and 1033 halved steps); afv paper draws the grid's N = 400
-  # runs (cluster start) beside them, which measures the start's effect.
+  # N = 1600: 87 and 1033 halved steps, with the sub-steps integrator of
+  # afv 0.1.0; not measured again with euler); afv paper draws the grid's
+  # N = 400 runs (cluster start) beside them, which measures the start's
+  # effect.
   FSS="--N 6400,1600,400 --P0 4,8 --v0 1,1.4,1.85,2.3 --seeds 1
        --steps 30000 --frame_every 100 --init lattice
        --relax_max_steps 20000"
@@ -77,7 +82,8 @@ sweep() {
     return 0
   fi
   # shellcheck disable=SC2086
-  "$AFV" sweep --out "$dir" "$@" --sample_every 100 --svg_every 0 --quiet 1
+  "$AFV" sweep --out "$dir" "$@" --integrator euler --dt 0.01 --cap 0 \
+    --sample_every 100 --svg_every 0 --quiet 1
   echo "$SCALE" > "$dir/scale"
 }
 
