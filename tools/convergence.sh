@@ -11,7 +11,8 @@
 # stopped and started again continues where it stopped), tables them
 # (afv collect) and writes OUT/convergence.csv (one row per scheme,
 # setting and state point), OUT/verdicts.csv (the finest two settings
-# compared) and OUT/figures/*.svg (tools/convergence_plot).
+# compared), OUT/tables.md (the same as markdown tables) and
+# OUT/figures/*.svg (tools/convergence_plot).
 # JOBS=K sets make's -j (default 2).  Cost: about 1 CPU-hour.
 set -e
 OUT=${1:?usage: tools/convergence.sh OUT [AFV]}
@@ -103,6 +104,34 @@ awk -F, '
   > "$OUT/verdicts.csv.tmp"
 mv "$OUT/verdicts.csv.tmp" "$OUT/verdicts.csv"
 
+# tables.md: the observables as markdown tables, a row per state point
+# and scheme, a column per setting (coarse to fine), mean +- sem.
+awk -F, '
+  NR == 1 { next }
+  {
+    key = $3 "," $4 "," $1
+    if (!(key in seen)) { seen[key] = 1; order[++nk] = key }
+    v[key, $2, 1] = sprintf("%.3f +- %.3f", $6, $7)
+    v[key, $2, 2] = sprintf("%.2f +- %.2f", $8, $9)
+    v[key, $2, 3] = sprintf("%.3f +- %.3f", $10, $11)
+  }
+  END {
+    split("N_GC/N,number of clusters,Omega", name, ",")
+    for (o = 1; o <= 3; o++) {
+      printf "\n### %s\n\n", name[o]
+      print "| P0 | v0 | scheme | coarsest | | | finest |"
+      print "|---|---|---|---|---|---|---|"
+      for (k = 1; k <= nk; k++) {
+        split(order[k], p, ",")
+        if (p[3] == "substeps") split("0.1 0.05 0.025 0.0125", set, " ")
+        else split("0.02 0.01 0.005 0.0025", set, " ")
+        line = "| " p[1] " | " p[2] " | " p[3]
+        for (q = 1; q <= 4; q++) line = line " | " v[order[k], set[q], o]
+        print line " |"
+      }
+    }
+  }' "$OUT/convergence.csv" > "$OUT/tables.md"
+
 mkdir -p "$OUT/figures"
 "$PLOT" "$OUT/convergence.csv" "$OUT/figures"
-echo "tools/convergence.sh: $OUT/convergence.csv, $OUT/verdicts.csv, $OUT/figures/"
+echo "tools/convergence.sh: $OUT/convergence.csv, $OUT/verdicts.csv, $OUT/tables.md, $OUT/figures/"
