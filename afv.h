@@ -183,10 +183,19 @@ typedef struct afv_check_report {
                       ** criterion of afv check */
   int    worst_cell;  /* where max_abs occurs */
   int    worst_comp;  /* 0 = x, 1 = y */
+  double max_resolved;   /* largest error more than twice the difference's
+                      ** own uncertainty (its two steps' disagreement and
+                      ** rounding): a wrong force */
+  double max_unresolved; /* largest error within that uncertainty (a kink
+                      ** of the energy within reach of the step): finite
+                      ** differences cannot tell it from a wrong force */
+  int    unresolved_cell; /* where max_unresolved occurs (-1: none) */
 } afv_check_report;
 
 /* Central differences of the energy with step h (a length): compares
-** -dE/dr from E(r +- h) with afv_compute's forces.  Moving cell c changes
+** -dE/dr from E(r +- s) and E(r +- s/2), extrapolated, with afv_compute's
+** forces, s = min(h, a hundredth of the cell's distance to a kink: a
+** pair at d = 2l or d = 0).  Moving cell c changes
 ** only the energies of the cells within 2l + h of it, so each difference
 ** is taken of their energies alone, computed on the cells within
 ** 4l + 2h of c, in coordinates centred on c: O(N) in all, and exact

@@ -586,6 +586,88 @@ static void test_cli_check_lattice_passes(void)
   remove(path);
 }
 
+/* Writes the n centres r to a temporary POINTS file and runs afv check on
+** it with the options opts: its exit status (-1 if it did not run). */
+static int check_points_status(int n, const double *r, const char *opts)
+{
+  char path[] = "/tmp/afv_geometry_XXXXXX";
+  FILE *fp;
+  int fd = mkstemp(path), i, st;
+  if (fd < 0 || !(fp = fdopen(fd, "w"))) return -1;
+  for (i = 0; i < n; i++) fprintf(fp, "%.17g %.17g\n", r[2*i], r[2*i+1]);
+  fclose(fp);
+  st = test_sh("./afv check %s %s >/dev/null 2>&1", path, opts);
+  remove(path);
+  return st;
+}
+
+/* Correct forces next to a kink of the energy are never a FAIL (exit 1):
+** a pair 1e-6 short of detaching (force 400: the arc term grows as
+** 1/sqrt(2l - d)), at steps 1e-6 to 1e-11; a pair 1e-12 apart among
+** others; 4000 random cells with a pair 6.7e-6 short of detaching.  The
+** step stays a hundredth of the distance to the kink and the verdict
+** tells an error from the differences' own uncertainty (before: FAIL in
+** every case). */
+static void test_check_near_kinks(void)
+{
+  static const char *steps[] = {"--h 1e-6", "--h 1e-8", "--h 1e-10",
+                                "--h 1e-11"};
+  static double big[2 * 4000];
+  double pair[4] = {0, 0, 2 - 1e-6, 0};
+  double close[8] = {0, 0, 1e-12, 0, 0.9, 0.8, -0.5, 1.1};
+  int k, st;
+  for (k = 0; k < 4; k++) {
+    st = check_points_status(2, pair, steps[k]);
+    CHECK(st == 0 || st == 4, "pair 1e-6 short of detaching, %s: exit %d",
+          steps[k], st);
+  }
+  CHECK(check_points_status(2, pair, "") == 0, "pair near detaching: the "
+        "default step must PASS");
+  st = check_points_status(4, close, "");
+  CHECK(st == 0 || st == 4, "a pair 1e-12 apart: exit %d", st);
+  test_rng_seed(31);
+  for (k = 0; k < 4000; k++) {
+    big[2*k] = 158.5 * test_rng_uniform();
+    big[2*k+1] = 158.5 * test_rng_uniform();
+  }
+  big[2] = big[0] + 2 - 6.7e-6;
+  big[3] = big[1];
+  st = check_points_status(4000, big, "--box 158.5,158.5");
+  CHECK(st == 0, "4000 cells, a pair 6.7e-6 short of detaching: exit %d", st);
+}
+
+/* A wrong force next to a kink is still found where the differences can
+** resolve it; and at KA = 1e300 the tension scale is finite (before: inf,
+** so any error passed) and a force off by 1e-4 of it FAILs. */
+static void test_check_still_fails(void)
+{
+  double pair[4] = {0, 0, 2 - 1e-6, 0}, f[6];
+  double three[6] = {0, 0, 1.5, 0.3, 0.7, 1.4};
+  afv_geom g = {0};
+  afv_params p;
+  afv_box b = test_open_box();
+  afv_check_report rep;
+  afv_params_default(&p);
+  CHECK(afv_compute(&g, 2, pair, &p, &b, f) == AFV_OK, "status");
+  f[0] += 1e-3 * fabs(f[0]);
+  CHECK(afv_force_check(2, pair, &p, &b, 1e-6, f, &rep) == AFV_OK, "status");
+  CHECK(rep.max_resolved > 1e-6 * rep.tension_scale, "a force 1e-3 off near "
+        "detaching: resolved error %.3e, tension scale %.3e",
+        rep.max_resolved, rep.tension_scale);
+  p.KA = 1e300;
+  CHECK(afv_compute(&g, 3, three, &p, &b, f) == AFV_OK, "status");
+  CHECK(afv_force_check(3, three, &p, &b, 1e-6, f, &rep) == AFV_OK, "status");
+  CHECK(isfinite(rep.tension_scale) && rep.max_tension_rel <= 1e-6,
+        "KA 1e300, right forces: tension scale %.3e, error over it %.3e",
+        rep.tension_scale, rep.max_tension_rel);
+  f[1] += 1e-4 * rep.tension_scale;
+  CHECK(afv_force_check(3, three, &p, &b, 1e-6, f, &rep) == AFV_OK, "status");
+  CHECK(rep.max_tension_rel > 1e-6 && rep.max_resolved > 1e-6
+        * rep.tension_scale, "KA 1e300, a force off by 1e-4: error over the "
+        "tension scale %.3e", rep.max_tension_rel);
+  afv_geom_free(&g);
+}
+
 void suite_geometry(void)
 {
   RUN(test_pair_force_at_any_separation);
@@ -600,4 +682,6 @@ void suite_geometry(void)
   RUN(test_check_lattice_and_large_coordinates);
   RUN(test_check_report_scale);
   RUN(test_cli_check_lattice_passes);
+  RUN(test_check_near_kinks);
+  RUN(test_check_still_fails);
 }
