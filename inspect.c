@@ -5,6 +5,7 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,7 +17,68 @@
 #include <time.h>
 #include <unistd.h>
 
+/* ---- parameters whose energy cannot be computed ----------------------- */
+/* Values within a factor HEADROOM of the largest double are refused, as
+** afv run refuses them: the energy and the forces are sums and products of
+** the terms bounded below, and must stay finite. */
+#define HEADROOM 1e6
+
+static int huge(double x)
+{
+  return !isfinite(x * HEADROOM);
+}
+
+/* 1 if the energy of n cells under p stays finite in every state: each
+** term's largest value (a cell is inside its disk: 0 <= A <= pi l^2,
+** 0 <= P <= 2 pi l) summed over the cells.  Else prints one line naming
+** the key (cmd: "eval", "check", "draw") and returns 0. */
+static int model_computable(const char *cmd, const afv_params *p, int n)
+{
+  const double pi = 3.14159265358979323846;
+  double Amax = pi * p->l * p->l, Pmax = 2 * pi * p->l;
+  double dA = fmax(fabs(p->A0), fabs(Amax - p->A0));
+  double dP = fmax(fabs(p->P0), fabs(Pmax - p->P0));
+  const char *key = NULL, *what = NULL;
+  double v = 0;
+  if (huge(Amax) || !(p->l * p->l >= DBL_MIN * HEADROOM)) {
+    key = "l"; v = p->l; what = "the disk's area pi l^2 is out of the range "
+                               "of doubles";
+  } else if (huge(dA * dA)) {
+    key = "A0"; v = p->A0; what = "(A - A0)^2 overflows";
+  } else if (huge(dP * dP)) {
+    key = "P0"; v = p->P0; what = "(P - P0)^2 overflows";
+  } else if (huge(n * p->KA * dA * dA)) {
+    key = "KA"; v = p->KA; what = "the area term KA (A - A0)^2 summed over "
+                                  "the cells overflows";
+  } else if (huge(n * p->KP * dP * dP)) {
+    key = "KP"; v = p->KP; what = "the perimeter term KP (P - P0)^2 summed "
+                                  "over the cells overflows";
+  } else if (huge(n * fabs(p->Lambda) * Pmax)) {
+    key = "Lambda"; v = p->Lambda; what = "the arc term Lambda L summed over "
+                                          "the cells overflows";
+  } else if (huge(n * (p->KA * dA * dA + p->KP * dP * dP
+                       + fabs(p->Lambda) * Pmax))) {
+    key = "KA"; v = p->KA; what = "the energy summed over the cells "
+                                  "overflows";
+  }
+  if (!key) return 1;
+  fprintf(stderr, "afv %s: --%s: %g: %s (%d cells)\n", cmd, key, v, what, n);
+  return 0;
+}
+
 /* ---- afv eval ---------------------------------------------------------- */
+/* The first cell whose area, perimeter, arc or force is not finite, or -1
+** (the energy too: then cell n - 1 is named). */
+static int first_nonfinite(const afv_geom *g, int n, const double *f)
+{
+  const double *A = afv_geom_area(g), *P = afv_geom_perim(g);
+  const double *L = afv_geom_arc(g);
+  int i;
+  for (i = 0; i < n; i++)
+    if (!isfinite(A[i] + P[i] + L[i] + f[2*i] + f[2*i+1])) return i;
+  return n > 0 && !isfinite(afv_geom_energy(g)) ? n - 1 : -1;
+}
+
 int cmd_eval(int argc, char **argv)
 {
   afv_params p;
@@ -53,6 +115,10 @@ int cmd_eval(int argc, char **argv)
   if (!path) return bad_input("eval: missing POINTS file (see afv eval --help)");
   if (!model_valid(&p, &b) || !load_points(path, &b, &n, &r))
     return EXIT_BAD_INPUT;
+  if (!model_computable("eval", &p, n)) {
+    free(r);
+    return EXIT_BAD_INPUT;
+  }
   f = malloc((size_t)(2 * n + 1) * sizeof(double));
   g = afv_geom_new();
   if (!f || !g) {
@@ -64,6 +130,10 @@ int cmd_eval(int argc, char **argv)
   st = afv_compute(g, n, r, &p, &b, f);
   if (st != AFV_OK) {
     st = library_error(st, g);
+  } else if ((i = first_nonfinite(g, n, f)) >= 0) {
+    fprintf(stderr, "afv eval: cell %d: its shape or force is not finite "
+            "(the parameters are too large or small for doubles)\n", i);
+    st = EXIT_BAD_INPUT;
   } else {
     area = afv_geom_area(g);
     perim = afv_geom_perim(g);
@@ -176,6 +246,10 @@ int cmd_check(int argc, char **argv)
     return bad_input("check: missing POINTS file (see afv check --help)");
   if (!model_valid(&p, &b) || !load_points(path, &b, &n, &r))
     return EXIT_BAD_INPUT;
+  if (!model_computable("check", &p, n)) {
+    free(r);
+    return EXIT_BAD_INPUT;
+  }
   if (!(g = afv_geom_new())) {
     free(r);
     return bad_input("out of memory");
@@ -564,9 +638,35 @@ int cmd_draw(int argc, char **argv)
 }
 
 
+/* 1 if P0* = 6 + (2 Lambda/KA - A0 + 3 sqrt(3)/2) / (4 KP/KA (1 - sqrt(3)/2))
+** is finite, with each step of it; else names the key that overflows it
+** (or underflows KP/KA) and returns 0. */
+static int meanfield_computable(double Lambda, double A0, double KP, double KA)
+{
+  double lam = Lambda / KA, kp = KP / KA, num = 2 * lam - A0 + 1.5 * sqrt(3.0);
+  const char *key = NULL;
+  double v = 0;
+  if (huge(lam)) {
+    key = fabs(Lambda) >= 1 ? "Lambda" : "KA";
+    v = fabs(Lambda) >= 1 ? Lambda : KA;
+  } else if (!(kp * HEADROOM >= DBL_MIN) || huge(kp)) {
+    key = KP < 1 ? "KP" : "KA";
+    v = KP < 1 ? KP : KA;
+  } else if (huge(num)) {
+    key = fabs(A0) > fabs(2 * lam) ? "A0" : "Lambda";
+    v = fabs(A0) > fabs(2 * lam) ? A0 : Lambda;
+  } else if (huge(6 + num / (4 * kp * (1 - 0.5 * sqrt(3.0))))) {
+    key = "KP"; v = KP;
+  }
+  if (!key) return 1;
+  fprintf(stderr, "afv meanfield: --%s: %g: P0* overflows (Lambda %g, A0 %g, "
+          "KP %g, KA %g)\n", key, v, Lambda, A0, KP, KA);
+  return 0;
+}
+
 int cmd_meanfield(int argc, char **argv)
 {
-  double Lambda = 0.2, A0 = 3.14159265358979323846, KP = 1, KA = 1;
+  double Lambda = 0.2, A0 = 3.14159265358979323846, KP = 1, KA = 1, pstar;
   int k, bad = 0;
   for (k = 1; k < argc && !bad; k++) {
     if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
@@ -590,6 +690,8 @@ int cmd_meanfield(int argc, char **argv)
   if (bad) return EXIT_BAD_INPUT;
   if (!(KP > 0) || !(KA > 0)) return bad_input("meanfield: KP and KA must "
                                                "be > 0");
-  printf("%.4f\n", afv_meanfield_p0(Lambda / KA, A0, KP / KA));
+  if (!meanfield_computable(Lambda, A0, KP, KA)) return EXIT_BAD_INPUT;
+  pstar = afv_meanfield_p0(Lambda / KA, A0, KP / KA);
+  printf(fabs(pstar) < 1e15 ? "%.4f\n" : "%.6e\n", pstar);   /* no 300 digits */
   return 0;
 }

@@ -668,6 +668,61 @@ static void test_check_still_fails(void)
   afv_geom_free(&g);
 }
 
+/* Runs "./afv ARGS" with POINTS file path substituted for %s: its exit
+** status; its stdout and stderr are left in out_buf and err_buf. */
+static int afv_capture(const char *args, const char *path, char *out_buf,
+                       char *err_buf, size_t len)
+{
+  char cmd[512], o[] = "/tmp/afv_geom_outXXXXXX", e[] = "/tmp/afv_geom_errXXXXXX";
+  int fo = mkstemp(o), fe = mkstemp(e), st;
+  FILE *fp;
+  size_t m;
+  out_buf[0] = err_buf[0] = 0;
+  if (fo < 0 || fe < 0) return -1;
+  close(fo);
+  close(fe);
+  snprintf(cmd, sizeof cmd, args, path);
+  st = test_sh("./afv %s >%s 2>%s", cmd, o, e);
+  if ((fp = fopen(o, "r"))) { m = fread(out_buf, 1, len - 1, fp); out_buf[m] = 0; fclose(fp); }
+  if ((fp = fopen(e, "r"))) { m = fread(err_buf, 1, len - 1, fp); err_buf[m] = 0; fclose(fp); }
+  remove(o);
+  remove(e);
+  return st;
+}
+
+/* afv eval and meanfield refuse parameters whose energy or P0* overflows
+** (exit 2, one line naming the key, nothing on stdout) as afv run does;
+** before: eval printed "inf -nan" forces (--Lambda 1e308) and "-nan"
+** areas (--l 1e300), meanfield "-inf", all with exit status 0. */
+static void test_eval_refuses_overflow(void)
+{
+  static const char *const cases[][2] = {
+    {"eval %s --Lambda 1e308", "--Lambda"}, {"eval %s --l 1e300", "--l"},
+    {"eval %s --l 1e-200", "--l"}, {"eval %s --KA 1e305", "--KA"},
+    {"eval %s --P0 1e200", "--P0"}, {"check %s --KP 1e305", "--KP"},
+    {"meanfield --Lambda 1e308 %s", "--Lambda"},
+    {"meanfield --A0 -1e308 %s", "--A0"}};
+  char path[] = "/tmp/afv_geometry_XXXXXX", out[4096], err[4096];
+  FILE *fp;
+  int fd = mkstemp(path), k, st;
+  CHECK(fd >= 0 && (fp = fdopen(fd, "w")) != NULL, "temporary file");
+  if (fd < 0) return;
+  fprintf(fp, "0 0\n1.5 0.3\n0.7 1.4\n");
+  fclose(fp);
+  for (k = 0; k < 8; k++) {
+    st = afv_capture(cases[k][0], strncmp(cases[k][0], "meanfield", 9) ? path
+                     : "", out, err, sizeof out);
+    CHECK(st == 2 && out[0] == 0 && strstr(err, cases[k][1])
+          && strchr(err, '\n') == err + strlen(err) - 1,
+          "afv %s: exit %d, stdout '%s', stderr '%s' (want exit 2 naming %s)",
+          cases[k][0], st, out, err, cases[k][1]);
+  }
+  st = afv_capture("eval %s --KA 1e300", path, out, err, sizeof out);
+  CHECK(st == 0 && !strstr(out, "inf") && !strstr(out, "nan"), "afv eval "
+        "--KA 1e300 (finite): exit %d\n%s%s", st, out, err);
+  remove(path);
+}
+
 void suite_geometry(void)
 {
   RUN(test_pair_force_at_any_separation);
@@ -684,4 +739,5 @@ void suite_geometry(void)
   RUN(test_cli_check_lattice_passes);
   RUN(test_check_near_kinks);
   RUN(test_check_still_fails);
+  RUN(test_eval_refuses_overflow);
 }
