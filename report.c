@@ -31,7 +31,8 @@ static const char *analyze_usage =
   "override) and writes DIR/analysis/:\n"
   "  summary.txt  KEY VALUE: steady means and standard deviations of\n"
   "               N_GC/N, number of clusters and Omega; final T1; D_s,\n"
-  "               D_eff = D_s / D_0 (D_0 = v0^2 / (2 Dr); nan at v0 = 0);\n"
+  "               D_eff = D_s / D_0 (D_0 = v0^2 / (2 Dr); nan at v0 = 0\n"
+  "               or Dr = 0, where D_0 is 0 or undefined);\n"
   "               tau_NGC; t1_rate (T1 events per cell per unit time\n"
   "               between steady frames); msd_beta (slope of log MSD_rel\n"
   "               vs log lag, lags 1% .. 10% of the window: ~0 caged,\n"
@@ -199,6 +200,10 @@ int cmd_analyze(int argc, char **argv)
   if (!isnan(v0_o)) v0 = v0_o;
   if (!isnan(Dr_o)) Dr = Dr_o;
   if (!(l > 0)) return bad_input("analyze: l must be > 0");
+  if (!(Dr >= 0)) {                 /* a variance rate: never negative */
+    fprintf(stderr, "afv analyze: --Dr: %g: must be >= 0\n", Dr);
+    return EXIT_BAD_INPUT;
+  }
   snprintf(path, sizeof path, "%s/trajectory.dat", dir);
   if (afv_traj_read(path, &tr, err, sizeof err) != AFV_OK)
     return bad_input(err);
