@@ -602,6 +602,13 @@ static int draw_run(draw_job *J)
                                                          &r)) {
     return EXIT_BAD_INPUT;
   }
+  if (n == 0) {
+    fprintf(stderr, "afv draw: %s: no cells to draw (the %s holds none)\n",
+            J->path, traj ? "trajectory" : "POINTS file");
+    if (traj) afv_traj_free(&tr);
+    else free(r);
+    return EXIT_BAD_INPUT;
+  }
   if (model_valid(&J->p, &J->b) && draw_check_box(J)
       && (!J->color_by || strcmp(J->color_by, "cluster") == 0
           || color_values(J, traj, n, &value))

@@ -158,6 +158,27 @@ static int analyze_write(const char *dir, const afv_analysis *a)
   return 0;
 }
 
+/* 1 if dir is a directory holding a trajectory.dat; else one line naming
+** what is missing, before any other message (a typo in DIR must not first
+** read as a missing params.txt). */
+static int run_dir_readable(const char *dir)
+{
+  char path[RUN_PATH_MAX + 32];
+  struct stat sb;
+  if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+    fprintf(stderr, "afv analyze: %s: %s\n", dir, stat(dir, &sb) != 0
+            ? strerror(errno) : "not a directory");
+    return 0;
+  }
+  snprintf(path, sizeof path, "%s/trajectory.dat", dir);
+  if (access(path, R_OK) != 0) {
+    fprintf(stderr, "afv analyze: %s: no run here: %s: %s\n", dir, path,
+            strerror(errno));
+    return 0;
+  }
+  return 1;
+}
+
 int cmd_analyze(int argc, char **argv)
 {
   const char *dir = NULL;
@@ -189,6 +210,7 @@ int cmd_analyze(int argc, char **argv)
   if (bad) return EXIT_BAD_INPUT;
   if (!dir) return bad_input("analyze: missing DIR (see afv analyze --help)");
   if (strlen(dir) > RUN_PATH_MAX - 64) return bad_input("analyze: DIR too long");
+  if (!run_dir_readable(dir)) return EXIT_BAD_INPUT;
   if (lag <= 0) return bad_input("--lag: must be > 0");
   lag_given = !isnan(lag);
   if (!lag_given) lag = DEFAULT_LAG;

@@ -825,9 +825,10 @@ static void deff_undefined_without_rotational_diffusion(void)
     afv_analysis_free(&a);
   }
   afv_traj_free(&tr);
-  CHECK(test_sh("./afv analyze /nonexistent_afv_dir --Dr -1 2>&1 | grep -q "
-                "'Dr: -1: must be >= 0'") == 0, "afv analyze --Dr -1: not "
-        "refused naming --Dr");
+  CHECK(test_sh("d=$(mktemp -d) && touch $d/trajectory.dat && ./afv analyze "
+                "$d --Dr -1 2>&1 | grep -q 'Dr: -1: must be >= 0'; s=$?; "
+                "rm -rf $d; exit $s") == 0, "afv analyze --Dr -1: not refused "
+        "naming --Dr");
 }
 
 /* ---- physics smoke checks (short real runs) ------------------------------ */

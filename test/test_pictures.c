@@ -469,6 +469,32 @@ static void analysis_does_not_draw(void)
   CHECK(uses == 0, "analysis.o refers to %d afv_svg_ symbol(s)", uses);
 }
 
+/* ---- messages ---------------------------------------------------------- */
+/* afv draw on an empty POINTS file and afv analyze on a mistyped DIR:
+** exit 2 and one line naming the file and the reason (before: draw said
+** only "parameter out of range"; analyze first said "params.txt not
+** found: using l = 1 ..." and then "cannot open"). */
+static void draw_and_analyze_name_what_is_wrong(void)
+{
+  char pts[128], se[128], typo[128], *e;
+  if (!have_afv()) return;
+  write_text("empty.xy", "# no cells\n");
+  in_tmp(pts, sizeof pts, "empty.xy");
+  in_tmp(se, sizeof se, "err.txt");
+  in_tmp(typo, sizeof typo, "runs/typo");
+  CHECK(shell("./afv draw %s >/dev/null 2>%s", pts, se) == 2, "draw empty");
+  e = read_all(se);
+  CHECK(e && count_of(e, "\n") == 1 && strstr(e, "empty.xy")
+        && strstr(e, "no cells"), "afv draw on an empty file: %s", e);
+  free(e);
+  CHECK(shell("./afv analyze %s >/dev/null 2>%s", typo, se) == 2,
+        "analyze typo");
+  e = read_all(se);
+  CHECK(e && count_of(e, "\n") == 1 && strstr(e, "runs/typo")
+        && !strstr(e, "params.txt"), "afv analyze on a missing DIR: %s", e);
+  free(e);
+}
+
 void suite_pictures(void)
 {
   char cmd[128];
@@ -487,6 +513,7 @@ void suite_pictures(void)
   RUN(csd_log_bins_sum);
   RUN(analyze_writes_binned_csd_and_plots);
   RUN(analysis_does_not_draw);
+  RUN(draw_and_analyze_name_what_is_wrong);
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
   if (system(cmd) != 0) printf("  (could not remove %s)\n", tmpdir);
 }
