@@ -695,6 +695,16 @@ typedef struct afv_draw_opts {
                          ** colour per value when there are at most 7
                          ** values, a mixture of cell types; else a ramp) */
   const char *value_name;  /* name of the value, for the legend */
+  int   *cluster_color;  /* with color_by_cluster, if not NULL (n ints, in
+                         ** and out): each cell's palette colour in the
+                         ** previous frame of a movie (-1: none), replaced
+                         ** by its colour here.  A cluster keeps the colour
+                         ** of a previous cluster of which it holds more
+                         ** than half the cells; the others take free
+                         ** colours, largest cluster first */
+  const char *caption;   /* if not NULL: a line of text under the tissue
+                         ** (e.g. "N 400  P0 4.8  v0 0.5  Lambda 0.2  t 100") */
+  int    scale_bar;      /* 1: a bar of length l under the tissue */
 } afv_draw_opts;
 /* afv_svg_write with options: size, crop and filled cells with a legend
 ** (class="legend") right of the tissue; cells are class="cell".  Marks

@@ -14,6 +14,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <dirent.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -304,12 +305,21 @@ static const char *draw_usage =
   "  --cells FILE     per-cell values for --color-by (CELLS format; for a\n"
   "                   trajectory the default is the run's cells.txt beside\n"
   "                   it, and a value it lacks comes from params.txt; for\n"
-  "                   a POINTS file from --P0, --KA, --KP, --A0 below)\n\n";
+  "                   a POINTS file from --P0, --KA, --KP, --A0 below)\n"
+  "  --caption        a line under the tissue: N, P0, v0, Lambda and the\n"
+  "                   time t (a trajectory's v0 from params.txt beside it)\n"
+  "  --scale-bar      a bar of length 1 l under the tissue\n\n"
+  "With --frames and --color-by cluster a cluster keeps its colour from\n"
+  "frame to frame while it keeps more than half of its cells.  DIR must\n"
+  "be new, empty or hold only frame_NNNNN.svg files (an earlier --frames):\n"
+  "those are replaced, and any beyond the new last frame removed.\n\n";
 
 typedef struct draw_job {
   const char *path, *frames_dir, *cells_path, *color_by;
   long frame;              /* -1: last */
   int l_given;
+  int caption;             /* --caption */
+  int traj;                /* FILE is a trajectory */
   afv_params p;
   afv_box b;
   afv_draw_opts o;
@@ -376,6 +386,11 @@ static int draw_option(int argc, char **argv, int *k, draw_job *J)
   const char *opt = argv[*k], *val;
   char *end;
   int m;
+  if (strcmp(opt, "--caption") == 0 || strcmp(opt, "--scale-bar") == 0) {
+    if (opt[2] == 'c') J->caption = 1;
+    else J->o.scale_bar = 1;
+    return 1;
+  }
   if (strcmp(opt, "--frame") && strcmp(opt, "--frames")
       && strcmp(opt, "--width") && strcmp(opt, "--crop")
       && strcmp(opt, "--color-by") && strcmp(opt, "--cells"))
@@ -497,13 +512,45 @@ static int color_values(const draw_job *J, int traj, int n, double **out)
   return *out ? 1 : !bad_input("out of memory");
 }
 
-/* Draws configuration r (angles theta, may be NULL) to out. */
-static int draw_one(FILE *out, const draw_job *J, afv_geom *g, int n,
-                    const double *r, const double *theta)
+/* The caption of a picture of n cells at time t (NAN: a POINTS file):
+** N, P0, v0, Lambda, t; a trajectory's values from the params.txt beside
+** it where it has them (v0 only from there). */
+static void caption_text(const draw_job *J, int n, double t, char *buf,
+                         size_t len)
 {
+  double P0 = J->p.P0, v0 = NAN, Lambda = J->p.Lambda;
+  int m;
+  if (J->traj) {
+    param_beside(J->path, "P0", &P0);
+    param_beside(J->path, "v0", &v0);
+    param_beside(J->path, "Lambda", &Lambda);
+  }
+  m = snprintf(buf, len, "N = %d, P0 = %g", n, P0);
+  if (!isnan(v0) && m > 0 && (size_t)m < len)
+    m += snprintf(buf + m, len - (size_t)m, ", v0 = %g", v0);
+  if (m > 0 && (size_t)m < len)
+    m += snprintf(buf + m, len - (size_t)m, ", Lambda = %g", Lambda);
+  if (!isnan(t) && m > 0 && (size_t)m < len)
+    snprintf(buf + m, len - (size_t)m, ", t = %g", t);
+}
+
+/* Draws configuration r (angles theta, may be NULL; time t, NAN for a
+** POINTS file) to out; color: the cluster colours along a movie (or
+** NULL). */
+static int draw_one(FILE *out, const draw_job *J, afv_geom *g, int n,
+                    const double *r, const double *theta, double t,
+                    int *color)
+{
+  char caption[160];
+  afv_draw_opts o = J->o;
   int st = afv_geometry(g, n, r, &J->p, &J->b);
   if (st != AFV_OK) return library_error(st, g);
-  st = afv_svg_draw(out, g, n, r, theta, &J->p, &J->b, &J->o);
+  if (J->caption) {
+    caption_text(J, n, t, caption, sizeof caption);
+    o.caption = caption;
+  }
+  o.cluster_color = color;
+  st = afv_svg_draw(out, g, n, r, theta, &J->p, &J->b, &o);
   if (st != AFV_OK) return library_error(st, g);
   return 0;
 }
@@ -520,8 +567,64 @@ static void remove_frames(const char *dir, long m)
   rmdir(dir);
 }
 
+/* 1 if name is a frame file of --frames: frame_ and 5 or more digits,
+** .svg; its number in *k. */
+static int frame_name(const char *name, long *k)
+{
+  const char *d = name + 6;
+  size_t m = strlen(name);
+  char *end;
+  if (strncmp(name, "frame_", 6) != 0 || m < 15
+      || strcmp(name + m - 4, ".svg") != 0 || !(*d >= '0' && *d <= '9'))
+    return 0;
+  *k = strtol(d, &end, 10);
+  return end == name + m - 4 && end - d >= 5;
+}
+
+/* 1 if DIR holds nothing but frame files (an earlier --frames, which may
+** be replaced); else says what else is there. */
+static int frames_dir_ours(const char *dir)
+{
+  DIR *d = opendir(dir);
+  struct dirent *e;
+  long k;
+  if (!d) {
+    fprintf(stderr, "afv draw: --frames %s: %s\n", dir, strerror(errno));
+    return 0;
+  }
+  while ((e = readdir(d)) != NULL) {
+    if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")
+        || frame_name(e->d_name, &k))
+      continue;
+    fprintf(stderr, "afv draw: --frames %s: holds '%s', not a frame of afv "
+            "draw: give a new or empty directory\n", dir, e->d_name);
+    closedir(d);
+    return 0;
+  }
+  closedir(d);
+  return 1;
+}
+
+/* Removes the frame files of dir numbered from `from` on (an earlier,
+** longer --frames). */
+static void remove_frames_from(const char *dir, long from)
+{
+  char name[RUN_PATH_MAX + 300];
+  DIR *d = opendir(dir);
+  struct dirent *e;
+  long k;
+  while (d && (e = readdir(d)) != NULL)
+    if (frame_name(e->d_name, &k) && k >= from) {
+      snprintf(name, sizeof name, "%s/%s", dir, e->d_name);
+      remove(name);
+    }
+  if (d) closedir(d);
+}
+
 /* Every frame into a fresh directory beside DIR, then moved into DIR:
-** DIR gets all the frames or, on any failure, nothing. */
+** DIR gets all the frames or, on any failure, nothing; a DIR of earlier
+** frames keeps none of them.  Clusters keep their colours from frame to
+** frame (afv_draw_opts.cluster_color). */
 static int draw_frames(const draw_job *J, const afv_traj *tr, afv_geom *g)
 {
   char tmp[RUN_PATH_MAX + 32], from[RUN_PATH_MAX + 96], to[RUN_PATH_MAX + 96];
@@ -529,16 +632,21 @@ static int draw_frames(const draw_job *J, const afv_traj *tr, afv_geom *g)
   struct stat sb;
   size_t m = (size_t)tr->n;
   long f;
-  int st = 0, fresh = stat(dir, &sb) != 0;
+  int st = 0, fresh = stat(dir, &sb) != 0, *color;
   if (!fresh && !S_ISDIR(sb.st_mode)) {
     fprintf(stderr, "afv draw: --frames: %s exists and is not a directory\n",
             dir);
     return EXIT_BAD_INPUT;
   }
+  if (!fresh && !frames_dir_ours(dir)) return EXIT_BAD_INPUT;
+  if (!(color = malloc(m * sizeof(int) + 1)))
+    return bad_input("draw: out of memory");
+  for (f = 0; f < (long)m; f++) color[f] = -1;
   snprintf(tmp, sizeof tmp, "%s.tmpXXXXXX", dir);
   if (!mkdtemp(tmp)) {
     fprintf(stderr, "afv draw: --frames %s: cannot create a directory there: "
             "%s\n", dir, strerror(errno));
+    free(color);
     return EXIT_BAD_INPUT;
   }
   for (f = 0; f < tr->nframes && st == 0; f++) {
@@ -551,12 +659,13 @@ static int draw_frames(const draw_job *J, const afv_traj *tr, afv_geom *g)
       break;
     }
     st = draw_one(fp, J, g, tr->n, tr->r + (size_t)f * 2 * m,
-                  tr->theta + (size_t)f * m);
+                  tr->theta + (size_t)f * m, tr->t[f], color);
     if (fclose(fp) != 0 && st == 0)
       st = bad_input("draw: --frames: a frame could not be written");
     if (st) fprintf(stderr, "afv draw: frame %ld of %s not drawn\n", f,
                     J->path);
   }
+  free(color);
   if (st == 0 && fresh && rename(tmp, dir) != 0)
     st = bad_input("draw: --frames: cannot rename the frames' directory");
   for (f = 0; st == 0 && !fresh && f < tr->nframes; f++) {
@@ -565,6 +674,7 @@ static int draw_frames(const draw_job *J, const afv_traj *tr, afv_geom *g)
     if (rename(from, to) != 0)
       st = bad_input("draw: --frames: cannot move a frame into DIR");
   }
+  if (st == 0 && !fresh) remove_frames_from(dir, tr->nframes);
   if (st != 0 || !fresh) remove_frames(tmp, tr->nframes);
   if (st == 0)
     fprintf(stderr, "afv draw: %d frames written to %s/\n", tr->nframes, dir);
@@ -578,7 +688,7 @@ static int draw_run(draw_job *J)
   afv_geom *g = NULL;
   double *r = NULL, *theta = NULL, *value = NULL;
   char err[RUN_PATH_MAX + 128];
-  int traj = is_trajectory(J->path), n = 0, st = EXIT_BAD_INPUT;
+  int traj = J->traj = is_trajectory(J->path), n = 0, st = EXIT_BAD_INPUT;
   memset(&tr, 0, sizeof tr);
   if (traj && !J->l_given) run_l_beside(J->path, &J->p.l);
   if (!traj && (J->frame >= 0 || J->frames_dir))
@@ -617,7 +727,8 @@ static int draw_run(draw_job *J)
     J->o.value = value;
     J->o.value_name = J->color_by;
     if (J->frames_dir) st = draw_frames(J, &tr, g);
-    else if ((st = draw_one(stdout, J, g, n, r, theta)) == 0
+    else if ((st = draw_one(stdout, J, g, n, r, theta,
+                            traj ? tr.t[J->frame] : NAN, NULL)) == 0
              && fflush(stdout) != 0)
       st = bad_input("draw: cannot write the SVG");
   }
