@@ -855,12 +855,6 @@ static int dense_probe(const afv_geom *g, const grid *G, double range)
   return scan_cell(g, G, k, run, nr, range, NULL, 0) > DENSE_CANDIDATES;
 }
 
-/* Appends j to cell i's list (fill[i]: its next free place). */
-static void put_candidate(afv_geom *g, int *fill, int i, int j)
-{
-  g->cand[fill[i]++] = j;
-}
-
 /* Sorts a few ints (insertion; a dense cell's list holds ~10 to 30). */
 static void sort_ints(int *a, int m)
 {
@@ -872,18 +866,78 @@ static void sort_ints(int *a, int m)
   }
 }
 
+/* Every cell's walk: the centres j within 2 R_i of cell i go to
+** out[first[i] .. first[i] + len[i] - 1] (out grown as needed). */
+static int walk_all(const afv_geom *g, const grid *G, int n, double l,
+                    int **out, int *cap_out, int *first, int *len)
+{
+  dense_walk W;
+  int q, c, total = 0, st = AFV_OK;
+  memset(&W, 0, sizeof W);
+  W.l = l;
+  for (q = 0; q < n && st == AFV_OK; q++) {   /* in bin order */
+    int i = g->bin_cell[q];
+    if ((st = walk_cell(g, G, q, &W)) != AFV_OK) break;
+    if (afv_grow((void **)out, cap_out, total + W.n_met + 1, sizeof(int))) {
+      st = AFV_ENOMEM;
+      break;
+    }
+    first[i] = total;
+    for (c = 0; c < W.n_met; c++)
+      if (W.met_d2[c] < 4 * W.R * W.R) (*out)[total++] = W.met[c];
+    len[i] = total - first[i];
+  }
+  free(W.met);
+  free(W.met_d2);
+  return st;
+}
+
+/* The candidate lists from the walks' out-lists: each pair i -> j put in
+** both lists, then each list sorted and each pair kept once. */
+static int symmetric_lists(afv_geom *g, int n, const int *out,
+                           const int *first, const int *len)
+{
+  int *at = malloc((size_t)(n + 1) * sizeof(int)), i, c, w = 0;
+  if (!at) return AFV_ENOMEM;
+  memset(g->cand_start, 0, (size_t)(n + 1) * sizeof(int));
+  for (i = 0; i < n; i++) {
+    g->cand_start[i + 1] += len[i];
+    for (c = first[i]; c < first[i] + len[i]; c++)
+      g->cand_start[out[c] + 1]++;
+  }
+  for (i = 0; i < n; i++) g->cand_start[i + 1] += g->cand_start[i];
+  if (afv_grow((void **)&g->cand, &g->cap_cand, g->cand_start[n] + 1,
+               sizeof(int))) {
+    free(at);
+    return AFV_ENOMEM;
+  }
+  for (i = 0; i < n; i++) at[i] = g->cand_start[i];
+  for (i = 0; i < n; i++)
+    for (c = first[i]; c < first[i] + len[i]; c++) {
+      g->cand[at[i]++] = out[c];
+      g->cand[at[out[c]]++] = i;
+    }
+  for (i = 0; i < n; i++) {           /* compact: each pair once */
+    int s0 = g->cand_start[i], m = g->cand_start[i + 1] - s0;
+    g->cand_start[i] = w;
+    sort_ints(g->cand + s0, m);
+    for (c = 0; c < m; c++)
+      if (c == 0 || g->cand[s0 + c] != g->cand[s0 + c - 1])
+        g->cand[w++] = g->cand[s0 + c];
+  }
+  g->cand_start[n] = w;
+  free(at);
+  return AFV_OK;
+}
+
 /* The dense search: every cell's walk (R_i, and the centres j within
-** 2 R_i: out-lists), then each pair put in both lists and duplicates
-** removed.  G is replaced by the fine grid (about one cell a bin), whose
-** bins stay in g for afv_cells_around. */
+** 2 R_i), then the lists made symmetric.  G is replaced by the fine grid
+** (about one cell a bin), whose bins stay in g for afv_cells_around. */
 static int dense_candidates(afv_geom *g, int n, const double *r, double l,
                             const afv_box *b, grid *G)
 {
-  dense_walk W;
-  int *out_start = NULL, *out = NULL, *fill = NULL, cap_out = 0, q, i, st;
+  int *out = NULL, *first, *len, cap_out = 0, st;
   double area = b && b->periodic ? b->Lx * b->Ly : 0, half;
-  memset(&W, 0, sizeof W);
-  W.l = l;
   if (!(b && b->periodic)) {           /* open: the centres' bounding box */
     grid_open(G, n, r, l);
     area = (G->nbx * G->wx) * (G->nby * G->wy);
@@ -893,71 +947,13 @@ static int dense_candidates(afv_geom *g, int n, const double *r, double l,
   if (b && b->periodic) grid_periodic(G, b, half, n);
   else grid_open(G, n, r, half);
   if ((st = fill_bins(g, G, n, r)) != AFV_OK) return st;
-  out_start = calloc((size_t)n + 1, sizeof(int));
-  fill = calloc((size_t)n + 1, sizeof(int));
-  st = out_start && fill ? AFV_OK : AFV_ENOMEM;
-  for (q = 0; q < n && st == AFV_OK; q++) {   /* walks, in bin order */
-    int c;
-    i = g->bin_cell[q];
-    if ((st = walk_cell(g, G, q, &W)) != AFV_OK) break;
-    out_start[i] = 0;
-    if (afv_grow((void **)&out, &cap_out, fill[n] + W.n_met + 1,
-                 sizeof(int))) {
-      st = AFV_ENOMEM;
-      break;
-    }
-    /* fill[n]: directed pairs so far; fill[i]: where i's out-list starts */
-    fill[i] = fill[n];
-    for (c = 0; c < W.n_met; c++)
-      if (W.met_d2[c] < 4 * W.R * W.R) out[fill[n]++] = W.met[c];
-    out_start[i] = fill[n] - fill[i];   /* its length, for now */
-  }
-  if (st == AFV_OK) {
-    int *len = out_start, *first = fill, total = fill[n];
-    /* each directed pair i -> j gives j to i and i to j: count both */
-    memset(g->cand_start, 0, (size_t)(n + 1) * sizeof(int));
-    for (i = 0; i < n; i++) {
-      int c;
-      g->cand_start[i + 1] += len[i];
-      for (c = first[i]; c < first[i] + len[i]; c++)
-        g->cand_start[out[c] + 1]++;
-    }
-    for (i = 0; i < n; i++) g->cand_start[i + 1] += g->cand_start[i];
-    if (afv_grow((void **)&g->cand, &g->cap_cand, g->cand_start[n] + 1,
-                 sizeof(int))) {
-      st = AFV_ENOMEM;
-    } else {
-      int *at = malloc((size_t)(n + 1) * sizeof(int));
-      if (!at) st = AFV_ENOMEM;
-      for (i = 0; at && i < n; i++) at[i] = g->cand_start[i];
-      for (i = 0; at && i < n; i++) {
-        int c;
-        for (c = first[i]; c < first[i] + len[i]; c++) {
-          put_candidate(g, at, i, out[c]);
-          put_candidate(g, at, out[c], i);
-        }
-      }
-      if (at) {
-        int w = 0;                      /* compact: each pair once */
-        for (i = 0; i < n; i++) {
-          int s0 = g->cand_start[i], m = g->cand_start[i + 1] - s0, c;
-          g->cand_start[i] = w;
-          sort_ints(g->cand + s0, m);
-          for (c = 0; c < m; c++)
-            if (c == 0 || g->cand[s0 + c] != g->cand[s0 + c - 1])
-              g->cand[w++] = g->cand[s0 + c];
-        }
-        g->cand_start[n] = w;
-      }
-      free(at);
-    }
-    (void)total;
-  }
-  free(out_start);
-  free(fill);
+  first = malloc((size_t)(2 * n + 2) * sizeof(int));
+  if (!first) return AFV_ENOMEM;
+  len = first + n + 1;
+  st = walk_all(g, G, n, l, &out, &cap_out, first, len);
+  if (st == AFV_OK) st = symmetric_lists(g, n, out, first, len);
+  free(first);
   free(out);
-  free(W.met);
-  free(W.met_d2);
   return st;
 }
 
