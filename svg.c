@@ -10,7 +10,9 @@
 ** written in model coordinates and an arc running counter-clockwise in the
 ** model is an SVG arc with sweep-flag 1 (flags are read in the user space
 ** of the path, before the flip).  A legend, when cells are coloured, sits
-** right of the viewport, outside it.  Every piece comes from afv_geom:
+** right of the viewport, outside it; the optional caption and scale bar
+** (a bar of length l) in a footer strip under it.  Every piece comes from
+** afv_geom:
 **   cell         filled path (only when coloured: afv_draw_opts), its
 **                edges as lines and its arcs as arcs, under the outlines;
 **   arc          pink path "M start A l l 0 large 1 end", one per arc piece
