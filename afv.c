@@ -620,7 +620,7 @@ typedef struct fd_context {
 static int central_difference(const fd_context *C, int q, double s,
                               double *D, double *mag)
 {
-  double Ep, Em, x = q % 2 ? 0 : s, y = q % 2 ? s : 0;
+  double Ep = 0, Em = 0, x = q % 2 ? 0 : s, y = q % 2 ? s : 0;
   int st;
   if (C->local) {
     if ((st = local_energy(C->T, x, y, &Ep, mag)) == AFV_OK)
