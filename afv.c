@@ -683,6 +683,7 @@ int afv_force_check(int n, const double *r, const afv_params *p,
     if (local && (st = local_build(&T, &g, r, p, b, c, h)) != AFV_OK) break;
     s = fmin(h, (local ? kink_distance(T.r, T.m, p->l)
                  : kink_distance_global(n, r, b, c, p->l)) / KINK_STEPS);
+    s = fmax(s, DBL_MIN);   /* a kink 1e-320 l away: no step resolves it */
     for (q = 2 * c; q < 2 * c + 2 && st == AFV_OK; q++)
       st = check_component(&C, q, s, f, rep);
   }
