@@ -57,6 +57,7 @@
 */
 #include "afv_internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -484,8 +485,22 @@ static int local_build(local_tissue *T, const afv_geom *g, const double *r,
   return st;
 }
 
-/* The energy of the affected cells of T with its cell 0 at (x, y). */
-static int local_energy(local_tissue *T, double x, double y, double *E)
+/* The size of cell k's energy for its rounding: |e_k| and each term's
+** derivative times its argument (the energy of a cell is formed from A,
+** P and L, each rounded to about eps times itself). */
+static double energy_magnitude(const afv_params *p, int k, double A, double P,
+                               double L)
+{
+  cell_targets t = targets_of(p, k);
+  return fabs(afv_cell_energy(p, k, A, P, L))
+         + fabs(2 * t.KA * (A - t.A0)) * fabs(A)
+         + fabs(2 * t.KP * (P - t.P0)) * fabs(P) + fabs(p->Lambda * L);
+}
+
+/* The energy of the affected cells of T with its cell 0 at (x, y); adds
+** their energy_magnitude to *mag. */
+static int local_energy(local_tissue *T, double x, double y, double *E,
+                        double *mag)
 {
   afv_box open = {0, 0, 0};
   int k, st;
@@ -493,48 +508,159 @@ static int local_energy(local_tissue *T, double x, double y, double *E)
   T->r[1] = y;
   st = afv_geometry(&T->g, T->m, T->r, &T->p, &open);
   *E = 0;
-  for (k = 0; k < T->affected_n && st == AFV_OK; k++)
+  for (k = 0; k < T->affected_n && st == AFV_OK; k++) {
     *E += afv_cell_energy(&T->p, k, T->g.area[k], T->g.perim[k], T->g.arc[k]);
+    *mag += energy_magnitude(&T->p, k, T->g.area[k], T->g.perim[k],
+                             T->g.arc[k]);
+  }
   return st;
 }
 
 /* The whole tissue's energy with coordinate q of r moved by dx (the
-** fallback for a small periodic box). */
+** fallback for a small periodic box); adds its energy_magnitude to *mag. */
 static int global_energy(afv_geom *g, int n, double *rr, const double *r,
                          const afv_params *p, const afv_box *b, int q,
-                         double dx, double *E)
+                         double dx, double *E, double *mag)
 {
-  int st;
+  int st, k;
   rr[q] = r[q] + dx;
   st = afv_geometry(g, n, rr, p, b);
   rr[q] = r[q];
   *E = g->energy;
+  for (k = 0; k < n && st == AFV_OK; k++)
+    *mag += energy_magnitude(p, k, g->area[k], g->perim[k], g->arc[k]);
   return st;
 }
 
-/* rms over cells of |2 KA (A - A0)| l + |2 KP (P - P0)| + |Lambda| */
+/* rms over cells of |2 KA (A - A0)| l + |2 KP (P - P0)| + |Lambda|, formed
+** over the largest term (squares of terms near 1e300 would overflow). */
 static double tension_scale(const afv_geom *g, int n, const afv_params *p)
 {
-  double s = 0;
-  int i;
-  for (i = 0; i < n; i++) {
-    cell_targets t = targets_of(p, i);
-    double T = fabs(2 * t.KA * (g->area[i] - t.A0)) * p->l
-               + fabs(2 * t.KP * (g->perim[i] - t.P0)) + fabs(p->Lambda);
-    s += T * T;
-  }
-  return n > 0 ? sqrt(s / n) : 0;
+  double s = 0, top = 0;
+  int i, pass;
+  for (pass = 0; pass < 2; pass++)
+    for (i = 0; i < n; i++) {
+      cell_targets t = targets_of(p, i);
+      double T = fabs(2 * t.KA * (g->area[i] - t.A0)) * p->l
+                 + fabs(2 * t.KP * (g->perim[i] - t.P0)) + fabs(p->Lambda);
+      if (pass == 0) top = fmax(top, T);
+      else s += (T / top) * (T / top);
+    }
+  return n > 0 && top > 0 && isfinite(top) ? top * sqrt(s / n) : top;
 }
 
-/* Records the error of component q (fd: the central difference). */
-static void check_record(afv_check_report *rep, int q, double fd, double f)
+/* KINKS.  The energy is smooth in a cell's position except where a pair
+** detaches (d = 2l: the arc length changes as sqrt(2l - d), so the force
+** grows as 1 / sqrt(2l - d) near it) or two centres meet (d = 0: the
+** bisector turns over).  A central difference whose step reaches a kink
+** differences across it, and one close to it needs steps much smaller
+** than the distance to it, where the Taylor series converges.  So the
+** step for cell c is at most KINK_STEPS times smaller than c's distance
+** to its nearest kink: the error of the extrapolated difference, about
+** (h / delta)^4 times the force there, is then 1e-8 of it. */
+#define KINK_STEPS 100
+
+/* The finite-difference error is called resolved when the error is more
+** than UNRESOLVED_FACTOR times the difference's own uncertainty (both
+** steps' disagreement and rounding): only a resolved error can fail the
+** check. */
+#define UNRESOLVED_FACTOR 2
+
+/* The rounding of an energy, relative to its energy_magnitude: the shapes
+** are sums of a few dozen rounded terms. */
+#define ENERGY_ROUNDING (64 * DBL_EPSILON)
+
+/* Distance of c (at the origin of the local centres x, cells 1 .. m-1)
+** to its nearest kink: min over the others of d and |d - 2l|. */
+static double kink_distance(const double *x, int m, double l)
+{
+  double delta = HUGE_VAL;
+  int k;
+  for (k = 1; k < m; k++) {
+    double d = hypot(x[2*k], x[2*k+1]);
+    delta = fmin(delta, fmin(d, fabs(d - 2 * l)));
+  }
+  return delta;
+}
+
+/* The same for cell c of the whole tissue (minimum image). */
+static double kink_distance_global(int n, const double *r, const afv_box *b,
+                                   int c, double l)
+{
+  double delta = HUGE_VAL;
+  int j;
+  for (j = 0; j < n; j++) {
+    double dx = r[2*j] - r[2*c], dy = r[2*j+1] - r[2*c+1], d;
+    if (j == c) continue;
+    afv_min_image(b, &dx, &dy);
+    d = hypot(dx, dy);
+    delta = fmin(delta, fmin(d, fabs(d - 2 * l)));
+  }
+  return delta;
+}
+
+/* Records the error of component q: fd, the extrapolated central
+** difference, and u, its uncertainty (see UNRESOLVED_FACTOR). */
+static void check_record(afv_check_report *rep, int q, double fd, double f,
+                         double u)
 {
   double err = fabs(fd - f);
+  int resolved = err > UNRESOLVED_FACTOR * u;
   if (!(err <= rep->max_abs) || rep->worst_cell < 0) {  /* NaN counts */
     rep->max_abs = err;
     rep->worst_cell = q / 2;
     rep->worst_comp = q % 2;
   }
+  if (resolved && !(err <= rep->max_resolved)) rep->max_resolved = err;
+  if (!resolved && !(err <= rep->max_unresolved)) {
+    rep->max_unresolved = err;
+    rep->unresolved_cell = q / 2;
+  }
+}
+
+/* What the check of one cell needs: the local tissue or the whole one. */
+typedef struct fd_context {
+  int local, n;
+  local_tissue *T;
+  afv_geom *g;
+  double *rr;
+  const double *r;
+  const afv_params *p;
+  const afv_box *b;
+} fd_context;
+
+/* -(E(+s) - E(-s)) / 2s along component q; adds the energies'
+** magnitudes to *mag. */
+static int central_difference(const fd_context *C, int q, double s,
+                              double *D, double *mag)
+{
+  double Ep = 0, Em = 0, x = q % 2 ? 0 : s, y = q % 2 ? s : 0;
+  int st;
+  if (C->local) {
+    if ((st = local_energy(C->T, x, y, &Ep, mag)) == AFV_OK)
+      st = local_energy(C->T, -x, -y, &Em, mag);
+  } else if ((st = global_energy(C->g, C->n, C->rr, C->r, C->p, C->b, q, s,
+                                 &Ep, mag)) == AFV_OK) {
+    st = global_energy(C->g, C->n, C->rr, C->r, C->p, C->b, q, -s, &Em, mag);
+  }
+  *D = -(Ep - Em) / (2 * s);
+  return st;
+}
+
+/* Component q checked with step s and s/2: the Richardson extrapolation
+** (4 D(s/2) - D(s)) / 3 against f[q]; its uncertainty is the two steps'
+** disagreement (an O(s^2) bound on an O(s^4) error) plus the rounding
+** of the energies, 3 eps_E / s in the extrapolation. */
+static int check_component(const fd_context *C, int q, double s,
+                           const double *f, afv_check_report *rep)
+{
+  double D1, D2, mag = 0, u;
+  int st = central_difference(C, q, s, &D1, &mag);
+  if (st == AFV_OK) st = central_difference(C, q, 0.5 * s, &D2, &mag);
+  if (st != AFV_OK) return st;
+  u = fabs(D1 - D2) + 3 * ENERGY_ROUNDING * (mag / 4) / s;
+  check_record(rep, q, D2 + (D2 - D1) / 3, f[q], u);
+  return AFV_OK;
 }
 
 int afv_force_check(int n, const double *r, const afv_params *p,
@@ -543,12 +669,13 @@ int afv_force_check(int n, const double *r, const afv_params *p,
 {
   afv_geom g;
   local_tissue T;
+  fd_context C;
   double *rr = NULL;
   int st, c, q, local;
   memset(&g, 0, sizeof g);
   memset(&T, 0, sizeof T);
   memset(rep, 0, sizeof *rep);
-  rep->worst_cell = -1;
+  rep->worst_cell = rep->unresolved_cell = -1;
   if ((st = afv_geometry(&g, n, r, p, b)) != AFV_OK) {
     afv_geom_free(&g);
     return st;
@@ -563,19 +690,16 @@ int afv_force_check(int n, const double *r, const afv_params *p,
   else rr = malloc((size_t)(2 * n + 1) * sizeof(double));
   if (local ? !T.around : !rr) st = AFV_ENOMEM;
   if (rr && n > 0) memcpy(rr, r, (size_t)(2 * n) * sizeof(double));
+  C.local = local; C.n = n; C.T = &T; C.g = &g; C.rr = rr; C.r = r;
+  C.p = p; C.b = b;
   for (c = 0; c < n && st == AFV_OK; c++) {
+    double s;
     if (local && (st = local_build(&T, &g, r, p, b, c, h)) != AFV_OK) break;
-    for (q = 2 * c; q < 2 * c + 2 && st == AFV_OK; q++) {
-      double Ep, Em, x = q % 2 ? 0 : h, y = q % 2 ? h : 0;
-      if (local) {
-        if ((st = local_energy(&T, x, y, &Ep)) == AFV_OK)
-          st = local_energy(&T, -x, -y, &Em);
-      } else if ((st = global_energy(&g, n, rr, r, p, b, q, h, &Ep))
-                 == AFV_OK) {
-        st = global_energy(&g, n, rr, r, p, b, q, -h, &Em);
-      }
-      if (st == AFV_OK) check_record(rep, q, -(Ep - Em) / (2 * h), f[q]);
-    }
+    s = fmin(h, (local ? kink_distance(T.r, T.m, p->l)
+                 : kink_distance_global(n, r, b, c, p->l)) / KINK_STEPS);
+    s = fmax(s, DBL_MIN);   /* a kink 1e-320 l away: no step resolves it */
+    for (q = 2 * c; q < 2 * c + 2 && st == AFV_OK; q++)
+      st = check_component(&C, q, s, f, rep);
   }
   rep->max_rel = rep->force_scale > 0 ? rep->max_abs / rep->force_scale
                                       : rep->max_abs;

@@ -170,10 +170,19 @@ typedef struct afv_check_report {
                       ** criterion of afv check */
   int    worst_cell;  /* where max_abs occurs */
   int    worst_comp;  /* 0 = x, 1 = y */
+  double max_resolved;   /* largest error more than twice the difference's
+                      ** own uncertainty (its two steps' disagreement and
+                      ** rounding): a wrong force */
+  double max_unresolved; /* largest error within that uncertainty (a kink
+                      ** of the energy within reach of the step): finite
+                      ** differences cannot tell it from a wrong force */
+  int    unresolved_cell; /* where max_unresolved occurs (-1: none) */
 } afv_check_report;
 
 /* Central differences of the energy with step h (a length): compares
-** -dE/dr from E(r +- h) with afv_compute's forces.  Moving cell c changes
+** -dE/dr from E(r +- s) and E(r +- s/2), extrapolated, with afv_compute's
+** forces, s = min(h, a hundredth of the cell's distance to a kink: a
+** pair at d = 2l or d = 0).  Moving cell c changes
 ** only the energies of the cells within 2l + h of it, so each difference
 ** is taken of their energies alone, computed on the cells within
 ** 4l + 2h of c, in coordinates centred on c: O(N) in all, and exact
@@ -706,6 +715,16 @@ typedef struct afv_draw_opts {
                          ** colour per value when there are at most 7
                          ** values, a mixture of cell types; else a ramp) */
   const char *value_name;  /* name of the value, for the legend */
+  int   *cluster_color;  /* with color_by_cluster, if not NULL (n ints, in
+                         ** and out): each cell's palette colour in the
+                         ** previous frame of a movie (-1: none), replaced
+                         ** by its colour here.  A cluster keeps the colour
+                         ** of a previous cluster of which it holds more
+                         ** than half the cells; the others take free
+                         ** colours, largest cluster first */
+  const char *caption;   /* if not NULL: a line of text under the tissue
+                         ** (e.g. "N 400  P0 4.8  v0 0.5  Lambda 0.2  t 100") */
+  int    scale_bar;      /* 1: a bar of length l under the tissue */
 } afv_draw_opts;
 /* afv_svg_write with options: size, crop and filled cells with a legend
 ** (class="legend") right of the tissue; cells are class="cell".  Marks

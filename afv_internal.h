@@ -61,7 +61,8 @@ struct afv_geom {
   int    *piece_start;  /* pieces of cell i: pieces[piece_start[i] ..     */
   int    *n_pieces;     /*   piece_start[i] + n_pieces[i] - 1]            */
   afv_piece *pieces;
-  int    *nbr_start;    /* neighbours (centres closer than 2l) of cell i: */
+  int    *nbr_start;    /* neighbours (centres closer than 2l; in dense  */
+                        /* input only those that can cut: neighbours.c) */
   int    *nbr_end;      /*   nbr[nbr_start[i] .. nbr_end[i]-1]; the slots  */
   int    *nbr;          /*   up to nbr_start[i+1] are unused (room kept)   */
   double *nbr_d;        /* their minimum-image displacements r_j - r_i,
@@ -87,6 +88,9 @@ struct afv_geom {
   double  cand_moved;   /* largest move of a cell since the rebuild, as of
                         ** the last call (afv_cells_around widens by it) */
   int     max_cand;     /* most candidates of a cell (sizes the work) */
+  int     cand_dense;   /* 1: the candidates are the dense search's (a
+                        ** function of these very positions): rebuilt at
+                        ** every call (neighbours.c, DENSE) */
   double *edge;         /* per slot s: u = D/d (2), d/2, half-chord
                         ** sqrt(l^2 - d^2/4), set by afv_neighbours */
   double *grad;         /* per neighbour slot s: dE_i/dr_nbr[s] as

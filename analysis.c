@@ -742,7 +742,9 @@ static void mean_sd(const double *x, int m, double *mean, double *sd)
 static void diffusivity(afv_analysis *a, double v0, double Dr, double lag)
 {
   int k = afv_msd_lag_index(&a->msd, lag);
-  a->d0 = Dr > 0 ? v0 * v0 / (2 * Dr) : HUGE_VAL;
+  /* Dr = 0: no rotational diffusion, the self-propelled motion has no
+  ** diffusive limit and D_0 = v0^2 / (2 Dr) is undefined (infinite) */
+  a->d0 = Dr > 0 ? v0 * v0 / (2 * Dr) : NAN;
   a->ds = a->ds_plain = a->ds_lag = 0;
   a->ds_origins = 0;
   if (k >= 0 && a->msd.dt[k] > 0) {
@@ -751,8 +753,9 @@ static void diffusivity(afv_analysis *a, double v0, double Dr, double lag)
     a->ds_plain = a->msd.msd[k] / (4 * a->ds_lag);
     a->ds_origins = a->n > 0 ? a->msd.samples[k] / a->n : 0;
   }
-  /* v0 = 0 (D_0 = 0): D_eff = D_s / D_0 is undefined, not infinite */
-  a->deff = a->d0 > 0 ? a->ds / a->d0 : NAN;
+  /* v0 = 0 (D_0 = 0) or Dr = 0 (D_0 undefined): D_eff = D_s / D_0 is
+  ** undefined, neither infinite nor 0 (which would read as glassy) */
+  a->deff = a->d0 > 0 && isfinite(a->d0) ? a->ds / a->d0 : NAN;
 }
 
 /* Least-squares slope of log MSD_rel against log lag over the lags between

@@ -23,6 +23,7 @@
 #define EXIT_CHECK_FAILED 1
 #define EXIT_BAD_INPUT    2
 #define EXIT_UNSTABLE     3
+#define EXIT_CHECK_UNSURE 4   /* afv check: finite differences cannot decide */
 
 /* The text of a macro's value: AFV_STR(AFV_MAX_SUBSTEPS) is "64".  Help
 ** texts quote the code's constants through it, so they cannot drift. */

@@ -5,6 +5,7 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,10 +14,72 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <dirent.h>
 #include <time.h>
 #include <unistd.h>
 
+/* ---- parameters whose energy cannot be computed ----------------------- */
+/* Values within a factor HEADROOM of the largest double are refused, as
+** afv run refuses them: the energy and the forces are sums and products of
+** the terms bounded below, and must stay finite. */
+#define HEADROOM 1e6
+
+static int huge(double x)
+{
+  return !isfinite(x * HEADROOM);
+}
+
+/* 1 if the energy of n cells under p stays finite in every state: each
+** term's largest value (a cell is inside its disk: 0 <= A <= pi l^2,
+** 0 <= P <= 2 pi l) summed over the cells.  Else prints one line naming
+** the key (cmd: "eval", "check", "draw") and returns 0. */
+static int model_computable(const char *cmd, const afv_params *p, int n)
+{
+  const double pi = 3.14159265358979323846;
+  double Amax = pi * p->l * p->l, Pmax = 2 * pi * p->l;
+  double dA = fmax(fabs(p->A0), fabs(Amax - p->A0));
+  double dP = fmax(fabs(p->P0), fabs(Pmax - p->P0));
+  const char *key = NULL, *what = NULL;
+  double v = 0;
+  if (huge(Amax) || !(p->l * p->l >= DBL_MIN * HEADROOM)) {
+    key = "l"; v = p->l; what = "the disk's area pi l^2 is out of the range "
+                               "of doubles";
+  } else if (huge(dA * dA)) {
+    key = "A0"; v = p->A0; what = "(A - A0)^2 overflows";
+  } else if (huge(dP * dP)) {
+    key = "P0"; v = p->P0; what = "(P - P0)^2 overflows";
+  } else if (huge(n * p->KA * dA * dA)) {
+    key = "KA"; v = p->KA; what = "the area term KA (A - A0)^2 summed over "
+                                  "the cells overflows";
+  } else if (huge(n * p->KP * dP * dP)) {
+    key = "KP"; v = p->KP; what = "the perimeter term KP (P - P0)^2 summed "
+                                  "over the cells overflows";
+  } else if (huge(n * fabs(p->Lambda) * Pmax)) {
+    key = "Lambda"; v = p->Lambda; what = "the arc term Lambda L summed over "
+                                          "the cells overflows";
+  } else if (huge(n * (p->KA * dA * dA + p->KP * dP * dP
+                       + fabs(p->Lambda) * Pmax))) {
+    key = "KA"; v = p->KA; what = "the energy summed over the cells "
+                                  "overflows";
+  }
+  if (!key) return 1;
+  fprintf(stderr, "afv %s: --%s: %g: %s (%d cells)\n", cmd, key, v, what, n);
+  return 0;
+}
+
 /* ---- afv eval ---------------------------------------------------------- */
+/* The first cell whose area, perimeter, arc or force is not finite, or -1
+** (the energy too: then cell n - 1 is named). */
+static int first_nonfinite(const afv_geom *g, int n, const double *f)
+{
+  const double *A = afv_geom_area(g), *P = afv_geom_perim(g);
+  const double *L = afv_geom_arc(g);
+  int i;
+  for (i = 0; i < n; i++)
+    if (!isfinite(A[i] + P[i] + L[i] + f[2*i] + f[2*i+1])) return i;
+  return n > 0 && !isfinite(afv_geom_energy(g)) ? n - 1 : -1;
+}
+
 int cmd_eval(int argc, char **argv)
 {
   afv_params p;
@@ -51,6 +114,10 @@ int cmd_eval(int argc, char **argv)
   if (!path) return bad_input("eval: missing POINTS file (see afv eval --help)");
   if (!model_valid(&p, &b) || !load_points(path, &b, &n, &r))
     return EXIT_BAD_INPUT;
+  if (!model_computable("eval", &p, n)) {
+    free(r);
+    return EXIT_BAD_INPUT;
+  }
   f = malloc((size_t)(2 * n + 1) * sizeof(double));
   g = afv_geom_new();
   if (!f || !g) {
@@ -62,6 +129,10 @@ int cmd_eval(int argc, char **argv)
   st = afv_compute(g, n, r, &p, &b, f);
   if (st != AFV_OK) {
     st = library_error(st, g);
+  } else if ((i = first_nonfinite(g, n, f)) >= 0) {
+    fprintf(stderr, "afv eval: cell %d: its shape or force is not finite "
+            "(the parameters are too large or small for doubles)\n", i);
+    st = EXIT_BAD_INPUT;
   } else {
     area = afv_geom_area(g);
     perim = afv_geom_perim(g);
@@ -81,6 +152,35 @@ int cmd_eval(int argc, char **argv)
 }
 
 /* ---- afv check --------------------------------------------------------- */
+/* Prints the report and the verdict: FAIL (exit 1) if an error the
+** differences resolve (afv_check_report.max_resolved) exceeds the
+** tolerance; else INCONCLUSIVE (exit 4) if one they cannot resolve does
+** (a kink of the energy within reach of the step); else PASS (exit 0). */
+static int check_verdict(const afv_check_report *rep, const afv_params *p,
+                         int n, double h, double tol)
+{
+  double S = rep->tension_scale > 0 ? rep->tension_scale : 1;
+  int fail = !(rep->max_resolved / S <= tol);
+  int unsure = !fail && !(rep->max_unresolved / S <= tol);
+  printf("cells %d\nstep %.3g\nmax_abs_error %.6e\nforce_scale %.6e\n"
+         "max_rel_error %.6e\ntension_scale %.6e\nmax_tension_rel_error "
+         "%.6e\ntolerance %.3g (on max_tension_rel_error)\n"
+         "worst cell %d component %c\n", n, h, rep->max_abs,
+         rep->force_scale, rep->max_rel, rep->tension_scale,
+         rep->max_tension_rel, tol, rep->worst_cell,
+         rep->worst_comp ? 'y' : 'x');
+  if (p->cap > 0)
+    printf("note: --cap %g makes the force differ from -grad E on purpose\n",
+           p->cap);
+  if (unsure)
+    printf("note: at cell %d the differences cannot resolve an error of "
+           "%.3e (a pair within reach of detaching or meeting: the "
+           "energy has a kink there)\n", rep->unresolved_cell,
+           rep->max_unresolved);
+  printf("%s\n", fail ? "FAIL" : unsure ? "INCONCLUSIVE" : "PASS");
+  return fail ? EXIT_CHECK_FAILED : unsure ? EXIT_CHECK_UNSURE : 0;
+}
+
 int cmd_check(int argc, char **argv)
 {
   afv_params p;
@@ -103,8 +203,14 @@ int cmd_check(int argc, char **argv)
              "|2 KA (A - A0)| l + |2 KP (P - P0)| + Lambda, the size of the\n"
              "pressure and tension terms every force is a sum of: it does\n"
              "not vanish where forces cancel by symmetry) and the error\n"
-             "over each.  Exit status 0 if the error over the tension scale\n"
-             "is within the tolerance, 1 if not.\n\n"
+             "over each.  Each cell's step is at most a hundredth of its\n"
+             "distance to a kink of the energy (a pair detaching at 2l or\n"
+             "meeting), and two steps are extrapolated; their disagreement\n"
+             "and the rounding are the differences' own uncertainty.  Exit\n"
+             "status 0 (PASS) if the error over the tension scale is within\n"
+             "the tolerance, 1 (FAIL) if an error beyond twice that\n"
+             "uncertainty exceeds it, 4 (INCONCLUSIVE) if only errors\n"
+             "within it do (finite differences cannot decide there).\n\n"
              "  --h STEP     finite-difference step in units of l "
              "(default 1e-6)\n"
              "  --tol REL    tolerance on max error / tension scale "
@@ -137,6 +243,10 @@ int cmd_check(int argc, char **argv)
     return bad_input("check: missing POINTS file (see afv check --help)");
   if (!model_valid(&p, &b) || !load_points(path, &b, &n, &r))
     return EXIT_BAD_INPUT;
+  if (!model_computable("check", &p, n)) {
+    free(r);
+    return EXIT_BAD_INPUT;
+  }
   if (!(g = afv_geom_new())) {
     free(r);
     return bad_input("out of memory");
@@ -147,17 +257,7 @@ int cmd_check(int argc, char **argv)
   afv_geom_delete(g);
   free(r);
   if (st != AFV_OK) return st;
-  printf("cells %d\nstep %.3g\nmax_abs_error %.6e\nforce_scale %.6e\n"
-         "max_rel_error %.6e\ntension_scale %.6e\nmax_tension_rel_error "
-         "%.6e\ntolerance %.3g (on max_tension_rel_error)\n"
-         "worst cell %d component %c\n", n, h, rep.max_abs, rep.force_scale,
-         rep.max_rel, rep.tension_scale, rep.max_tension_rel, tol,
-         rep.worst_cell, rep.worst_comp ? 'y' : 'x');
-  if (p.cap > 0)
-    printf("note: --cap %g makes the force differ from -grad E on purpose\n",
-           p.cap);
-  printf("%s\n", rep.max_tension_rel <= tol ? "PASS" : "FAIL");
-  return rep.max_tension_rel <= tol ? 0 : EXIT_CHECK_FAILED;
+  return check_verdict(&rep, &p, n, h, tol);
 }
 
 /* ---- afv draw, afv analyze, afv meanfield (analysis helper) ------------- */
@@ -201,12 +301,21 @@ static const char *draw_usage =
   "  --cells FILE     per-cell values for --color-by (CELLS format; for a\n"
   "                   trajectory the default is the run's cells.txt beside\n"
   "                   it, and a value it lacks comes from params.txt; for\n"
-  "                   a POINTS file from --P0, --KA, --KP, --A0 below)\n\n";
+  "                   a POINTS file from --P0, --KA, --KP, --A0 below)\n"
+  "  --caption        a line under the tissue: N, P0, v0, Lambda and the\n"
+  "                   time t (a trajectory's v0 from params.txt beside it)\n"
+  "  --scale-bar      a bar of length 1 l under the tissue\n\n"
+  "With --frames and --color-by cluster a cluster keeps its colour from\n"
+  "frame to frame while it keeps more than half of its cells.  DIR must\n"
+  "be new, empty or hold only frame_NNNNN.svg files (an earlier --frames):\n"
+  "those are replaced, and any beyond the new last frame removed.\n\n";
 
 typedef struct draw_job {
   const char *path, *frames_dir, *cells_path, *color_by;
   long frame;              /* -1: last */
   int l_given;
+  int caption;             /* --caption */
+  int traj;                /* FILE is a trajectory */
   afv_params p;
   afv_box b;
   afv_draw_opts o;
@@ -273,6 +382,11 @@ static int draw_option(int argc, char **argv, int *k, draw_job *J)
   const char *opt = argv[*k], *val;
   char *end;
   int m;
+  if (strcmp(opt, "--caption") == 0 || strcmp(opt, "--scale-bar") == 0) {
+    if (opt[2] == 'c') J->caption = 1;
+    else J->o.scale_bar = 1;
+    return 1;
+  }
   if (strcmp(opt, "--frame") && strcmp(opt, "--frames")
       && strcmp(opt, "--width") && strcmp(opt, "--crop")
       && strcmp(opt, "--color-by") && strcmp(opt, "--cells"))
@@ -393,13 +507,45 @@ static int color_values(const draw_job *J, int traj, int n, double **out)
   return *out ? 1 : !bad_input("out of memory");
 }
 
-/* Draws configuration r (angles theta, may be NULL) to out. */
-static int draw_one(FILE *out, const draw_job *J, afv_geom *g, int n,
-                    const double *r, const double *theta)
+/* The caption of a picture of n cells at time t (NAN: a POINTS file):
+** N, P0, v0, Lambda, t; a trajectory's values from the params.txt beside
+** it where it has them (v0 only from there). */
+static void caption_text(const draw_job *J, int n, double t, char *buf,
+                         size_t len)
 {
+  double P0 = J->p.P0, v0 = NAN, Lambda = J->p.Lambda;
+  int m;
+  if (J->traj) {
+    param_beside(J->path, "P0", &P0);
+    param_beside(J->path, "v0", &v0);
+    param_beside(J->path, "Lambda", &Lambda);
+  }
+  m = snprintf(buf, len, "N = %d, P0 = %g", n, P0);
+  if (!isnan(v0) && m > 0 && (size_t)m < len)
+    m += snprintf(buf + m, len - (size_t)m, ", v0 = %g", v0);
+  if (m > 0 && (size_t)m < len)
+    m += snprintf(buf + m, len - (size_t)m, ", Lambda = %g", Lambda);
+  if (!isnan(t) && m > 0 && (size_t)m < len)
+    snprintf(buf + m, len - (size_t)m, ", t = %g", t);
+}
+
+/* Draws configuration r (angles theta, may be NULL; time t, NAN for a
+** POINTS file) to out; color: the cluster colours along a movie (or
+** NULL). */
+static int draw_one(FILE *out, const draw_job *J, afv_geom *g, int n,
+                    const double *r, const double *theta, double t,
+                    int *color)
+{
+  char caption[160];
+  afv_draw_opts o = J->o;
   int st = afv_geometry(g, n, r, &J->p, &J->b);
   if (st != AFV_OK) return library_error(st, g);
-  st = afv_svg_draw(out, g, n, r, theta, &J->p, &J->b, &J->o);
+  if (J->caption) {
+    caption_text(J, n, t, caption, sizeof caption);
+    o.caption = caption;
+  }
+  o.cluster_color = color;
+  st = afv_svg_draw(out, g, n, r, theta, &J->p, &J->b, &o);
   if (st != AFV_OK) return library_error(st, g);
   return 0;
 }
@@ -416,8 +562,64 @@ static void remove_frames(const char *dir, long m)
   rmdir(dir);
 }
 
+/* 1 if name is a frame file of --frames: frame_ and 5 or more digits,
+** .svg; its number in *k. */
+static int frame_name(const char *name, long *k)
+{
+  const char *d = name + 6;
+  size_t m = strlen(name);
+  char *end;
+  if (strncmp(name, "frame_", 6) != 0 || m < 15
+      || strcmp(name + m - 4, ".svg") != 0 || !(*d >= '0' && *d <= '9'))
+    return 0;
+  *k = strtol(d, &end, 10);
+  return end == name + m - 4 && end - d >= 5;
+}
+
+/* 1 if DIR holds nothing but frame files (an earlier --frames, which may
+** be replaced); else says what else is there. */
+static int frames_dir_ours(const char *dir)
+{
+  DIR *d = opendir(dir);
+  struct dirent *e;
+  long k;
+  if (!d) {
+    fprintf(stderr, "afv draw: --frames %s: %s\n", dir, strerror(errno));
+    return 0;
+  }
+  while ((e = readdir(d)) != NULL) {
+    if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")
+        || frame_name(e->d_name, &k))
+      continue;
+    fprintf(stderr, "afv draw: --frames %s: holds '%s', not a frame of afv "
+            "draw: give a new or empty directory\n", dir, e->d_name);
+    closedir(d);
+    return 0;
+  }
+  closedir(d);
+  return 1;
+}
+
+/* Removes the frame files of dir numbered from `from` on (an earlier,
+** longer --frames). */
+static void remove_frames_from(const char *dir, long from)
+{
+  char name[RUN_PATH_MAX + 300];
+  DIR *d = opendir(dir);
+  struct dirent *e;
+  long k;
+  while (d && (e = readdir(d)) != NULL)
+    if (frame_name(e->d_name, &k) && k >= from) {
+      snprintf(name, sizeof name, "%s/%s", dir, e->d_name);
+      remove(name);
+    }
+  if (d) closedir(d);
+}
+
 /* Every frame into a fresh directory beside DIR, then moved into DIR:
-** DIR gets all the frames or, on any failure, nothing. */
+** DIR gets all the frames or, on any failure, nothing; a DIR of earlier
+** frames keeps none of them.  Clusters keep their colours from frame to
+** frame (afv_draw_opts.cluster_color). */
 static int draw_frames(const draw_job *J, const afv_traj *tr, afv_geom *g)
 {
   char tmp[RUN_PATH_MAX + 32], from[RUN_PATH_MAX + 96], to[RUN_PATH_MAX + 96];
@@ -425,16 +627,21 @@ static int draw_frames(const draw_job *J, const afv_traj *tr, afv_geom *g)
   struct stat sb;
   size_t m = (size_t)tr->n;
   long f;
-  int st = 0, fresh = stat(dir, &sb) != 0;
+  int st = 0, fresh = stat(dir, &sb) != 0, *color;
   if (!fresh && !S_ISDIR(sb.st_mode)) {
     fprintf(stderr, "afv draw: --frames: %s exists and is not a directory\n",
             dir);
     return EXIT_BAD_INPUT;
   }
+  if (!fresh && !frames_dir_ours(dir)) return EXIT_BAD_INPUT;
+  if (!(color = malloc(m * sizeof(int) + 1)))
+    return bad_input("draw: out of memory");
+  for (f = 0; f < (long)m; f++) color[f] = -1;
   snprintf(tmp, sizeof tmp, "%s.tmpXXXXXX", dir);
   if (!mkdtemp(tmp)) {
     fprintf(stderr, "afv draw: --frames %s: cannot create a directory there: "
             "%s\n", dir, strerror(errno));
+    free(color);
     return EXIT_BAD_INPUT;
   }
   for (f = 0; f < tr->nframes && st == 0; f++) {
@@ -447,12 +654,13 @@ static int draw_frames(const draw_job *J, const afv_traj *tr, afv_geom *g)
       break;
     }
     st = draw_one(fp, J, g, tr->n, tr->r + (size_t)f * 2 * m,
-                  tr->theta + (size_t)f * m);
+                  tr->theta + (size_t)f * m, tr->t[f], color);
     if (fclose(fp) != 0 && st == 0)
       st = bad_input("draw: --frames: a frame could not be written");
     if (st) fprintf(stderr, "afv draw: frame %ld of %s not drawn\n", f,
                     J->path);
   }
+  free(color);
   if (st == 0 && fresh && rename(tmp, dir) != 0)
     st = bad_input("draw: --frames: cannot rename the frames' directory");
   for (f = 0; st == 0 && !fresh && f < tr->nframes; f++) {
@@ -461,6 +669,7 @@ static int draw_frames(const draw_job *J, const afv_traj *tr, afv_geom *g)
     if (rename(from, to) != 0)
       st = bad_input("draw: --frames: cannot move a frame into DIR");
   }
+  if (st == 0 && !fresh) remove_frames_from(dir, tr->nframes);
   if (st != 0 || !fresh) remove_frames(tmp, tr->nframes);
   if (st == 0)
     fprintf(stderr, "afv draw: %d frames written to %s/\n", tr->nframes, dir);
@@ -474,7 +683,7 @@ static int draw_run(draw_job *J)
   afv_geom *g = NULL;
   double *r = NULL, *theta = NULL, *value = NULL;
   char err[RUN_PATH_MAX + 128];
-  int traj = is_trajectory(J->path), n = 0, st = EXIT_BAD_INPUT;
+  int traj = J->traj = is_trajectory(J->path), n = 0, st = EXIT_BAD_INPUT;
   memset(&tr, 0, sizeof tr);
   if (traj && !J->l_given) run_l_beside(J->path, &J->p.l);
   if (!traj && (J->frame >= 0 || J->frames_dir))
@@ -498,6 +707,13 @@ static int draw_run(draw_job *J)
                                                          &r)) {
     return EXIT_BAD_INPUT;
   }
+  if (n == 0) {
+    fprintf(stderr, "afv draw: %s: no cells to draw (the %s holds none)\n",
+            J->path, traj ? "trajectory" : "POINTS file");
+    if (traj) afv_traj_free(&tr);
+    else free(r);
+    return EXIT_BAD_INPUT;
+  }
   if (model_valid(&J->p, &J->b) && draw_check_box(J)
       && (!J->color_by || strcmp(J->color_by, "cluster") == 0
           || color_values(J, traj, n, &value))
@@ -506,7 +722,8 @@ static int draw_run(draw_job *J)
     J->o.value = value;
     J->o.value_name = J->color_by;
     if (J->frames_dir) st = draw_frames(J, &tr, g);
-    else if ((st = draw_one(stdout, J, g, n, r, theta)) == 0
+    else if ((st = draw_one(stdout, J, g, n, r, theta,
+                            traj ? tr.t[J->frame] : NAN, NULL)) == 0
              && fflush(stdout) != 0)
       st = bad_input("draw: cannot write the SVG");
   }
@@ -534,9 +751,35 @@ int cmd_draw(int argc, char **argv)
 }
 
 
+/* 1 if P0* = 6 + (2 Lambda/KA - A0 + 3 sqrt(3)/2) / (4 KP/KA (1 - sqrt(3)/2))
+** is finite, with each step of it; else names the key that overflows it
+** (or underflows KP/KA) and returns 0. */
+static int meanfield_computable(double Lambda, double A0, double KP, double KA)
+{
+  double lam = Lambda / KA, kp = KP / KA, num = 2 * lam - A0 + 1.5 * sqrt(3.0);
+  const char *key = NULL;
+  double v = 0;
+  if (huge(lam)) {
+    key = fabs(Lambda) >= 1 ? "Lambda" : "KA";
+    v = fabs(Lambda) >= 1 ? Lambda : KA;
+  } else if (!(kp * HEADROOM >= DBL_MIN) || huge(kp)) {
+    key = KP < 1 ? "KP" : "KA";
+    v = KP < 1 ? KP : KA;
+  } else if (huge(num)) {
+    key = fabs(A0) > fabs(2 * lam) ? "A0" : "Lambda";
+    v = fabs(A0) > fabs(2 * lam) ? A0 : Lambda;
+  } else if (huge(6 + num / (4 * kp * (1 - 0.5 * sqrt(3.0))))) {
+    key = "KP"; v = KP;
+  }
+  if (!key) return 1;
+  fprintf(stderr, "afv meanfield: --%s: %g: P0* overflows (Lambda %g, A0 %g, "
+          "KP %g, KA %g)\n", key, v, Lambda, A0, KP, KA);
+  return 0;
+}
+
 int cmd_meanfield(int argc, char **argv)
 {
-  double Lambda = 0.2, A0 = 3.14159265358979323846, KP = 1, KA = 1;
+  double Lambda = 0.2, A0 = 3.14159265358979323846, KP = 1, KA = 1, pstar;
   int k, bad = 0;
   for (k = 1; k < argc && !bad; k++) {
     if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
@@ -560,6 +803,8 @@ int cmd_meanfield(int argc, char **argv)
   if (bad) return EXIT_BAD_INPUT;
   if (!(KP > 0) || !(KA > 0)) return bad_input("meanfield: KP and KA must "
                                                "be > 0");
-  printf("%.4f\n", afv_meanfield_p0(Lambda / KA, A0, KP / KA));
+  if (!meanfield_computable(Lambda, A0, KP, KA)) return EXIT_BAD_INPUT;
+  pstar = afv_meanfield_p0(Lambda / KA, A0, KP / KA);
+  printf(fabs(pstar) < 1e15 ? "%.4f\n" : "%.6e\n", pstar);   /* no 300 digits */
   return 0;
 }

@@ -22,8 +22,11 @@
 **   - at every call each cell's candidates are filtered by the exact
 **     distance and sorted (filter_cell), written in place ("neighbour
 **     lists"), and the pairs linked.
-** Cost: O(N) time and memory; long candidate lists (dense input) are
-** merge-sorted and reverse slots found by binary search.
+** Cost: O(N) time and memory.  Dense input (a cell with more than
+** DENSE_CANDIDATES candidates) takes the dense search instead: candidates
+** in order of distance, with Voro++'s radius test as the stop (DENSE,
+** dense_candidates); long lists are merge-sorted and reverse slots found
+** by binary search.
 ** afv_cells_around reads the cell list for the sub-steps (substeps.c) and
 ** afv_force_check; afv_spatial_order numbers cells in its order.  The
 ** buffers of an afv_geom are grown here too (afv_grow, grow_cells).
@@ -631,7 +634,8 @@ static int candidates_valid(afv_geom *g, int n, const double *r, double l,
 {
   double lim2 = 0.25 * SKIN * SKIN * l * l, most2 = 0;
   int i, movers = 0, nonfinite = 0;
-  if (g->cand_n != n || g->cand_l != l || !same_box(&g->cand_box, b))
+  if (g->cand_n != n || g->cand_l != l || !same_box(&g->cand_box, b)
+      || g->cand_dense)
     return 0;
   AFV_PARALLEL_REDUCE(n, reduction(max: most2) reduction(+: movers)
                       reduction(|: nonfinite))
@@ -650,25 +654,338 @@ static int candidates_valid(afv_geom *g, int n, const double *r, double l,
          && movers_covered(g, n, r, l, b);
 }
 
+/* ---- dense input ------------------------------------------------------ */
+/* DENSE.  Far above the paper's densities (8000 cells in a 12 x 12 box: 55
+** per l^2), each cell has hundreds of centres within 2l, nearly all of
+** which cannot reach it: its cell is far smaller than the disk.  There
+** the candidates come from a search in order of distance with a stop,
+** Voro++'s "radius of security": cell i's shape lies within R_i of r_i,
+** R_i the largest distance of a vertex of the polygon cut so far (at most
+** l), and a centre at d >= 2 R_i has its bisector at d/2 >= R_i, so it
+** cannot cut the cell.  The bins of a fine grid (about a cell each) are
+** visited ring by ring about i's bin, each centre met cuts the polygon,
+** and the walk stops when the next ring lies beyond 2 R_i.  The
+** candidates of i are the centres j with d < 2 R_i or d < 2 R_j (so the
+** lists are symmetric, as link_cell needs), a superset of the cells that
+** cut: the same shapes.  These lists depend on the positions (no skin),
+** so they are rebuilt at every call (cand_dense).  Cost O(N) in time and
+** memory for any density.  DENSE_CANDIDATES: a cell of a tissue at the
+** paper's densities has 6 to 20 centres within (2 + SKIN) l; 64 is
+** three times that, so their lists never take this path. */
+#define DENSE_CANDIDATES 64
+
+/* The polygon cut so far has at most this many vertices (each cut adds at
+** most one); a cell that would need more keeps R = l: no pruning. */
+#define DENSE_VERTICES 64
+
+/* A convex polygon about the origin (cell i's centre) containing the
+** cell: vertices v[0 .. m-1], counter-clockwise. */
+typedef struct cut_polygon {
+  int m;
+  double v[2 * DENSE_VERTICES];
+} cut_polygon;
+
+/* Cuts P by the half-plane x . D <= |D|^2 / 2 (the side of i of the
+** bisector of i and a centre at D).  Returns 0 if the result would have
+** too many vertices (P is then left as it was). */
+static int cut_by_bisector(cut_polygon *P, double dx, double dy)
+{
+  double c = 0.5 * (dx * dx + dy * dy), w[2 * DENSE_VERTICES];
+  int k, m = 0;
+  for (k = 0; k < P->m; k++) {
+    const double *p = P->v + 2 * k, *q = P->v + 2 * ((k + 1) % P->m);
+    double sp = p[0] * dx + p[1] * dy - c, sq = q[0] * dx + q[1] * dy - c;
+    if (sp <= 0) {
+      if (m == DENSE_VERTICES) return 0;
+      w[2*m] = p[0];
+      w[2*m+1] = p[1];
+      m++;
+    }
+    if ((sp < 0 && sq > 0) || (sp > 0 && sq < 0)) {   /* the edge crosses */
+      double t = sp / (sp - sq);
+      if (m == DENSE_VERTICES) return 0;
+      w[2*m] = p[0] + t * (q[0] - p[0]);
+      w[2*m+1] = p[1] + t * (q[1] - p[1]);
+      m++;
+    }
+  }
+  P->m = m;
+  memcpy(P->v, w, (size_t)(2 * m) * sizeof(double));
+  return 1;
+}
+
+/* The radius of security of P: its farthest vertex, at most l, widened by
+** 1e-9 l for the rounding of the vertices. */
+static double security_radius(const cut_polygon *P, double l)
+{
+  double most = 0;
+  int k;
+  for (k = 0; k < P->m; k++)
+    most = fmax(most, P->v[2*k] * P->v[2*k] + P->v[2*k+1] * P->v[2*k+1]);
+  return fmin(l, sqrt(most) + 1e-9 * l);
+}
+
+/* The bin offsets along one axis of nb bins that a walk may visit, each
+** bin once: -lo .. hi (periodic: at most half the bins each way; open:
+** those on the grid). */
+static void walk_range(int c, int nb, int periodic, int *lo, int *hi)
+{
+  if (periodic) {
+    *lo = (nb - 1) / 2;
+    *hi = nb - 1 - *lo;
+  } else {
+    *lo = c;
+    *hi = nb - 1 - c;
+  }
+}
+
+/* Walk state for cell i: its wrapped centre, bin, polygon and radius, and
+** the centres met that were within 2R then (j, d^2). */
+typedef struct dense_walk {
+  double x, y, R, l;
+  cut_polygon P;
+  int pruned;           /* 0 once the polygon overflowed: R stays l */
+  int *met;             /* cells met within 2R, and their d^2 */
+  double *met_d2;
+  int n_met, cap_met, cap_met_d2;
+} dense_walk;
+
+/* Visits bin (cx, cy) (already wrapped or on the grid) for walk W of cell
+** i: each centre within 2R is kept and cuts the polygon. */
+static int walk_bin(const afv_geom *g, const grid *G, int i, int bin,
+                    dense_walk *W)
+{
+  int k;
+  for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++) {
+    int j = g->bin_cell[k];
+    double dx = g->bin_xy[2*k] - W->x, dy = g->bin_xy[2*k+1] - W->y, d2;
+    if (j == i) continue;
+    if (G->periodic) {
+      dx = fold(dx, G->Lx);
+      dy = fold(dy, G->Ly);
+    }
+    d2 = dx * dx + dy * dy;
+    if (!(d2 < 4 * W->R * W->R)) continue;
+    if (afv_grow((void **)&W->met, &W->cap_met, W->n_met + 1, sizeof(int))
+        || afv_grow((void **)&W->met_d2, &W->cap_met_d2, W->n_met + 1,
+                    sizeof(double)))
+      return AFV_ENOMEM;
+    W->met[W->n_met] = j;
+    W->met_d2[W->n_met++] = d2;
+    if (W->pruned && !cut_by_bisector(&W->P, dx, dy)) {
+      W->pruned = 0;
+      W->R = W->l;
+    }
+    if (W->pruned) W->R = security_radius(&W->P, W->l);
+  }
+  return AFV_OK;
+}
+
+/* Bin of offset (ox, oy) from (bx, by): -1 off an open grid. */
+static int offset_bin(const grid *G, int bx, int by, int ox, int oy)
+{
+  int cx = bx + ox, cy = by + oy;
+  if (G->periodic) {
+    cx = ((cx % G->nbx) + G->nbx) % G->nbx;
+    cy = ((cy % G->nby) + G->nby) % G->nby;
+  } else if (cx < 0 || cx >= G->nbx || cy < 0 || cy >= G->nby) {
+    return -1;
+  }
+  return cy * G->nbx + cx;
+}
+
+/* The walk of cell i (bin-order position q): rings of bins about its bin
+** until the next ring lies beyond 2R (each cell of ring k is at least
+** (k - 1) w away, w the smaller bin side; where rings wrap around a
+** periodic box past half of it, the walk goes on to the end); W->R and
+** W->met as it stopped. */
+static int walk_cell(const afv_geom *g, const grid *G, int q, dense_walk *W)
+{
+  int i = g->bin_cell[q], bin = bin_of(G, g->bin_xy[2*q], g->bin_xy[2*q+1]);
+  int bx = bin % G->nbx, by = bin / G->nbx, xlo, xhi, ylo, yhi, k, K, st;
+  double w = fmin(G->wx, G->wy);
+  W->x = g->bin_xy[2*q];
+  W->y = g->bin_xy[2*q+1];
+  W->R = W->l;
+  W->pruned = 1;
+  W->n_met = 0;
+  W->P.m = 4;                       /* the square about the disk */
+  W->P.v[0] = -W->l; W->P.v[1] = -W->l; W->P.v[2] = W->l; W->P.v[3] = -W->l;
+  W->P.v[4] = W->l; W->P.v[5] = W->l; W->P.v[6] = -W->l; W->P.v[7] = W->l;
+  walk_range(bx, G->nbx, G->periodic, &xlo, &xhi);
+  walk_range(by, G->nby, G->periodic, &ylo, &yhi);
+  K = xlo > xhi ? xlo : xhi;
+  if (ylo > K) K = ylo;
+  if (yhi > K) K = yhi;
+  for (k = 0; k <= K; k++) {
+    int ox, oy;
+    int unwrapped = !G->periodic || (2 * k <= G->nbx && 2 * k <= G->nby);
+    if (k >= 2 && unwrapped && (k - 1) * w >= 2 * W->R) break;
+    for (oy = -k; oy <= k; oy++) {
+      int step = (oy == -k || oy == k) ? 1 : 2 * k;   /* the ring only */
+      if (oy < -ylo || oy > yhi) continue;
+      for (ox = -k; ox <= k; ox += step > 0 ? step : 1) {
+        int b2;
+        if (ox < -xlo || ox > xhi) continue;
+        if ((b2 = offset_bin(G, bx, by, ox, oy)) < 0) continue;
+        if ((st = walk_bin(g, G, i, b2, W)) != AFV_OK) return st;
+      }
+    }
+  }
+  return AFV_OK;
+}
+
+/* 1 if the first cell of the fullest bin has more than DENSE_CANDIDATES
+** within range: dense input found without counting every cell's (which
+** takes seconds there); 0 says nothing (the count decides). */
+static int dense_probe(const afv_geom *g, const grid *G, double range)
+{
+  bin_run run[9];
+  int nb = G->nbx * G->nby, b, best = 0, k, nr;
+  for (b = 1; b < nb; b++)
+    if (g->bin_start[b + 1] - g->bin_start[b]
+        > g->bin_start[best + 1] - g->bin_start[best])
+      best = b;
+  k = g->bin_start[best];
+  if (g->bin_start[best + 1] - k <= DENSE_CANDIDATES) return 0;
+  nr = stencil_runs(g, G, best % G->nbx, best / G->nbx, run);
+  return scan_cell(g, G, k, run, nr, range, NULL, 0) > DENSE_CANDIDATES;
+}
+
+/* Sorts a few ints (insertion; a dense cell's list holds ~10 to 30). */
+static void sort_ints(int *a, int m)
+{
+  int k, q;
+  for (k = 1; k < m; k++) {
+    int v = a[k];
+    for (q = k; q > 0 && a[q - 1] > v; q--) a[q] = a[q - 1];
+    a[q] = v;
+  }
+}
+
+/* Every cell's walk: the centres j within 2 R_i of cell i go to
+** out[first[i] .. first[i] + len[i] - 1] (out grown as needed). */
+static int walk_all(const afv_geom *g, const grid *G, int n, double l,
+                    int **out, int *cap_out, int *first, int *len)
+{
+  dense_walk W;
+  int q, c, total = 0, st = AFV_OK;
+  memset(&W, 0, sizeof W);
+  W.l = l;
+  for (q = 0; q < n && st == AFV_OK; q++) {   /* in bin order */
+    int i = g->bin_cell[q];
+    if ((st = walk_cell(g, G, q, &W)) != AFV_OK) break;
+    if (afv_grow((void **)out, cap_out, total + W.n_met + 1, sizeof(int))) {
+      st = AFV_ENOMEM;
+      break;
+    }
+    first[i] = total;
+    for (c = 0; c < W.n_met; c++)
+      if (W.met_d2[c] < 4 * W.R * W.R) (*out)[total++] = W.met[c];
+    len[i] = total - first[i];
+  }
+  free(W.met);
+  free(W.met_d2);
+  return st;
+}
+
+/* The candidate lists from the walks' out-lists: each pair i -> j put in
+** both lists, then each list sorted and each pair kept once. */
+static int symmetric_lists(afv_geom *g, int n, const int *out,
+                           const int *first, const int *len)
+{
+  int *at = malloc((size_t)(n + 1) * sizeof(int)), i, c, w = 0;
+  if (!at) return AFV_ENOMEM;
+  memset(g->cand_start, 0, (size_t)(n + 1) * sizeof(int));
+  for (i = 0; i < n; i++) {
+    g->cand_start[i + 1] += len[i];
+    for (c = first[i]; c < first[i] + len[i]; c++)
+      g->cand_start[out[c] + 1]++;
+  }
+  for (i = 0; i < n; i++) g->cand_start[i + 1] += g->cand_start[i];
+  if (afv_grow((void **)&g->cand, &g->cap_cand, g->cand_start[n] + 1,
+               sizeof(int))) {
+    free(at);
+    return AFV_ENOMEM;
+  }
+  for (i = 0; i < n; i++) at[i] = g->cand_start[i];
+  for (i = 0; i < n; i++)
+    for (c = first[i]; c < first[i] + len[i]; c++) {
+      g->cand[at[i]++] = out[c];
+      g->cand[at[out[c]]++] = i;
+    }
+  for (i = 0; i < n; i++) {           /* compact: each pair once */
+    int s0 = g->cand_start[i], m = g->cand_start[i + 1] - s0;
+    g->cand_start[i] = w;
+    sort_ints(g->cand + s0, m);
+    for (c = 0; c < m; c++)
+      if (c == 0 || g->cand[s0 + c] != g->cand[s0 + c - 1])
+        g->cand[w++] = g->cand[s0 + c];
+  }
+  g->cand_start[n] = w;
+  free(at);
+  return AFV_OK;
+}
+
+/* The dense search: every cell's walk (R_i, and the centres j within
+** 2 R_i), then the lists made symmetric.  G is replaced by the fine grid
+** (about one cell a bin), whose bins stay in g for afv_cells_around. */
+static int dense_candidates(afv_geom *g, int n, const double *r, double l,
+                            const afv_box *b, grid *G)
+{
+  int *out = NULL, *first, *len, cap_out = 0, st;
+  double area = b && b->periodic ? b->Lx * b->Ly : 0, half;
+  if (!(b && b->periodic)) {           /* open: the centres' bounding box */
+    grid_open(G, n, r, l);
+    area = (G->nbx * G->wx) * (G->nby * G->wy);
+  }
+  half = 0.5 * sqrt(area / n);
+  if (!(half > 0) || !isfinite(half) || half > l) half = l;
+  if (b && b->periodic) grid_periodic(G, b, half, n);
+  else grid_open(G, n, r, half);
+  if ((st = fill_bins(g, G, n, r)) != AFV_OK) return st;
+  first = malloc((size_t)(2 * n + 2) * sizeof(int));
+  if (!first) return AFV_ENOMEM;
+  len = first + n + 1;
+  st = walk_all(g, G, n, l, &out, &cap_out, first, len);
+  if (st == AFV_OK) st = symmetric_lists(g, n, out, first, len);
+  free(first);
+  free(out);
+  return st;
+}
+
 /* Two passes over the cell list (count, then fill) let every cell write its
-** list in place, in parallel, at the cost of scanning the bins twice. */
+** list in place, in parallel, at the cost of scanning the bins twice.
+** Where some cell has more than DENSE_CANDIDATES, the counts are dropped
+** and the dense search (dense_candidates) lists the candidates instead. */
 static int build_candidates(afv_geom *g, int n, const double *r, double l,
                             const afv_box *b)
 {
   double range = (2 + SKIN) * l;
   grid G;
-  int i, st;
+  int i, st, most = 0, probed;
   g->cand_n = 0;
   if (b && b->periodic) grid_periodic(&G, b, 0.5 * range, n);
   else grid_open(&G, n, r, 0.5 * range);
   if ((st = fill_bins(g, &G, n, r)) != AFV_OK) return st;
   g->cand_start[0] = 0;
-  scan_all(g, &G, range, 0);
-  for (i = 0; i < n; i++) g->cand_start[i + 1] += g->cand_start[i];
-  if (afv_grow((void **)&g->cand, &g->cap_cand, g->cand_start[n] + 1,
-           sizeof(int)))
-    return AFV_ENOMEM;
-  scan_all(g, &G, range, 1);
+  probed = dense_probe(g, &G, range);
+  if (!probed) {
+    scan_all(g, &G, range, 0);
+    for (i = 0; i < n; i++) {
+      if (g->cand_start[i + 1] > most) most = g->cand_start[i + 1];
+      g->cand_start[i + 1] += g->cand_start[i];
+    }
+  }
+  g->cand_dense = probed || most > DENSE_CANDIDATES;
+  if (g->cand_dense) {
+    if ((st = dense_candidates(g, n, r, l, b, &G)) != AFV_OK) return st;
+  } else {
+    if (afv_grow((void **)&g->cand, &g->cap_cand, g->cand_start[n] + 1,
+                 sizeof(int)))
+      return AFV_ENOMEM;
+    scan_all(g, &G, range, 1);
+  }
   g->cand_grid = G;
   memcpy(g->cand_r0, r, (size_t)(2 * n) * sizeof(double));
   g->cand_box.periodic = b && b->periodic;

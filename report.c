@@ -31,7 +31,8 @@ static const char *analyze_usage =
   "override) and writes DIR/analysis/:\n"
   "  summary.txt  KEY VALUE: steady means and standard deviations of\n"
   "               N_GC/N, number of clusters and Omega; final T1; D_s,\n"
-  "               D_eff = D_s / D_0 (D_0 = v0^2 / (2 Dr); nan at v0 = 0);\n"
+  "               D_eff = D_s / D_0 (D_0 = v0^2 / (2 Dr); nan at v0 = 0\n"
+  "               or Dr = 0, where D_0 is 0 or undefined);\n"
   "               tau_NGC; t1_rate (T1 events per cell per unit time\n"
   "               between steady frames); msd_beta (slope of log MSD_rel\n"
   "               vs log lag, lags 1% .. 10% of the window: ~0 caged,\n"
@@ -160,6 +161,27 @@ static int analyze_write(const char *dir, const afv_analysis *a)
   return 0;
 }
 
+/* 1 if dir is a directory holding a trajectory.dat; else one line naming
+** what is missing, before any other message (a typo in DIR must not first
+** read as a missing params.txt). */
+static int run_dir_readable(const char *dir)
+{
+  char path[RUN_PATH_MAX + 32];
+  struct stat sb;
+  if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+    fprintf(stderr, "afv analyze: %s: %s\n", dir, stat(dir, &sb) != 0
+            ? strerror(errno) : "not a directory");
+    return 0;
+  }
+  snprintf(path, sizeof path, "%s/trajectory.dat", dir);
+  if (access(path, R_OK) != 0) {
+    fprintf(stderr, "afv analyze: %s: no run here: %s: %s\n", dir, path,
+            strerror(errno));
+    return 0;
+  }
+  return 1;
+}
+
 int cmd_analyze(int argc, char **argv)
 {
   const char *dir = NULL;
@@ -189,6 +211,7 @@ int cmd_analyze(int argc, char **argv)
   if (bad) return EXIT_BAD_INPUT;
   if (!dir) return bad_input("analyze: missing DIR (see afv analyze --help)");
   if (strlen(dir) > RUN_PATH_MAX - 64) return bad_input("analyze: DIR too long");
+  if (!run_dir_readable(dir)) return EXIT_BAD_INPUT;
   if (lag <= 0) return bad_input("--lag: must be > 0");
   lag_given = !isnan(lag);
   if (!lag_given) lag = DEFAULT_LAG;
@@ -200,6 +223,10 @@ int cmd_analyze(int argc, char **argv)
   if (!isnan(v0_o)) v0 = v0_o;
   if (!isnan(Dr_o)) Dr = Dr_o;
   if (!(l > 0)) return bad_input("analyze: l must be > 0");
+  if (!(Dr >= 0)) {                 /* a variance rate: never negative */
+    fprintf(stderr, "afv analyze: --Dr: %g: must be >= 0\n", Dr);
+    return EXIT_BAD_INPUT;
+  }
   snprintf(path, sizeof path, "%s/trajectory.dat", dir);
   if (afv_traj_read(path, &tr, err, sizeof err) != AFV_OK)
     return bad_input(err);

@@ -10,7 +10,9 @@
 ** written in model coordinates and an arc running counter-clockwise in the
 ** model is an SVG arc with sweep-flag 1 (flags are read in the user space
 ** of the path, before the flip).  A legend, when cells are coloured, sits
-** right of the viewport, outside it.  Every piece comes from afv_geom:
+** right of the viewport, outside it; the optional caption and scale bar
+** (a bar of length l) in a footer strip under it.  Every piece comes from
+** afv_geom:
 **   cell         filled path (only when coloured: afv_draw_opts), its
 **                edges as lines and its arcs as arcs, under the outlines;
 **   arc          pink path "M start A l l 0 large 1 end", one per arc piece
@@ -275,13 +277,52 @@ static int cmp_ranked(const void *a, const void *b)
   return (x->index > y->index) - (x->index < y->index);
 }
 
+/* The palette colour of each shown cluster (rank k < shown, by order):
+** without a previous frame (prev NULL) colour k; with one, the colour of
+** which the cluster holds more than half of the cells that had it (at
+** most one cluster can: it keeps it), else the first colour free, larger
+** clusters choosing first.  col[k] for rank k. */
+static void cluster_palette(const afv_clusters *c, const ranked *order,
+                            int shown, const int *prev, int n, int *col)
+{
+  int had[N_COLORS] = {0}, kept[N_COLORS][N_COLORS], used[N_COLORS] = {0};
+  int *rank_of = NULL, i, k, q;
+  for (k = 0; k < shown; k++) col[k] = prev ? -1 : k;
+  if (!prev || !(rank_of = malloc((size_t)c->count * sizeof(int) + 1)))
+    return;
+  memset(kept, 0, sizeof kept);
+  for (k = 0; k < c->count; k++) rank_of[order[k].index] = k;
+  for (i = 0; i < n; i++) {
+    if (prev[i] < 0 || prev[i] >= N_COLORS) continue;
+    had[prev[i]]++;
+    k = rank_of[c->label[i]];
+    if (k < shown) kept[k][prev[i]]++;
+  }
+  for (k = 0; k < shown; k++)          /* a cluster keeps its colour */
+    for (q = 0; q < N_COLORS; q++)
+      if (2 * kept[k][q] > had[q] && !used[q]) {
+        col[k] = q;
+        used[q] = 1;
+        break;
+      }
+  for (k = 0; k < shown; k++)          /* the others: the first free */
+    for (q = 0; col[k] < 0 && q < N_COLORS; q++)
+      if (!used[q]) {
+        col[k] = q;
+        used[q] = 1;
+      }
+  free(rank_of);
+}
+
 /* Cells coloured by cluster: the N_COLORS - 1 largest clusters a colour
-** each (largest first), every other cluster grey. */
+** each (largest first, or kept along a movie: cluster_palette), every
+** other cluster grey.  color (n ints, or NULL): in, the previous frame's
+** colour of each cell; out, this one's (-1: grey). */
 static int color_by_cluster(char (*fill)[8], legend *lg, int n,
-                            const afv_clusters *c)
+                            const afv_clusters *c, int *color)
 {
   ranked *order = malloc((size_t)c->count * sizeof(ranked) + 1);
-  int *rank = malloc((size_t)c->count * sizeof(int) + 1);
+  int *rank = malloc((size_t)c->count * sizeof(int) + 1), col[N_COLORS];
   int k, i, shown = c->count <= N_COLORS ? c->count : N_COLORS - 1;
   if (!order || !rank) {
     free(order);
@@ -294,16 +335,18 @@ static int color_by_cluster(char (*fill)[8], legend *lg, int n,
   }
   qsort(order, (size_t)c->count, sizeof(ranked), cmp_ranked);
   for (k = 0; k < c->count; k++) rank[order[k].index] = k;
+  cluster_palette(c, order, shown, color, n, col);
   for (i = 0; i < n; i++) {
     k = rank[c->label[i]];
-    snprintf(fill[i], 8, "%s", k < shown ? palette[k] : OTHER_COLOR);
+    snprintf(fill[i], 8, "%s", k < shown ? palette[col[k]] : OTHER_COLOR);
+    if (color) color[i] = k < shown ? col[k] : -1;
   }
   snprintf(lg->title, sizeof lg->title, "colour: cluster (%d)", c->count);
   for (k = 0; k < shown; k++) {
     int s = order[k].size;
     snprintf(lg->text[k], sizeof lg->text[k], "cluster of %d cell%s", s,
              s == 1 ? "" : "s");
-    snprintf(lg->color[k], 8, "%s", palette[k]);
+    snprintf(lg->color[k], 8, "%s", palette[col[k]]);
   }
   lg->rows = shown;
   if (shown < c->count) {
@@ -384,11 +427,11 @@ static void draw_legend(FILE *out, const legend *lg, double x, double y)
 ** legend to its right), and in it the tissue's own viewport in model
 ** units, y up (the group's matrix flips y). */
 static void svg_header(FILE *out, const view *v, double legend_w,
-                       double legend_h)
+                       double legend_h, double footer_h)
 {
   char cb[5][COORD_LEN];
   double W = v->w * v->px, H = v->h * v->px;
-  double TH = H > legend_h ? H : legend_h;
+  double TH = (H + footer_h > legend_h ? H + footer_h : legend_h);
   fprintf(out, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
           "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.6g\" "
           "height=\"%.6g\" viewBox=\"0 0 %.6g %.6g\">\n"
@@ -574,13 +617,41 @@ static int cell_colors(const afv_draw_opts *o, const afv_clusters *c, int n,
   memset(lg, 0, sizeof *lg);
   if (!o || (!o->color_by_cluster && !o->value)) return AFV_OK;
   if (!(*fill = malloc((size_t)n * sizeof **fill + 1))) return AFV_ENOMEM;
-  st = o->color_by_cluster ? color_by_cluster(*fill, lg, n, c)
+  st = o->color_by_cluster ? color_by_cluster(*fill, lg, n, c,
+                                              o->cluster_color)
        : color_by_value(*fill, lg, n, o->value, o->value_name);
   if (st != AFV_OK) {
     free(*fill);
     *fill = NULL;
   }
   return st;
+}
+
+/* The footer under the tissue: the scale bar (a black bar of length l,
+** labelled) at the left, then the caption; FOOTER_H pixels high. */
+#define FOOTER_H 30.0
+static double footer_height(const afv_draw_opts *o)
+{
+  return o && (o->caption || o->scale_bar) ? FOOTER_H : 0;
+}
+
+static void draw_footer(FILE *out, const view *v, const afv_draw_opts *o)
+{
+  double y = v->h * v->px + FOOTER_H / 2, x = 10, bar = v->l * v->px;
+  fprintf(out, "<g class=\"footer\" font-family=\"sans-serif\" "
+          "font-size=\"13\">\n");
+  if (o->scale_bar) {
+    fprintf(out, "<rect class=\"scale-bar\" x=\"%g\" y=\"%g\" width=\"%.6g\" "
+            "height=\"4\" fill=\"black\"/>\n<text x=\"%.6g\" y=\"%g\">1 l"
+            "</text>\n", x, y - 2, bar, x + bar + 6, y + 5);
+    x += bar + 40;
+  }
+  if (o->caption) {
+    fprintf(out, "<text class=\"caption\" x=\"%.6g\" y=\"%g\">", x, y + 5);
+    put_text(out, o->caption);
+    fprintf(out, "</text>\n");
+  }
+  fprintf(out, "</g>\n");
 }
 
 int afv_svg_draw(FILE *out, const afv_geom *g, int n, const double *r,
@@ -603,7 +674,7 @@ int afv_svg_draw(FILE *out, const afv_geom *g, int n, const double *r,
   }
   set_view(v, n, r, p, b, o);
   legend_size(&lg, fill != NULL, &lw, &lh);
-  svg_header(out, v, lw, lh);
+  svg_header(out, v, lw, lh, footer_height(o));
   svg_style(out);
   draw_tissue(out, v, g, &c, n, r, b, fill);
   draw_marks(out, v, &c, n, r, theta, b);
@@ -613,6 +684,7 @@ int afv_svg_draw(FILE *out, const afv_geom *g, int n, const double *r,
             C(1, b->Ly), 2 * v->line_w);
   fprintf(out, "</g>\n</svg>\n");
   if (fill) draw_legend(out, &lg, v->w * v->px, 0);
+  if (footer_height(o) > 0) draw_footer(out, v, o);
   fprintf(out, "</svg>\n");
   afv_clusters_free(&c);
   free(fill);
@@ -633,6 +705,10 @@ int afv_svg_write(FILE *out, const afv_geom *g, int n, const double *r,
 #define PLOT_R   20.0
 #define PLOT_T   40.0
 #define PLOT_B   52.0
+
+/* Every point lies at least this fraction of the data's span inside the
+** plot's frame (before the range is rounded out to ticks). */
+#define PLOT_MARGIN 0.04
 
 typedef struct axis {
   int    log;        /* 1: values are plotted as log10(v) */
@@ -675,6 +751,10 @@ static void fit_axis(axis *a, const afv_plot_series *s, int ns, int use_y)
   if (a->hi - a->lo < 1e-12 * (fabs(a->lo) + 1)) {  /* one value: widen */
     a->lo -= a->log ? 1 : 0.5 * (fabs(a->lo) + 1);
     a->hi += a->log ? 1 : 0.5 * (fabs(a->hi) + 1);
+  } else {              /* a margin, so that no point sits on the frame */
+    double pad = PLOT_MARGIN * (a->hi - a->lo);
+    a->lo -= pad;
+    a->hi += pad;
   }
   if (a->log) {
     a->lo = floor(a->lo);

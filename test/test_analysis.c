@@ -796,6 +796,41 @@ static void analyze_synthetic_run(void)
   afv_traj_free(&tr);
 }
 
+/* D_eff = D_s / D_0 is nan where D_0 = v0^2 / (2 Dr) is 0 (v0 = 0) or
+** undefined (Dr = 0), never 0, which afv collect would label glassy
+** (before: 0 at Dr = 0, for v0 = 1 and for v0 = 0); and afv analyze
+** refuses --Dr -1 (before: accepted). */
+static void deff_undefined_without_rotational_diffusion(void)
+{
+  double r0[2 * 16];
+  afv_box b;
+  afv_traj tr;
+  afv_analysis a;
+  int n = tri_lattice(4, 4, 1.5, r0, &b), f, i, k;
+  static const double v0[3] = {1, 0, 1}, Dr[3] = {0, 0, 0.1};
+  if (!test_traj_alloc(&tr, n, 30, b)) return;
+  for (f = 0; f < 30; f++) {
+    tr.t[f] = 10.0 * f;
+    for (i = 0; i < 2 * n; i++)    /* every cell jiggles: D_s > 0 */
+      tr.r[(size_t)f * 2 * n + i] = r0[i] + 0.02 * sin(1.3 * f + 2.1 * i);
+  }
+  for (k = 0; k < 3; k++) {
+    CHECK(afv_analyze(&a, &tr, 1.0, v0[k], Dr[k], 0, 50) == AFV_OK, "analyze");
+    CHECK(a.ds > 0, "fixture: D_s %g", a.ds);
+    if (k < 2)
+      CHECK(isnan(a.deff) && isnan(a.d0), "v0 %g, Dr 0: D_eff %g, D_0 %g, "
+            "want nan", v0[k], a.deff, a.d0);
+    else
+      CHECK_CLOSE(a.deff, a.ds / 5, 1e-12, 0, "D_eff at Dr 0.1, v0 1");
+    afv_analysis_free(&a);
+  }
+  afv_traj_free(&tr);
+  CHECK(test_sh("d=$(mktemp -d) && touch $d/trajectory.dat && ./afv analyze "
+                "$d --Dr -1 2>&1 | grep -q 'Dr: -1: must be >= 0'; s=$?; "
+                "rm -rf $d; exit $s") == 0, "afv analyze --Dr -1: not refused "
+        "naming --Dr");
+}
+
 /* ---- physics smoke checks (short real runs) ------------------------------ */
 /* The paper's protocol at small size: 100 cells at phi = 0.5 in a periodic
 ** box, a compact cluster relaxed at v0 = 0, then 3000 steps (t = 30) at
@@ -1006,6 +1041,7 @@ void suite_analysis(void)
   RUN(svg_periodic_images);
   RUN(svg_plot_well_formed);
   RUN(analyze_synthetic_run);
+  RUN(deff_undefined_without_rotational_diffusion);
   RUN(smoke_epithelial_cluster);
   RUN(smoke_mesenchymal_cluster);
   RUN(commands_end_to_end);

@@ -469,6 +469,212 @@ static void analysis_does_not_draw(void)
   CHECK(uses == 0, "analysis.o refers to %d afv_svg_ symbol(s)", uses);
 }
 
+/* ---- messages ---------------------------------------------------------- */
+/* afv draw on an empty POINTS file and afv analyze on a mistyped DIR:
+** exit 2 and one line naming the file and the reason (before: draw said
+** only "parameter out of range"; analyze first said "params.txt not
+** found: using l = 1 ..." and then "cannot open"). */
+static void draw_and_analyze_name_what_is_wrong(void)
+{
+  char pts[128], se[128], typo[128], *e;
+  if (!have_afv()) return;
+  write_text("empty.xy", "# no cells\n");
+  in_tmp(pts, sizeof pts, "empty.xy");
+  in_tmp(se, sizeof se, "err.txt");
+  in_tmp(typo, sizeof typo, "runs/typo");
+  CHECK(shell("./afv draw %s >/dev/null 2>%s", pts, se) == 2, "draw empty");
+  e = read_all(se);
+  CHECK(e && count_of(e, "\n") == 1 && strstr(e, "empty.xy")
+        && strstr(e, "no cells"), "afv draw on an empty file: %s", e);
+  free(e);
+  CHECK(shell("./afv analyze %s >/dev/null 2>%s", typo, se) == 2,
+        "analyze typo");
+  e = read_all(se);
+  CHECK(e && count_of(e, "\n") == 1 && strstr(e, "runs/typo")
+        && !strstr(e, "params.txt"), "afv analyze on a missing DIR: %s", e);
+  free(e);
+}
+
+/* ---- pictures along a movie --------------------------------------------- */
+/* The fill of each cell of an SVG (class="cell", in cell order: open
+** space draws each cell once), into fill[n][8]; returns how many. */
+static int cell_fills(const char *svg, char fill[][8], int n)
+{
+  const char *p = svg;
+  int k = 0;
+  while (k < n && (p = strstr(p, "class=\"cell\" fill=\"")) != NULL) {
+    p += strlen("class=\"cell\" fill=\"");
+    snprintf(fill[k], 8, "%.7s", p);
+    k++;
+  }
+  return k;
+}
+
+/* Draws the 16 cells r (open space) coloured by cluster with the colour
+** memory color, into a string (malloc'd; NULL on failure). */
+static char *draw_clusters(const double *r, int *color)
+{
+  char path[128], *svg;
+  afv_geom g = {0};
+  afv_params p;
+  afv_box b = test_open_box();
+  afv_draw_opts o;
+  FILE *fp = fopen(in_tmp(path, sizeof path, "clusters.svg"), "w");
+  int st;
+  afv_params_default(&p);
+  memset(&o, 0, sizeof o);
+  o.color_by_cluster = 1;
+  o.cluster_color = color;
+  if (!fp) return NULL;
+  st = afv_geometry(&g, 16, r, &p, &b);
+  if (st == AFV_OK) st = afv_svg_draw(fp, &g, 16, r, NULL, &p, &b, &o);
+  fclose(fp);
+  afv_geom_free(&g);
+  CHECK(st == AFV_OK, "afv_svg_draw: %d", st);
+  svg = read_all(path);
+  return svg;
+}
+
+/* Along a movie a cluster keeps its colour while it keeps more than half
+** of its cells: A (8 cells) splits into 5 + 3, B (5) merges with C (3)
+** and becomes the largest; B+C keeps B's colour and A's 5 keep A's
+** (before: colours were ranked by size in each frame, so B+C took A's). */
+static void cluster_colours_stable(void)
+{
+  double r[32];
+  int color[16], i;
+  char f1[16][8], f2[16][8];
+  char *s1, *s2;
+  for (i = 0; i < 8; i++) { r[2*i] = 1.5 * i; r[2*i+1] = 0; }            /* A */
+  for (i = 8; i < 13; i++) { r[2*i] = 1.5 * (i - 8); r[2*i+1] = 10; }    /* B */
+  for (i = 13; i < 16; i++) { r[2*i] = 20 + 1.5 * (i - 13); r[2*i+1] = 10; }
+  for (i = 0; i < 16; i++) color[i] = -1;
+  s1 = draw_clusters(r, color);
+  for (i = 5; i < 8; i++) r[2*i+1] = -10;           /* A splits */
+  for (i = 13; i < 16; i++) r[2*i] = 7.5 + 1.5 * (i - 13);   /* C joins B */
+  s2 = draw_clusters(r, color);
+  CHECK(s1 && s2 && cell_fills(s1, f1, 16) == 16
+        && cell_fills(s2, f2, 16) == 16, "16 filled cells expected");
+  if (s1 && s2) {
+    CHECK(strcmp(f1[0], f2[0]) == 0, "A's larger part changed colour: %s "
+          "-> %s", f1[0], f2[0]);
+    CHECK(strcmp(f1[8], f2[8]) == 0 && strcmp(f2[8], f2[13]) == 0, "B+C "
+          "did not keep B's colour: B %s -> %s, C's cells %s", f1[8], f2[8],
+          f2[13]);
+    CHECK(strcmp(f2[5], f2[0]) != 0 && strcmp(f2[5], f2[8]) != 0, "A's "
+          "smaller part shares a colour: %s", f2[5]);
+  }
+  free(s1);
+  free(s2);
+}
+
+/* --frames replaces its own older frames (none left past the new last
+** one) and refuses a directory holding anything else, changing nothing
+** (before: 3 stale frames stayed; the foreign file's directory was used). */
+static void frames_dir_replaced_or_refused(void)
+{
+  char run[128], dir[128], name[256], *s;
+  int f, have = 0;
+  if (!have_afv()) return;
+  in_tmp(run, sizeof run, "run/trajectory.dat");
+  in_tmp(dir, sizeof dir, "oldframes");
+  if (access(run, R_OK) != 0) {
+    CHECK(0, "%s missing (draw_frames_of_a_trajectory makes it)", run);
+    return;
+  }
+  mkdir(dir, 0700);
+  for (f = 0; f < 10; f++) {
+    snprintf(name, sizeof name, "oldframes/frame_%05d.svg", f);
+    write_text(name, "old\n");
+  }
+  CHECK(shell("./afv draw %s --frames %s 2>/dev/null", run, dir) == 0,
+        "--frames over older frames refused");
+  for (f = 0; f < 10; f++) {
+    snprintf(name, sizeof name, "%s/frame_%05d.svg", dir, f);
+    have += access(name, F_OK) == 0;
+  }
+  CHECK(have == 7, "%d frames in DIR after redrawing 7 over 10", have);
+  write_text("oldframes/notes.txt", "mine\n");
+  CHECK(shell("./afv draw %s --frames %s 2>/dev/null", run, dir) == 2,
+        "--frames into a directory holding notes.txt: not refused");
+  s = read_all(in_tmp(name, sizeof name, "oldframes/notes.txt"));
+  CHECK(s && strcmp(s, "mine\n") == 0, "notes.txt changed: %s", s);
+  free(s);
+}
+
+/* --caption and --scale-bar: a line with N, P0, v0, Lambda and t, and a
+** bar of exactly 1 l (a 4 x 3 lattice of spacing 1.5 is drawn 7.5 l
+** wide in 800 px: 106.67 px a unit).  Without them, neither. */
+static void caption_and_scale_bar(void)
+{
+  char run[128], so[128], pts[128], *s, *bar;
+  if (!have_afv()) return;
+  in_tmp(run, sizeof run, "run/trajectory.dat");
+  in_tmp(so, sizeof so, "caption.svg");
+  CHECK(shell("./afv draw %s --caption > %s", run, so) == 0,
+        "--caption refused");
+  s = read_all(so);
+  CHECK(s && strstr(s, "class=\"caption\"") && strstr(s, "N = 30, P0 = ")
+        && strstr(s, "v0 = ") && strstr(s, "Lambda = ") && strstr(s, "t = "),
+        "caption missing or incomplete");
+  CHECK(s && !strstr(s, "scale-bar"), "a scale bar nobody asked for");
+  free(s);
+  write_lattice("bar.xy", 4, 3, 0, 0);
+  in_tmp(pts, sizeof pts, "bar.xy");
+  CHECK(shell("./afv draw %s --scale-bar > %s", pts, so) == 0,
+        "--scale-bar refused");
+  s = read_all(so);
+  bar = s ? strstr(s, "class=\"scale-bar\"") : NULL;
+  CHECK(bar && fabs(attr(bar, "width") - 800 / 7.5) < 1e-3, "scale bar: "
+        "%g px, want %g", bar ? attr(bar, "width") : -1, 800 / 7.5);
+  CHECK(s && !strstr(s, "class=\"caption\""), "a caption nobody asked for");
+  free(s);
+}
+
+/* ---- plot ranges -------------------------------------------------------- */
+/* Every point of a plot lies inside its frame with a margin, also a point
+** exactly at a decade or a tick (before: csd.svg's p = 1 sat on the top
+** edge, boundary.svg clipped a point at a corner). */
+static void plot_points_inside_frame(void)
+{
+  static double x1[3] = {1, 10, 100}, y1[3] = {1, 0.1, 0.01};
+  static double x2[4] = {4, 4.4, 4.8, 5.2}, y2[4] = {2, 1.5, 1, 0.5};
+  afv_plot pl = {"t", "x", "y", 1, 1, 0, 0};
+  afv_plot_series s;
+  char path[128], *svg, *c;
+  int round, bad = 0, count = 0;
+  for (round = 0; round < 2; round++) {
+    FILE *fp = fopen(in_tmp(path, sizeof path, "plot.svg"), "w");
+    double fx0, fy0, fw, fh;
+    const char *frame;
+    memset(&s, 0, sizeof s);
+    s.x = round ? x2 : x1;
+    s.y = round ? y2 : y1;
+    s.n = round ? 4 : 3;
+    s.color = "#000000";
+    s.points = 1;
+    pl.logx = pl.logy = !round;
+    if (!fp) return;
+    afv_svg_plot(fp, &pl, &s, 1);
+    fclose(fp);
+    svg = read_all(path);
+    if (!svg) return;
+    frame = strstr(svg, "<rect x=");
+    fx0 = attr(frame, "x"); fy0 = attr(frame, "y");
+    fw = attr(frame, "width"); fh = attr(frame, "height");
+    for (c = strstr(svg, "<circle"); c; c = strstr(c + 1, "<circle")) {
+      double cx = attr(c, "cx"), cy = attr(c, "cy");
+      count++;
+      if (!(cx > fx0 + 5 && cx < fx0 + fw - 5 && cy > fy0 + 5
+            && cy < fy0 + fh - 5))
+        bad++;
+    }
+    free(svg);
+  }
+  CHECK(count == 7 && bad == 0, "%d of %d points within 5 px of the frame",
+        bad, count);
+}
+
 void suite_pictures(void)
 {
   char cmd[128];
@@ -483,10 +689,15 @@ void suite_pictures(void)
   RUN(draw_coordinates_at_1e5);
   RUN(draw_marks_visible_at_default_size);
   RUN(draw_frames_of_a_trajectory);
+  RUN(frames_dir_replaced_or_refused);
+  RUN(caption_and_scale_bar);
+  RUN(cluster_colours_stable);
+  RUN(plot_points_inside_frame);
   RUN(plot_legend_beside_data);
   RUN(csd_log_bins_sum);
   RUN(analyze_writes_binned_csd_and_plots);
   RUN(analysis_does_not_draw);
+  RUN(draw_and_analyze_name_what_is_wrong);
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
   if (system(cmd) != 0) printf("  (could not remove %s)\n", tmpdir);
 }
