@@ -323,7 +323,7 @@ static void fake_job(const char *id, const char *p0, const char *v0,
                      const char *seed, double ngc, double ncl, double om,
                      double deff, double tau, double t1, double beta)
 {
-  char rel[128], text[1024], cmd[512];
+  char rel[128], text[1024], cmd[4096];
   snprintf(cmd, sizeof cmd, "rm -rf %s/c/runs/%s && mkdir -p %s/c/runs && "
            "cp -r %s/c/template %s/c/runs/%s && mkdir -p "
            "%s/c/runs/%s/analysis && sed -i -e 's/^P0 .*/P0 %s/' -e "
