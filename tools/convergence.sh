@@ -13,7 +13,8 @@
 # setting and state point), OUT/verdicts.csv (the finest two settings
 # compared), OUT/tables.md (the same as markdown tables) and
 # OUT/figures/*.svg (tools/convergence_plot).
-# JOBS=K sets make's -j (default 2).  Cost: about 1 CPU-hour.
+# JOBS=K sets make's -j (default 2); COLLECT_ONLY=1 tables what has
+# finished without running anything.  Cost: about 1.5 CPU-hours.
 set -e
 OUT=${1:?usage: tools/convergence.sh OUT [AFV]}
 HERE=$(cd "$(dirname "$0")/.." && pwd)
@@ -47,9 +48,15 @@ sweep substeps --integrator substeps --dt 0.01 \
   --max_move 0.1,0.05,0.025,0.0125 \
   --steps 150000 --frame_every 200 --checkpoint_every 10000
 
+# COLLECT_ONLY=1: no job is run; what has finished is tabled (collect
+# lists the rest in each sweep's missing.txt).
 for s in euler_dt0.0025 euler_dt0.005 substeps euler_dt0.01 euler_dt0.02; do
-  make -s -C "$OUT/$s" -j "$JOBS"
-  "$OUT/afv" collect "$OUT/$s" > /dev/null
+  if [ "${COLLECT_ONLY:-0}" = 1 ]; then
+    "$OUT/afv" collect "$OUT/$s" > /dev/null || true
+  else
+    make -s -C "$OUT/$s" -j "$JOBS"
+    "$OUT/afv" collect "$OUT/$s" > /dev/null
+  fi
 done
 
 # convergence.csv: scheme,setting,P0,v0,n_seeds and the three observables
@@ -77,7 +84,9 @@ mv "$OUT/convergence.csv.tmp" "$OUT/convergence.csv"
 # verdicts.csv: for each scheme, state point and observable, the finest
 # two settings (dt 0.005 and 0.0025; max_move 0.025 and 0.0125), their
 # difference and 2 sqrt(sem1^2 + sem2^2): converged if the difference is
-# smaller (the criterion stated in convergence.md).
+# not larger (the criterion stated in convergence.md; equal values, such as
+# N_GC/N = 1 at both, are converged); "missing" if one has not finished
+# for both seeds.
 awk -F, '
   NR == 1 { next }
   {
@@ -91,13 +100,21 @@ awk -F, '
     print "scheme,P0,v0,observable,finest,next,difference,bound,converged"
     split("ngc_frac n_clusters omega", obs, " ")
     for (key in keys) {
+      if (!(key in n)) {               # the next setting has not finished
+        for (o = 1; o <= 3; o++) printf "%s,%s,,,,,missing\n", key, obs[o]
+        continue
+      }
       split(f[key], a, ","); split(n[key], b, ",")
+      if (a[5] < 2 || b[5] < 2) {      # a standard error needs 2 seeds
+        for (o = 1; o <= 3; o++) printf "%s,%s,,,,,missing\n", key, obs[o]
+        continue
+      }
       for (o = 1; o <= 3; o++) {
         m = 4 + 2 * o; e = m + 1
         d = a[m] - b[m]; if (d < 0) d = -d
         bound = 2 * sqrt(a[e] * a[e] + b[e] * b[e])
         printf "%s,%s,%.6g,%.6g,%.6g,%.6g,%s\n", key, obs[o], a[m], b[m], d, \
-          bound, (d < bound) ? "yes" : "no"
+          bound, (d <= bound) ? "yes" : "no"
       }
     }
   }' "$OUT/convergence.csv" | { read -r head; echo "$head"; sort; } \
