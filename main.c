@@ -74,8 +74,9 @@ static int is_key_value(const char *arg)
 }
 
 /* argv with every --KEY=VALUE split into --KEY and VALUE (at the first
-** '='), so that each command takes both forms; *argc_out its length.
-** NULL if out of memory. */
+** '=', which becomes the end of --KEY: argv's strings are the program's
+** to modify), so that each command takes both forms; *argc_out its
+** length.  NULL if out of memory; the caller frees the array. */
 static char **split_key_values(int argc, char **argv, int *argc_out)
 {
   char **out = malloc((size_t)(2 * argc + 1) * sizeof *out);
@@ -83,13 +84,10 @@ static char **split_key_values(int argc, char **argv, int *argc_out)
   if (!out) return NULL;
   for (k = 0; k < argc; k++) {
     if (is_key_value(argv[k])) {
-      size_t len = (size_t)(strchr(argv[k], '=') - argv[k]);
-      char *key = malloc(len + 1);
-      if (!key) return NULL;
-      memcpy(key, argv[k], len);
-      key[len] = 0;
-      out[m++] = key;
-      out[m++] = argv[k] + len + 1;
+      char *eq = strchr(argv[k], '=');
+      *eq = 0;
+      out[m++] = argv[k];
+      out[m++] = eq + 1;
     } else
       out[m++] = argv[k];
   }
@@ -119,8 +117,11 @@ int main(int argc, char **argv)
         fputs("afv: out of memory\n", stderr);
         return EXIT_BAD_INPUT;
       }
+      int status;
       command_name = commands[c].name;
-      return commands[c].run(argc, args);
+      status = commands[c].run(argc, args);
+      free(args);
+      return status;
     }
   fprintf(stderr, "afv: unknown command '%s' (see afv --help)\n", argv[1]);
   return EXIT_BAD_INPUT;
