@@ -177,8 +177,7 @@ static void sweep_bad_values(void)
     "--steps 2000 --steady-from 1000 --lag 5000",
     "--steps 2000 --frame_every 100 --lag 50",
     "--steps 2000 --frame_every 100 --lag 0.2",
-    "--steps 2000 --frame_every 100 --P0 4,8 --steps 1000,100 "
-    "--steady-from 0.5",
+    "--steps 2000 --frame_every 100 --P0 4,8 --steps 1000,100 --steady-from 0.5",
     "--frame_every 0",
     /* SLURM resources */
     "--account 'a b'", "--mem 4X", "--time abc", "--array-max 0",
