@@ -94,7 +94,9 @@ const char *integral_problem(const char *text, long long lo, long long hi,
   }
   if ((p = real_problem(text, &x)) != NULL) return p;
   if (x != floor(x)) return "is not an integer (it has a fractional part)";
-  if (!(x >= (double)lo && x <= (double)hi)) {
+  /* (double)LLONG_MAX rounds up to 2^63, which a long long cannot hold:
+  ** the cast below needs x < 2^63 as well */
+  if (!(x >= (double)lo && x <= (double)hi && x < 9223372036854775808.0)) {
     snprintf(why, sizeof why, "is outside %lld .. %lld", lo, hi);
     return why;
   }
