@@ -562,13 +562,6 @@ static double largest_mean_move(int n, const double *a, const double *b,
   return most;
 }
 
-/* One step of the flow (v0 = 0 in s->dyn), or a refusal with the state
-** unchanged: afv_sim_step's moves by the same integrator. */
-static int flow_step(afv_sim *s, double dt)
-{
-  return move_all(s, dt);
-}
-
 /* The relaxation's running sums over the present and the previous window:
 ** positions (2n each) and energy. */
 typedef struct window {
@@ -621,7 +614,9 @@ int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
   s->dyn.v0 = 0;                   /* zero temperature: no self-propulsion */
   s->dyn.v0_i = NULL;
   while (!(rep->max_force <= tol) && rep->iterations < max_iter) {
-    if ((st = flow_step(s, s->dyn.dt)) != AFV_OK) {
+    /* one step of the flow (v0 = 0 above): afv_sim_step's moves, by the
+    ** same integrator, without the noise */
+    if ((st = move_all(s, s->dyn.dt)) != AFV_OK) {
       /* a finite move beyond l/2 even in the smallest half: forces too
       ** large for dt, which no relaxation by steps of dt can follow; the
       ** caller hears it (refused, afv_sim's bad_*) and goes on, as when
