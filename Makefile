@@ -18,7 +18,7 @@
 #                   under $(DESTDIR)$(PREFIX) (PREFIX defaults to /usr/local)
 #   make uninstall  removes exactly what make install created
 #   make python-test  the Python module's tests, with and without numpy
-#   make -j2 paper SCALE=smoke|quick|full OUT=DIR   reproduce the paper's
+#   make -j2 paper SCALE=smoke|quick|paper|full OUT=DIR   reproduce the paper's
 #                   figures and claims table (see "Reproducing the paper")
 #   make clean
 #
@@ -223,7 +223,7 @@ twins: test/twins
 	sh test/twins_mutants.sh $(CC)
 
 # ---- Reproducing the paper --------------------------------------------------
-# make -j2 paper SCALE=smoke|quick|full OUT=DIR: tools/paper_sweeps.sh writes
+# make -j2 paper SCALE=smoke|quick|paper|full OUT=DIR: tools/paper_sweeps.sh writes
 # two sweeps (afv sweep) into OUT: grid (the (P0, v0) plane) and fss (the
 # finite-size study); their runners are sub-makes that share make's job
 # slots (-jN: N runs at a time in all), so the two run side by side; then

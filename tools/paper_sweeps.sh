@@ -9,6 +9,7 @@
 # SCALE   grid (P0 x v0, seeds, steps)              finite-size (N x P0 x v0)
 # smoke   P0 4,8 x v0 0.1,1.85 (+ the panels' states), 1 seed ... numbers mean nothing
 # quick   8 x 10, 2 seeds, 3e4 steps                N 6400,1600,400 x 4,8 x 4 v0, lattice
+# paper   8 x 9 at the paper's length: 2 seeds, 1e6 steps  as quick
 # full    the paper's: P0 4:8.8:0.2 x v0 0:2.7:0.1, 2 seeds, 1e6 steps
 #
 # Every run starts from afv run's default start (init cluster: the
@@ -53,6 +54,23 @@ quick)
        --relax_max_steps 20000"
   FSS_ANALYZE="--steady-from 100 --lag 50"
   ;;
+paper)
+  # The paper's run length on a grid that decides its claims: N = 400,
+  # P0 4, 4.4 (the paper's dispersed-epithelial panel), 4.8, 5.6, 6.4, 7.2,
+  # 8, 8.8 x v0 0.1, 0.4, 0.7, 1, 1.4, 1.6, 1.85, 2.1, 2.6 (the dispersal
+  # line v_s(P0) lies between 1.6 and 2.1) x 2 seeds = 144 jobs of 1e6
+  # steps (t = 10^4), steady window t >= 1000, D_s at lag 5000 as in the
+  # paper.  The finite-size study stays the quick one (t = 300, lattice
+  # start): its cost at the paper's length is in doc/reproduction/.
+  GRID="--P0 4,4.4,4.8,5.6,6.4,7.2,8,8.8
+        --v0 0.1,0.4,0.7,1,1.4,1.6,1.85,2.1,2.6 --seeds 2 --N 400
+        --steps 1000000 --frame_every 1000 --checkpoint_every 100000"
+  GRID_ANALYZE="--steady-from 1000 --lag 5000"
+  FSS="--N 6400,1600,400 --P0 4,8 --v0 1,1.4,1.85,2.3 --seeds 1
+       --steps 30000 --frame_every 100 --init lattice
+       --relax_max_steps 20000"
+  FSS_ANALYZE="--steady-from 100 --lag 50"
+  ;;
 full)
   # The paper's grid and length (25 x 28 x 2 = 1400 jobs of 1e6 steps):
   # steady window t >= 1000, D_s at lag 5000 as in the paper.
@@ -65,7 +83,7 @@ full)
   FSS_ANALYZE="--steady-from 1000 --lag 5000"
   ;;
 *)
-  echo "tools/paper_sweeps.sh: SCALE must be smoke, quick or full, not '$SCALE'" >&2
+  echo "tools/paper_sweeps.sh: SCALE must be smoke, quick, paper or full, not '$SCALE'" >&2
   exit 2
   ;;
 esac
