@@ -265,9 +265,35 @@ typedef struct afv_traj {
 int  afv_traj_write_header(FILE *fp, int n, const afv_box *b);
 int  afv_traj_write_frame(FILE *fp, long long step, double t, int n,
                           const double *r, const double *theta);
-/* Reads every complete frame (a truncated last frame is dropped). */
+/* Reads every complete frame (a truncated last frame is dropped) of a
+** format 2 or format 1 file into memory. */
 int  afv_traj_read(const char *path, afv_traj *tr, char *err, size_t errlen);
 void afv_traj_free(afv_traj *tr);
+
+/* A trajectory file read one frame at a time.  afv_traj_open reads the
+** header and every frame's step and time (format 2: 16 bytes a frame;
+** format 1, text: the whole file, into memory), and refuses frames that
+** do not run forward; afv_traj_frame reads the centres of frame k into r
+** (2n values) and, if theta is not NULL, its angles (n values). */
+typedef struct afv_traj_file {
+  int        n;         /* cells per frame */
+  int        nframes;   /* complete frames */
+  afv_box    box;
+  long long *step;      /* step of frame k */
+  double    *t;         /* time of frame k */
+  int        format;    /* 2 (binary frames) or 1 (text) */
+  /* private */
+  const char *path;     /* as given, for messages */
+  FILE      *fp;
+  long long  head, record;  /* bytes before frame 0; bytes a frame */
+  unsigned char *buf;   /* one frame's cells (format 2) */
+  afv_traj   text;      /* every frame (format 1) */
+} afv_traj_file;
+int  afv_traj_open(afv_traj_file *f, const char *path, char *err,
+                   size_t errlen);
+int  afv_traj_frame(afv_traj_file *f, int k, double *r, double *theta,
+                    char *err, size_t errlen);
+void afv_traj_close(afv_traj_file *f);
 
 /* ---- dynamics (dynamics.c) -------------------------------------------- */
 /* Overdamped active Brownian dynamics (paper, Eqs. of motion and abp):
