@@ -464,6 +464,13 @@ typedef void (*afv_relax_monitor)(void *ctx, long iter, double energy,
 ** the geometry end at the final positions.  Status as afv_compute, or AFV_ENOMEM. */
 int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
               afv_relax_monitor mon, void *ctx);
+/* The same job by FIRE 2.0 (relax_fire.c): a minimiser, much faster to a
+** minimum of E than the flow but not the paper's protocol.  Each cell moves
+** at most 0.1 l a step; the same four stops (iterations: FIRE steps, time:
+** the sum of their time steps, drift and drop NaN, no sub-steps); unless
+** converged it ends in the lowest-energy state it saw. */
+int afv_relax_fire(afv_sim *s, double tol, long max_iter,
+                   afv_relax_report *rep, afv_relax_monitor mon, void *ctx);
 
 /* ---- initial configurations -------------------------------------------- */
 /* Compact cluster: the n sites of a triangular lattice of spacing a nearest

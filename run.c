@@ -42,6 +42,7 @@ typedef struct run_cfg {
   char init[16];          /* "cluster", "lattice", "random" or "file" */
   double spacing;         /* lattice start: lattice spacing, in l */
   double relax_tol;       /* relaxation force tolerance */
+  char relax[16];         /* "flow" (afv_relax) or "fire" (afv_relax_fire) */
   long long relax_max_steps;   /* relaxation step limit (0: no relaxation) */
   long long sample_every, frame_every, checkpoint_every, svg_every;
   int xyz;                /* 1: also write trajectory.xyz */
@@ -117,6 +118,7 @@ static const run_key run_keys[] = {
      "0 (overdamped steps of dt) stops when max_i |F_i| <= relax_tol, or "
      "at a kink of E (every cell's mean force over 1000 steps <= 1e-3, "
      "mean energy change <= 1e-4 of sum |e_i|, max |F| <= 5); must be > 0"),
+  RK("relax", K_WORD, relax, "flow", "flow|fire", "relaxation of the start: flow = the paper's overdamped steps at v0 = 0; fire = the FIRE 2.0 minimiser, to a true minimum of E, faster (not the paper's protocol)"),
   RK("relax_max_steps", K_INT, relax_max_steps, "100000", "steps",
      "relaxation step limit (0: no relaxation; reaching it is reported, "
      "and the run goes on); must be >= 0"),
@@ -1147,6 +1149,21 @@ static void monitor_relax(void *ctx, long iter, double E, double fmax)
 ** criterion: afv.h, afv_relax). */
 static void log_relax(run_state *R, const afv_relax_report *rep)
 {
+  if (strcmp(R->cfg.relax, "fire") == 0) {      /* relax_fire.c, STOPS */
+    run_log(R, "relaxation by FIRE 2.0 (relax fire; a cell moves at most "
+            "0.1 l a step): %ld steps (FIRE time %.6g), energy %.10g -> "
+            "%.10g, max |F| %.3e: %s\n", rep->iterations, rep->time,
+            rep->energy0, rep->energy, rep->max_force, rep->converged
+            ? "converged" : rep->at_kink ? "stopped at a kink of E (the "
+            "lowest energy stopped falling, max |F| <= 5 there); the "
+            "lowest-energy state kept" : rep->refused ? "FIRE cannot step "
+            "down from here (2000 uphill restarts in a row, or the lowest "
+            "energy stopped falling at max |F| > 5); the lowest-energy state "
+            "kept, relax_tol NOT reached, the run goes on" : "NOT reached "
+            "within relax_max_steps; the lowest-energy state kept, the run "
+            "goes on");
+    return;
+  }
   run_log(R, "relaxation at v0 = 0 (overdamped steps of dt = %g): %ld "
           "steps (t = %.6g, %lld extra sub-steps, %lld halved), energy "
           "%.10g -> %.10g, max |F| %.3e\n", R->sim.dyn.dt, rep->iterations,
@@ -1189,8 +1206,9 @@ static int relax_start(run_state *R)
     return AFV_OK;
   }
   R->last_progress = wall_seconds();
-  st = afv_relax(&R->sim, R->cfg.relax_tol, (long)R->cfg.relax_max_steps,
-                 &rep, monitor_relax, R);
+  st = (strcmp(R->cfg.relax, "fire") == 0 ? afv_relax_fire : afv_relax)
+       (&R->sim, R->cfg.relax_tol, (long)R->cfg.relax_max_steps, &rep,
+        monitor_relax, R);
   if (R->progress) fprintf(stderr, "\r%70s\r", "");
   if (st != AFV_OK) return st;
   log_relax(R, &rep);

@@ -66,6 +66,7 @@ int main(void)
   suite_docs();
   suite_api();
   suite_paper();
+  suite_relax_fire();
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;
 }

@@ -94,5 +94,6 @@ void suite_protocol(void);
 void suite_docs(void);
 void suite_api(void);
 void suite_paper(void);
+void suite_relax_fire(void);
 
 #endif

@@ -13,6 +13,7 @@
 #include "test.h"
 #include "afv.h"
 
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
