@@ -682,6 +682,14 @@ typedef struct afv_analysis {
 ** D_s at the computed lag nearest to `lag`. */
 int  afv_analyze(afv_analysis *a, const afv_traj *tr, double l, double v0,
                  double Dr, double steady_from, double lag);
+/* The same from a trajectory file, read in one streaming pass (two when
+** the MSD has lags longer than the frames held; analysis.c, STREAMING):
+** the same bits as afv_analyze on the file's frames in memory, in memory
+** O(N x frames held) instead of O(N x frames).  A frame that cannot be
+** read: its status, the message in err. */
+int  afv_analyze_file(afv_analysis *a, afv_traj_file *f, double l, double v0,
+                      double Dr, double steady_from, double lag, char *err,
+                      size_t errlen);
 /* Writes summary.txt, msd.csv, csd.csv, csd_binned.csv and series.csv into
 ** the existing directory dir, each atomically.  Numbers only: the plots of
 ** an analysis are drawn by afv_svg_msd, afv_svg_series and afv_svg_csd. */
