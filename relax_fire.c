@@ -24,8 +24,10 @@
 ** STOPS (the four of afv_relax_report):
 **   converged  max_i |F_i| <= tol;
 **   at_kink    the lowest energy seen has not dropped by more than
-**              FIRE_STALL_DROP of |E| over FIRE_STALL iterations, and
-**              max |F| of that state is at most AFV_RELAX_KINK_FORCE: E
+**              FIRE_STALL_DROP of |E| over FIRE_STALL iterations while the
+**              max |F| of that state did not halve (a smooth minimum being
+**              approached halves it), and that max |F| is at most
+**              AFV_RELAX_KINK_FORCE: E
 **              has a kink there (a triple junction on a cell's circle, where
 **              the force jumps and does not vanish), so no step lowers E and
 **              FIRE oscillates across it; its energy is not monotone there
@@ -53,12 +55,12 @@
 #define FIRE_MAX_UPHILL 2000  /* N_P<0 max */
 #define FIRE_MAX_MOVE 0.1     /* a cell's largest move in one step, in l */
 #define FIRE_STALL 1000       /* iterations over which the best E must drop */
-#define FIRE_STALL_DROP 1e-12 /* by this fraction of |E| (a few roundings) */
+#define FIRE_STALL_DROP 1e-8  /* by this fraction of |E| */
 
 /* Per-cell velocities, last moves and the best state: 6n doubles. */
 typedef struct fire {
   double *v, *move, *best;
-  double best_E, best_force, stall_E;
+  double best_E, best_force, stall_E, stall_force;
   double dt, alpha;
   int n_up, n_down;     /* iterations in a row with P > 0, P <= 0 */
 } fire;
@@ -145,11 +147,15 @@ static void keep_best(const afv_sim *s, fire *w, double max_force)
   memcpy(w->best, s->r, (size_t)(2 * s->n) * sizeof(double));
 }
 
-/* At the end of a stall window: 1 if the best energy has stopped falling. */
+/* At the end of a stall window: 1 if the best energy has stopped falling
+** and the force of the best state has not halved (a smooth convergence,
+** however slow in E, halves it). */
 static int stalled(fire *w)
 {
-  int stop = w->stall_E - w->best_E <= FIRE_STALL_DROP * fabs(w->best_E);
+  int stop = w->stall_E - w->best_E <= FIRE_STALL_DROP * fabs(w->best_E)
+             && !(w->best_force < 0.5 * w->stall_force);
   w->stall_E = w->best_E;
+  w->stall_force = w->best_force;
   return stop;
 }
 
@@ -166,6 +172,7 @@ int afv_relax_fire(afv_sim *s, double tol, long max_iter,
   w.best_E = w.stall_E = HUGE_VAL;
   keep_best(s, &w, rep->max_force);
   w.stall_E = w.best_E;
+  w.stall_force = w.best_force;
   while (!(rep->max_force <= tol) && rep->iterations < max_iter && !stop) {
     if (fire_adapt(s, &w, rep->iterations)) {
       rep->refused = 1;
