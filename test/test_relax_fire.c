@@ -85,8 +85,45 @@ static void fire_keeps_the_best_state(void)
   afv_sim_delete(s);
 }
 
+/* Where the flow stops at a kink (60 lattice cells at phi 0.5, P0 6, as in
+** test_dynamics.c),
+** FIRE goes on and stops honestly: converged, or at the kink with the
+** energy no higher than the flow's; not by the step limit. */
+static void fire_stops_at_the_flows_kink(void)
+{
+  enum { N = 60 };
+  afv_box b = {1, 0, 0};
+  afv_params p;
+  afv_dyn d;
+  afv_relax_report flow, fire;
+  double r[2 * N];
+  afv_sim *s = afv_sim_new();
+  CHECK(s != NULL, "no simulation");
+  if (!s) return;
+  afv_params_default(&p);
+  p.P0 = 6;
+  b.Lx = b.Ly = sqrt(N * 3.14159265358979323846 / 0.5);
+  afv_init_cluster(N, 1.8, &b, r);
+  afv_dyn_default(&d);
+  CHECK(afv_sim_init(s, N, r, NULL, &p, &b, &d) == AFV_OK
+        && afv_relax(s, 1e-6, 100000, &flow, NULL, NULL) == AFV_OK
+        && flow.at_kink, "the flow did not stop at a kink");
+  CHECK(afv_relax_fire(s, 1e-6, 100000, &fire, NULL, NULL) == AFV_OK
+        && (fire.converged || fire.at_kink) && !fire.refused
+        && fire.iterations < 100000 && fire.energy <= flow.energy,
+        "FIRE after the flow: %ld steps, converged %d, at_kink %d, refused "
+        "%d, E %.17g (flow %.17g)", fire.iterations, fire.converged,
+        fire.at_kink, fire.refused, fire.energy, flow.energy);
+  printf("  60 cells, P0 6, from the flow's kink: FIRE %ld steps, %s, max|F| "
+         "%.3g, E %.10g -> %.10g\n", fire.iterations, fire.converged
+         ? "converged" : fire.at_kink ? "at kink" : fire.refused ? "refused"
+         : "step limit", fire.max_force, flow.energy, fire.energy);
+  afv_sim_delete(s);
+}
+
 void suite_relax_fire(void)
 {
+  RUN(fire_stops_at_the_flows_kink);
   RUN(fire_converges_to_the_flows_minimum);
   RUN(fire_keeps_the_best_state);
 }
