@@ -27,9 +27,9 @@
 /* The library's version (semantic versioning); the program prints it with
 ** `afv --version`, and the Makefile reads it from here. */
 #define AFV_VERSION_MAJOR 0
-#define AFV_VERSION_MINOR 2
+#define AFV_VERSION_MINOR 3
 #define AFV_VERSION_PATCH 0
-#define AFV_VERSION "0.2.0"
+#define AFV_VERSION "0.3.0"
 
 /* ---- status codes ------------------------------------------------------ */
 #define AFV_OK           0  /* success */
@@ -261,9 +261,35 @@ typedef struct afv_traj {
 int  afv_traj_write_header(FILE *fp, int n, const afv_box *b);
 int  afv_traj_write_frame(FILE *fp, long long step, double t, int n,
                           const double *r, const double *theta);
-/* Reads every complete frame (a truncated last frame is dropped). */
+/* Reads every complete frame (a truncated last frame is dropped) of a
+** format 2 or format 1 file into memory. */
 int  afv_traj_read(const char *path, afv_traj *tr, char *err, size_t errlen);
 void afv_traj_free(afv_traj *tr);
+
+/* A trajectory file read one frame at a time.  afv_traj_open reads the
+** header and every frame's step and time (format 2: 16 bytes a frame;
+** format 1, text: the whole file, into memory), and refuses frames that
+** do not run forward; afv_traj_frame reads the centres of frame k into r
+** (2n values) and, if theta is not NULL, its angles (n values). */
+typedef struct afv_traj_file {
+  int        n;         /* cells per frame */
+  int        nframes;   /* complete frames */
+  afv_box    box;
+  long long *step;      /* step of frame k */
+  double    *t;         /* time of frame k */
+  int        format;    /* 2 (binary frames) or 1 (text) */
+  /* private */
+  const char *path;     /* as given, for messages */
+  FILE      *fp;
+  long long  head, record;  /* bytes before frame 0; bytes a frame */
+  unsigned char *buf;   /* one frame's cells (format 2) */
+  afv_traj   text;      /* every frame (format 1) */
+} afv_traj_file;
+int  afv_traj_open(afv_traj_file *f, const char *path, char *err,
+                   size_t errlen);
+int  afv_traj_frame(afv_traj_file *f, int k, double *r, double *theta,
+                    char *err, size_t errlen);
+void afv_traj_close(afv_traj_file *f);
 
 /* ---- dynamics (dynamics.c) -------------------------------------------- */
 /* Overdamped active Brownian dynamics (paper, Eqs. of motion and abp):
@@ -467,6 +493,13 @@ typedef void (*afv_relax_monitor)(void *ctx, long iter, double energy,
 ** the geometry end at the final positions.  Status as afv_compute, or AFV_ENOMEM. */
 int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
               afv_relax_monitor mon, void *ctx);
+/* The same job by FIRE 2.0 (relax_fire.c): a minimiser, much faster to a
+** minimum of E than the flow but not the paper's protocol.  Each cell moves
+** at most 0.1 l a step; the same four stops (iterations: FIRE steps, time:
+** the sum of their time steps, drift and drop NaN, no sub-steps); unless
+** converged it ends in the lowest-energy state it saw. */
+int afv_relax_fire(afv_sim *s, double tol, long max_iter,
+                   afv_relax_report *rep, afv_relax_monitor mon, void *ctx);
 
 /* ---- initial configurations -------------------------------------------- */
 /* Compact cluster: the n sites of a triangular lattice of spacing a nearest
@@ -678,6 +711,14 @@ typedef struct afv_analysis {
 ** D_s at the computed lag nearest to `lag`. */
 int  afv_analyze(afv_analysis *a, const afv_traj *tr, double l, double v0,
                  double Dr, double steady_from, double lag);
+/* The same from a trajectory file, read in one streaming pass (two when
+** the MSD has lags longer than the frames held; analysis.c, STREAMING):
+** the same bits as afv_analyze on the file's frames in memory, in memory
+** O(N x frames held) instead of O(N x frames).  A frame that cannot be
+** read: its status, the message in err. */
+int  afv_analyze_file(afv_analysis *a, afv_traj_file *f, double l, double v0,
+                      double Dr, double steady_from, double lag, char *err,
+                      size_t errlen);
 /* Writes summary.txt, msd.csv, csd.csv, csd_binned.csv and series.csv into
 ** the existing directory dir, each atomically.  Numbers only: the plots of
 ** an analysis are drawn by afv_svg_msd, afv_svg_series and afv_svg_csd. */

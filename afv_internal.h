@@ -265,4 +265,12 @@ int  afv_unstable(afv_sim *s, int cell, double len);
 ** afv_unstable). */
 int  afv_substeps(afv_sim *s, double split, double moved, double dt, int *nf);
 
+/* afv analyze's memory for frames held (analysis.c, STREAMING). */
+#define AFV_ANALYSIS_RING_BYTES (16L << 20)
+/* afv_analyze (tr) or afv_analyze_file (f) holding at most ring_bytes of
+** frames (tests hold fewer, to reach the second pass). */
+int afv_analyze_ring(afv_analysis *a, const afv_traj *tr, afv_traj_file *f,
+                     double l, double v0, double Dr, double steady_from,
+                     double lag, long ring_bytes, char *err, size_t errlen);
+
 #endif /* AFV_INTERNAL_H */

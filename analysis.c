@@ -517,12 +517,14 @@ static void neighbour_csr(const afv_clusters *c, int n, int *ns, int *nb)
   ns[0] = 0;
 }
 
-/* Adds the displacements from origin frame f0 to f0 + lag (lag index k). */
-static void msd_accumulate(afv_msd *m, const afv_traj *tr, int f0, int k,
+/* Adds the displacements of the n cells from an origin frame (centres a at
+** time t0, contacting neighbours ns, nb) to the frame lag[k] later (centres
+** q at time t1). */
+static void msd_accumulate(afv_msd *m, int k, int n, const double *a,
+                           const double *q, double t0, double t1,
                            const int *ns, const int *nb)
 {
-  int n = tr->n, i, s, f1 = f0 + m->lag[k];
-  const double *a = tr->r + (size_t)f0 * 2 * n, *q = tr->r + (size_t)f1 * 2 * n;
+  int i, s;
   for (i = 0; i < n; i++) {
     double dx = q[2*i] - a[2*i], dy = q[2*i+1] - a[2*i+1], mx = 0, my = 0;
     int deg = ns[i + 1] - ns[i];
@@ -537,52 +539,239 @@ static void msd_accumulate(afv_msd *m, const afv_traj *tr, int f0, int k,
     }
     m->msd_rel[k] += dx * dx + dy * dy;
   }
-  m->dt[k] += n * (tr->t[f1] - tr->t[f0]);
+  m->dt[k] += n * (t1 - t0);
   m->samples[k] += n;
 }
 
-int afv_msd_compute(afv_msd *m, const afv_traj *tr, int first, double l)
+static void msd_normalise(afv_msd *m)
 {
-  afv_geom g;
-  afv_clusters c;
-  afv_params p;
-  int *ns = NULL, *nb = NULL, f0, k, st = AFV_OK, n = tr->n;
-  memset(m, 0, sizeof *m);
-  if (first < 0 || first >= tr->nframes - 1 || n < 1 || !(l > 0))
-    return AFV_EINVAL;
-  if ((st = make_lags(m, tr->nframes - 1 - first)) || (st = msd_alloc(m)))
-    return st;
-  memset(&g, 0, sizeof g);
-  memset(&c, 0, sizeof c);
-  afv_params_default(&p);
-  p.l = l;
-  ns = malloc((size_t)(n + 1) * sizeof(int));
-  for (f0 = first; st == AFV_OK && f0 < tr->nframes - 1; f0++) {
-    const double *r0 = tr->r + (size_t)f0 * 2 * n;
-    if (!ns) st = AFV_ENOMEM;
-    else if ((st = afv_geometry(&g, n, r0, &p, &tr->box)) == AFV_OK
-             && (st = afv_clusters_compute(&c, &g, r0, l, &tr->box)) == AFV_OK) {
-      free(nb);
-      nb = malloc((size_t)(2 * c.n_pairs + 1) * sizeof(int));
-      if (!nb) {
-        st = AFV_ENOMEM;
-        break;
-      }
-      neighbour_csr(&c, n, ns, nb);
-      for (k = 0; k < m->nlags && f0 + m->lag[k] < tr->nframes; k++)
-        msd_accumulate(m, tr, f0, k, ns, nb);
-    }
-  }
+  int k;
   for (k = 0; k < m->nlags; k++)
     if (m->samples[k] > 0) {
       m->dt[k] /= m->samples[k];
       m->msd[k] /= m->samples[k];
       m->msd_rel[k] /= m->samples[k];
     }
-  free(ns);
-  free(nb);
+}
+
+/* ---- streaming over the frames ----------------------------------------- */
+/* STREAMING.  afv analyze reads a trajectory frame by frame and holds only
+** the last W frames (a ring of their centres and contacting neighbours):
+** the MSD of every lag up to W - 1 frames is summed as the lag's later
+** frame arrives.  The longer lags (few: they are log-spaced) are summed in
+** a second pass that reads each origin and the frames a lag later back
+** from the file.  For each lag the sum runs over the origins in increasing
+** order, as it did over frames all held in memory: the same bits.  W is
+** what ring_bytes holds (AFV_ANALYSIS_RING_BYTES by default; at least 2
+** frames, at most the steady window), so the memory is O(N W) and not
+** O(N frames). */
+typedef struct frame_src {
+  int n, nframes;
+  afv_box box;
+  const double *t;
+  const afv_traj *mem;        /* frames in memory, or */
+  afv_traj_file *file;        /* frames read from a file */
+  char *err;
+  size_t errlen;
+} frame_src;
+
+static int src_frame(const frame_src *s, int k, double *r)
+{
+  size_t m = 2 * (size_t)s->n;
+  if (s->mem) {
+    memcpy(r, s->mem->r + (size_t)k * m, m * sizeof(double));
+    return AFV_OK;
+  }
+  return afv_traj_frame(s->file, k, r, NULL, s->err, s->errlen);
+}
+
+/* A frame held: its centres and contacting neighbours (CSR). */
+typedef struct held {
+  double *r;
+  int *ns, *nb, cap_nb;
+} held;
+
+static void held_free(held *h, int count)
+{
+  int k;
+  for (k = 0; h && k < count; k++) {
+    free(h[k].r);
+    free(h[k].ns);
+    free(h[k].nb);
+  }
+  free(h);
+}
+
+static held *held_alloc(int count, int n)
+{
+  held *h = calloc((size_t)count, sizeof *h);
+  int k;
+  for (k = 0; h && k < count; k++) {
+    h[k].r = malloc((2 * (size_t)n + 1) * sizeof(double));
+    h[k].ns = malloc(((size_t)n + 1) * sizeof(int));
+    if (!h[k].r || !h[k].ns) {
+      held_free(h, count);
+      return NULL;
+    }
+  }
+  return h;
+}
+
+/* The contacting neighbours of c into h. */
+static int hold_neighbours(held *h, const afv_clusters *c, int n)
+{
+  if (grow((void **)&h->nb, &h->cap_nb, 2 * c->n_pairs + 1, sizeof(int)))
+    return AFV_ENOMEM;
+  neighbour_csr(c, n, h->ns, h->nb);
+  return AFV_OK;
+}
+
+/* Shapes and contacts of the n cells at r. */
+static int frame_contacts(afv_geom *g, afv_clusters *c, int n,
+                          const double *r, const afv_params *p,
+                          const afv_box *b)
+{
+  int st = afv_geometry(g, n, r, p, b);
+  return st == AFV_OK ? afv_clusters_compute(c, g, r, p->l, b) : st;
+}
+
+/* The per-frame order parameters of an analysis, carried from frame to
+** frame: T1 against frame 0 and against the frame before. */
+typedef struct order_state {
+  afv_t1 t1, prev;
+  double nclusters, changes;
+} order_state;
+
+/* Frame f's order parameters; cluster sizes of steady frames into csd;
+** contact changes between consecutive steady frames into changes. */
+static int frame_order(afv_analysis *a, order_state *o, int f, double t,
+                       const afv_clusters *c)
+{
+  int k, st;
+  if (f == 0 && (st = afv_t1_start(&o->t1, c)) != AFV_OK) return st;
+  a->t[f] = t;
+  a->ngc_frac[f] = (double)c->giant / a->n;
+  a->n_clusters[f] = c->count;
+  a->omega[f] = c->omega;
+  a->t1[f] = afv_t1_count(&o->t1, c);
+  if (f < a->first) return AFV_OK;
+  if (f > a->first) o->changes += afv_t1_count(&o->prev, c);
+  if ((st = afv_t1_start(&o->prev, c)) != AFV_OK) return st;
+  for (k = 0; k < c->count; k++) a->csd[c->size[k]] += 1;
+  o->nclusters += c->count;
+  return AFV_OK;
+}
+
+/* The cluster-size distribution normalised, and t1_rate: T1 events per
+** cell per unit time (each neighbour exchange between two frames changes
+** one pair lost and one gained, |C(f) sym-diff C(f-1)|/2 counts it once;
+** exchanges undone within one frame interval are missed, so the rate is a
+** lower bound that depends on frame_every). */
+static void order_finish(afv_analysis *a, const order_state *o,
+                         const double *t)
+{
+  int k, f = a->nframes - 1;
+  for (k = 1; k <= a->n && o->nclusters > 0; k++) a->csd[k] /= o->nclusters;
+  a->t1_rate = f > a->first
+               ? o->changes / (a->n * (t[f] - t[a->first])) : NAN;
+}
+
+/* The one pass over the frames (from frame 0 with an analysis a, else from
+** first): a's order parameters, and the MSD m of the lags below W. */
+static int stream_pass(afv_analysis *a, afv_msd *m, const frame_src *src,
+                       int first, double l, int W)
+{
+  afv_geom g;
+  afv_clusters c;
+  afv_params p;
+  order_state o;
+  held *ring = held_alloc(W, src->n);
+  int f, k, st = ring ? AFV_OK : AFV_ENOMEM, n = src->n;
+  memset(&g, 0, sizeof g);
+  memset(&c, 0, sizeof c);
+  memset(&o, 0, sizeof o);
+  afv_params_default(&p);
+  p.l = l;
+  for (f = a ? 0 : first; st == AFV_OK && f < src->nframes; f++) {
+    held *h = &ring[f % W];
+    if ((st = src_frame(src, f, h->r)) != AFV_OK
+        || (st = frame_contacts(&g, &c, n, h->r, &p, &src->box)) != AFV_OK
+        || (a && (st = frame_order(a, &o, f, src->t[f], &c)) != AFV_OK))
+      break;
+    if (m->nlags == 0 || f < first) continue;
+    if ((st = hold_neighbours(h, &c, n)) != AFV_OK) break;
+    for (k = 0; k < m->nlags && m->lag[k] < W && f - m->lag[k] >= first;
+         k++) {
+      const held *q = &ring[(f - m->lag[k]) % W];
+      msd_accumulate(m, k, n, q->r, h->r, src->t[f - m->lag[k]], src->t[f],
+                     q->ns, q->nb);
+    }
+  }
+  if (a && st == AFV_OK) order_finish(a, &o, src->t);
+  held_free(ring, W);
   afv_geom_free(&g);
   afv_clusters_free(&c);
+  afv_t1_free(&o.t1);
+  afv_t1_free(&o.prev);
+  return st;
+}
+
+/* The second pass: the MSD of the lags of W frames or more, each origin's
+** frame and contacts, then the frames those lags later, read again. */
+static int long_lags(afv_msd *m, const frame_src *src, int first, double l,
+                     int W)
+{
+  afv_geom g;
+  afv_clusters c;
+  afv_params p;
+  held *o;
+  double *q;
+  int f0, k, k0 = 0, st = AFV_OK, n = src->n;
+  while (k0 < m->nlags && m->lag[k0] < W) k0++;
+  if (k0 == m->nlags) return AFV_OK;
+  o = held_alloc(1, n);
+  q = malloc((2 * (size_t)n + 1) * sizeof(double));
+  if (!o || !q) st = AFV_ENOMEM;
+  memset(&g, 0, sizeof g);
+  memset(&c, 0, sizeof c);
+  afv_params_default(&p);
+  p.l = l;
+  for (f0 = first; st == AFV_OK && f0 + m->lag[k0] < src->nframes; f0++) {
+    if ((st = src_frame(src, f0, o->r)) != AFV_OK
+        || (st = frame_contacts(&g, &c, n, o->r, &p, &src->box)) != AFV_OK
+        || (st = hold_neighbours(o, &c, n)) != AFV_OK)
+      break;
+    for (k = k0; st == AFV_OK && k < m->nlags
+                 && f0 + m->lag[k] < src->nframes; k++)
+      if ((st = src_frame(src, f0 + m->lag[k], q)) == AFV_OK)
+        msd_accumulate(m, k, n, o->r, q, src->t[f0], src->t[f0 + m->lag[k]],
+                       o->ns, o->nb);
+  }
+  held_free(o, 1);
+  free(q);
+  afv_geom_free(&g);
+  afv_clusters_free(&c);
+  return st;
+}
+
+int afv_msd_compute(afv_msd *m, const afv_traj *tr, int first, double l)
+{
+  frame_src src;
+  int st;
+  memset(m, 0, sizeof *m);
+  if (first < 0 || first >= tr->nframes - 1 || tr->n < 1 || !(l > 0))
+    return AFV_EINVAL;
+  memset(&src, 0, sizeof src);
+  src.n = tr->n;
+  src.nframes = tr->nframes;
+  src.box = tr->box;
+  src.t = tr->t;
+  src.mem = tr;
+  if ((st = make_lags(m, tr->nframes - 1 - first)) == AFV_OK
+      && (st = msd_alloc(m)) == AFV_OK
+      && (st = stream_pass(NULL, m, &src, first, l,
+                           tr->nframes - first)) == AFV_OK)
+    msd_normalise(m);
   if (st != AFV_OK) afv_msd_free(m);
   return st;
 }
@@ -680,53 +869,6 @@ static int analysis_alloc(afv_analysis *a, int nframes, int n)
          ? AFV_OK : AFV_ENOMEM;
 }
 
-/* Per-frame order parameters; cluster sizes of steady frames into csd;
-** contact changes between consecutive steady frames into t1_rate. */
-static int analyze_frames(afv_analysis *a, const afv_traj *tr, double l)
-{
-  afv_geom g;
-  afv_clusters c;
-  afv_t1 t1, prev;
-  afv_params p;
-  int f, k, st = AFV_OK, n = tr->n;
-  double nclusters = 0, changes = 0;
-  memset(&g, 0, sizeof g);
-  memset(&c, 0, sizeof c);
-  memset(&t1, 0, sizeof t1);
-  memset(&prev, 0, sizeof prev);
-  afv_params_default(&p);
-  p.l = l;
-  for (f = 0; f < tr->nframes && st == AFV_OK; f++) {
-    const double *r = tr->r + (size_t)f * 2 * n;
-    if ((st = afv_geometry(&g, n, r, &p, &tr->box)) != AFV_OK) break;
-    if ((st = afv_clusters_compute(&c, &g, r, l, &tr->box)) != AFV_OK) break;
-    if (f == 0 && (st = afv_t1_start(&t1, &c)) != AFV_OK) break;
-    a->t[f] = tr->t[f];
-    a->ngc_frac[f] = (double)c.giant / n;
-    a->n_clusters[f] = c.count;
-    a->omega[f] = c.omega;
-    a->t1[f] = afv_t1_count(&t1, &c);
-    if (f < a->first) continue;
-    if (f > a->first) changes += afv_t1_count(&prev, &c);
-    if ((st = afv_t1_start(&prev, &c)) != AFV_OK) break;
-    for (k = 0; k < c.count; k++) a->csd[c.size[k]] += 1;
-    nclusters += c.count;
-  }
-  for (k = 1; k <= n && nclusters > 0; k++) a->csd[k] /= nclusters;
-  /* T1 events per cell per unit time: each neighbour exchange between two
-  ** frames changes one pair lost and one gained, |C(f) sym-diff C(f-1)|/2
-  ** counts it once (exchanges undone within one frame interval are
-  ** missed, so the rate is a lower bound that depends on frame_every) */
-  f = tr->nframes - 1;
-  a->t1_rate = f > a->first ? changes / (n * (tr->t[f] - tr->t[a->first]))
-               : NAN;
-  afv_geom_free(&g);
-  afv_clusters_free(&c);
-  afv_t1_free(&t1);
-  afv_t1_free(&prev);
-  return st;
-}
-
 static void mean_sd(const double *x, int m, double *mean, double *sd)
 {
   double s = 0, v = 0;
@@ -778,39 +920,88 @@ static double msd_beta(const afv_msd *m, double window)
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-int afv_analyze(afv_analysis *a, const afv_traj *tr, double l, double v0,
-                double Dr, double steady_from, double lag)
+/* Frames a ring of ring_bytes holds (centres, neighbour lists of about six
+** contacts a cell), at least 2 and at most the window. */
+static int ring_frames(long ring_bytes, int n, int window)
 {
-  int st, k, m;
+  double per_frame = 44.0 * n + 64;
+  double w = (double)ring_bytes / per_frame;
+  if (w > window) w = window;
+  return w < 2 ? 2 : (int)w;
+}
+
+static int analyze_src(afv_analysis *a, const frame_src *src, double l,
+                       double v0, double Dr, double steady_from, double lag,
+                       long ring_bytes)
+{
+  int st, k, m, nf = src->nframes, W;
+  const double *t = src->t;
   memset(a, 0, sizeof *a);
-  if (tr->nframes < 1 || tr->n < 1 || !(l > 0)) return AFV_EINVAL;
-  if ((st = analysis_alloc(a, tr->nframes, tr->n)) != AFV_OK) {
+  if (nf < 1 || src->n < 1 || !(l > 0)) return AFV_EINVAL;
+  if ((st = analysis_alloc(a, nf, src->n)) != AFV_OK) {
     afv_analysis_free(a);
     return st;
   }
-  a->n = tr->n;
-  a->nframes = tr->nframes;
+  a->n = src->n;
+  a->nframes = nf;
   a->first = 0;
-  while (a->first < tr->nframes - 1 && tr->t[a->first] < steady_from)
-    a->first++;
-  if ((st = analyze_frames(a, tr, l)) == AFV_OK && a->first < tr->nframes - 1)
-    st = afv_msd_compute(&a->msd, tr, a->first, l);
+  while (a->first < nf - 1 && t[a->first] < steady_from) a->first++;
+  if (a->first < nf - 1 && ((st = make_lags(&a->msd, nf - 1 - a->first))
+                            != AFV_OK || (st = msd_alloc(&a->msd)) != AFV_OK))
+    a->msd.nlags = 0;
+  W = ring_frames(ring_bytes, src->n, nf - a->first);
+  if (st == AFV_OK)
+    st = stream_pass(a, &a->msd, src, a->first, l, W);
+  if (st == AFV_OK) st = long_lags(&a->msd, src, a->first, l, W);
   if (st != AFV_OK) {
     afv_analysis_free(a);
     return st;
   }
-  m = tr->nframes - a->first;
+  msd_normalise(&a->msd);
+  m = nf - a->first;
   mean_sd(a->ngc_frac + a->first, m, &a->mean[0], &a->sd[0]);
   mean_sd(a->n_clusters + a->first, m, &a->mean[1], &a->sd[1]);
   mean_sd(a->omega + a->first, m, &a->mean[2], &a->sd[2]);
-  a->t1_final = a->t1[tr->nframes - 1];
+  a->t1_final = a->t1[nf - 1];
   diffusivity(a, v0, Dr, lag);
-  a->msd_beta = msd_beta(&a->msd, tr->t[tr->nframes - 1] - tr->t[a->first]);
+  a->msd_beta = msd_beta(&a->msd, t[nf - 1] - t[a->first]);
   a->tau_ngc = afv_autocorr_time(a->ngc_frac + a->first, m, &a->tau_reliable);
-  k = tr->nframes - 1;
+  k = nf - 1;
   if (m > 1 && a->tau_ngc < HUGE_VAL)
-    a->tau_ngc *= (tr->t[k] - tr->t[a->first]) / (m - 1);
+    a->tau_ngc *= (t[k] - t[a->first]) / (m - 1);
   return AFV_OK;
+}
+
+int afv_analyze_ring(afv_analysis *a, const afv_traj *tr, afv_traj_file *f,
+                     double l, double v0, double Dr, double steady_from,
+                     double lag, long ring_bytes, char *err, size_t errlen)
+{
+  frame_src src;
+  memset(&src, 0, sizeof src);
+  src.n = tr ? tr->n : f->n;
+  src.nframes = tr ? tr->nframes : f->nframes;
+  src.box = tr ? tr->box : f->box;
+  src.t = tr ? tr->t : f->t;
+  src.mem = tr;
+  src.file = f;
+  src.err = err;
+  src.errlen = errlen;
+  return analyze_src(a, &src, l, v0, Dr, steady_from, lag, ring_bytes);
+}
+
+int afv_analyze(afv_analysis *a, const afv_traj *tr, double l, double v0,
+                double Dr, double steady_from, double lag)
+{
+  return afv_analyze_ring(a, tr, NULL, l, v0, Dr, steady_from, lag,
+                          AFV_ANALYSIS_RING_BYTES, NULL, 0);
+}
+
+int afv_analyze_file(afv_analysis *a, afv_traj_file *f, double l, double v0,
+                     double Dr, double steady_from, double lag, char *err,
+                     size_t errlen)
+{
+  return afv_analyze_ring(a, NULL, f, l, v0, Dr, steady_from, lag,
+                          AFV_ANALYSIS_RING_BYTES, err, errlen);
 }
 
 /* Bin k holds the sizes 2^k .. 2^(k+1) - 1 (the last bin ends at n): equal

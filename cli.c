@@ -19,8 +19,8 @@
 #include <unistd.h>
 
 /* ---- the build ---------------------------------------------------------- */
-/* "0.2.0 (commit 0123456789ab)" when built from a git checkout (the
-** Makefile passes -DAFV_COMMIT), else "0.2.0". */
+/* "0.3.0 (commit 0123456789ab)" when built from a git checkout (the
+** Makefile passes -DAFV_COMMIT), else "0.3.0". */
 const char *afv_build_version(void)
 {
 #ifdef AFV_COMMIT

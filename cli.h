@@ -50,7 +50,7 @@ extern const char *program_name;
 
 /* ---- cli.c -------------------------------------------------------------- */
 /* afv's version and, when built from a git checkout, its commit:
-** "0.2.0 (commit 0123456789ab)", or "0.2.0". */
+** "0.3.0 (commit 0123456789ab)", or "0.2.0". */
 const char *afv_build_version(void);
 /* The running command ("run", "sweep", ...; main.c sets it): every message
 ** starts "afv COMMAND: ". */

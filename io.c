@@ -19,6 +19,7 @@
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -388,32 +389,116 @@ int afv_atomic_commit(FILE *fp, const char *tmp, const char *path)
 }
 
 /* ---- trajectories ------------------------------------------------------ */
-/* TRAJECTORY format (text, numpy- and gnuplot-readable):
-**   # afv trajectory cells N box open            (or: box periodic LX LY)
-** then per frame
-**   # step S time T
-**   x y theta        N lines: unwrapped centre and polarity angle (radians)
-**   <two blank lines> (gnuplot's "index" separator)
-** numpy: np.loadtxt(f).reshape(-1, N, 3); gnuplot: plot f index K u 1:2 */
+/* TRAJECTORY format 2 (what afv run writes): one text line,
+**   # afv trajectory 2 cells N box open          (or: box periodic LX LY)
+** then per frame a binary record of 16 + 20 N bytes, little-endian IEEE:
+**   int64 step, float64 time,
+**   N times (float64 x, float64 y, float32 theta)
+** x, y are the unwrapped centres, exact: they are all afv analyze reads, so
+** its results are the bits it would get from the simulation's own state.
+** theta is the polarity angle reduced to [-pi, pi] in float32 (about 1e-7
+** rad; afv draw's arrows read it, no analysis does).  20 bytes a cell:
+** a 10^6-step job of 400 cells with a frame every 1000 steps writes 8.0 MB
+** (62 bytes a cell in %.17g text before).  A record cut short at the end
+** of the file (an interrupted writer) is no frame.
+** Format 1 (earlier versions of afv; still read, whole, into memory):
+**   # afv trajectory cells N box open             (or: box periodic LX LY)
+** then per frame "# step S time T", N lines "x y theta" (%.17g), two blank
+** lines.  In both formats frames run forward: each step and time larger
+** than the frame's before. */
+#define TRAJ_HEAD_BYTES 16      /* step and time of a frame */
+#define TRAJ_CELL_BYTES 20      /* x, y (float64) and theta (float32) */
+#define TRAJ_CHUNK 256          /* cells encoded per fwrite */
+#define TRAJ_TWO_PI 6.28318530717958647692
+
+/* The format assumes 8-byte doubles and 4-byte floats (IEEE on every
+** machine afv builds on); a compile error otherwise. */
+typedef char traj_double_is_8_bytes[sizeof(double) == 8 ? 1 : -1];
+typedef char traj_float_is_4_bytes[sizeof(float) == 4 ? 1 : -1];
+
+static void put_u64(unsigned char *p, uint64_t u)
+{
+  int k;
+  for (k = 0; k < 8; k++) p[k] = (unsigned char)(u >> (8 * k));
+}
+
+static uint64_t get_u64(const unsigned char *p)
+{
+  uint64_t u = 0;
+  int k;
+  for (k = 7; k >= 0; k--) u = (u << 8) | p[k];
+  return u;
+}
+
+static void put_f64(unsigned char *p, double v)
+{
+  uint64_t u;
+  memcpy(&u, &v, 8);
+  put_u64(p, u);
+}
+
+static double get_f64(const unsigned char *p)
+{
+  uint64_t u = get_u64(p);
+  double v;
+  memcpy(&v, &u, 8);
+  return v;
+}
+
+static void put_f32(unsigned char *p, float v)
+{
+  uint32_t u;
+  int k;
+  memcpy(&u, &v, 4);
+  for (k = 0; k < 4; k++) p[k] = (unsigned char)(u >> (8 * k));
+}
+
+static float get_f32(const unsigned char *p)
+{
+  uint32_t u = 0;
+  float v;
+  int k;
+  for (k = 3; k >= 0; k--) u = (u << 8) | p[k];
+  memcpy(&v, &u, 4);
+  return v;
+}
+
+/* The angle as stored: reduced to [-pi, pi] (remainder is exact), then
+** float32; a value out of range never reaches the conversion. */
+static float stored_angle(double theta)
+{
+  double a = remainder(theta, TRAJ_TWO_PI);
+  return isfinite(a) ? (float)a : 0.0f;
+}
+
 int afv_traj_write_header(FILE *fp, int n, const afv_box *b)
 {
   if (b && b->periodic)
-    fprintf(fp, "# afv trajectory cells %d box periodic %.17g %.17g\n", n,
+    fprintf(fp, "# afv trajectory 2 cells %d box periodic %.17g %.17g\n", n,
             b->Lx, b->Ly);
   else
-    fprintf(fp, "# afv trajectory cells %d box open\n", n);
+    fprintf(fp, "# afv trajectory 2 cells %d box open\n", n);
   return ferror(fp) ? AFV_EIO : AFV_OK;
 }
 
 int afv_traj_write_frame(FILE *fp, long long step, double t, int n,
                          const double *r, const double *theta)
 {
-  int i;
-  fprintf(fp, "# step %lld time %.17g\n", step, t);
-  for (i = 0; i < n; i++)
-    fprintf(fp, "%.17g %.17g %.17g\n", r[2*i], r[2*i+1],
-            theta ? theta[i] : 0.0);
-  fputs("\n\n", fp);
+  unsigned char buf[TRAJ_CHUNK * TRAJ_CELL_BYTES];
+  int i, m = 0;
+  put_u64(buf, (uint64_t)step);
+  put_f64(buf + 8, t);
+  fwrite(buf, 1, TRAJ_HEAD_BYTES, fp);
+  for (i = 0; i < n; i++) {
+    unsigned char *p = buf + (size_t)m * TRAJ_CELL_BYTES;
+    put_f64(p, r[2*i]);
+    put_f64(p + 8, r[2*i+1]);
+    put_f32(p + 16, theta ? stored_angle(theta[i]) : 0.0f);
+    if (++m == TRAJ_CHUNK || i == n - 1) {
+      fwrite(buf, TRAJ_CELL_BYTES, (size_t)m, fp);
+      m = 0;
+    }
+  }
   return ferror(fp) ? AFV_EIO : AFV_OK;
 }
 
@@ -426,27 +511,33 @@ void afv_traj_free(afv_traj *tr)
   memset(tr, 0, sizeof *tr);
 }
 
-/* Line 1: "# afv trajectory cells N box open" or "... box periodic LX LY". */
-static int parse_traj_header(afv_lines *L, afv_traj *tr, char *err,
-                             size_t errlen)
+/* Line 1: "# afv trajectory [2] cells N box open" or "... box periodic LX
+** LY"; *format 2 with the "2", else 1. */
+static int parse_traj_header(afv_lines *L, afv_traj *tr, int *format,
+                             char *err, size_t errlen)
 {
-  char *w[10];
-  int nw = split_words(L->line, w, 10);
+  char *w[12], **v = w;
+  int nw = split_words(L->line, w, 12);
   long long n;
+  *format = nw >= 4 && strcmp(w[3], "2") == 0 ? 2 : 1;
+  if (*format == 2) {   /* the same words after the version */
+    v = w + 1;
+    nw--;
+  }
   if (!(nw == 7 || nw == 9) || strcmp(w[0], "#") || strcmp(w[1], "afv")
-      || strcmp(w[2], "trajectory") || strcmp(w[3], "cells")
-      || strcmp(w[5], "box")
-      || strcmp(w[6], nw == 7 ? "open" : "periodic"))
+      || strcmp(w[2], "trajectory") || strcmp(v[3], "cells")
+      || strcmp(v[5], "box")
+      || strcmp(v[6], nw == 7 ? "open" : "periodic"))
     return line_fail(L, AFV_EFORMAT, err, errlen, "not an afv trajectory "
-                     "header ('# afv trajectory cells N box open' or '... "
-                     "box periodic LX LY')");
-  if (!int_field(L, "cells", w[4], 1, AFV_CELLS_MAX, "the most afv reads",
+                     "header ('# afv trajectory 2 cells N box open' or '... "
+                     "box periodic LX LY'; format 1 without the 2)");
+  if (!int_field(L, "cells", v[4], 1, AFV_CELLS_MAX, "the most afv reads",
                  &n, err, errlen))
     return AFV_EFORMAT;
   tr->n = (int)n;
   tr->box.periodic = nw == 9;
-  if (nw == 9 && (!real_field(L, "box LX", w[7], &tr->box.Lx, err, errlen)
-                  || !real_field(L, "box LY", w[8], &tr->box.Ly, err,
+  if (nw == 9 && (!real_field(L, "box LX", v[7], &tr->box.Lx, err, errlen)
+                  || !real_field(L, "box LY", v[8], &tr->box.Ly, err,
                                  errlen)))
     return AFV_EFORMAT;
   if (nw == 9 && !(tr->box.Lx > 0 && tr->box.Ly > 0))
@@ -473,6 +564,25 @@ static int parse_frame_header(const afv_lines *L, char **w, int nw,
       || !real_field(L, "time", w[4], t, err, errlen))
     return -1;
   return 1;
+}
+
+/* Frames run forward: frame k's step and time after those of frame k - 1
+** (a time that runs back or repeats is a damaged or a spliced file, whose
+** MSD and series would be silently wrong).  1, or 0 with "what: why" in
+** why (the caller prefixes the place). */
+static int runs_forward(const long long *step, const double *t, int k,
+                        char *why, size_t len)
+{
+  if (k == 0) return 1;
+  if (!(t[k] > t[k-1]))
+    snprintf(why, len, "time %.17g is not after the previous frame's time "
+             "%.17g (frames must run forward in time)", t[k], t[k-1]);
+  else if (step[k] <= step[k-1])
+    snprintf(why, len, "step %lld is not after the previous frame's step "
+             "%lld (frames must run forward)", step[k], step[k-1]);
+  else
+    return 1;
+  return 0;
 }
 
 /* Room for one more frame's step and time (capacity doubles). */
@@ -507,8 +617,28 @@ static int traj_grow_rows(afv_traj *tr, size_t rows, size_t *cap)
   return AFV_OK;
 }
 
-/* One line of the body: a frame header, a comment, a blank line or a cell
-** line "x y theta" of the current frame (row of it). */
+/* A format-1 "# step S time T" line: a new frame, after a whole one. */
+static int traj_text_frame(afv_lines *L, afv_traj *tr, int row,
+                           int *cap_frames, long long step, double t,
+                           char *err, size_t errlen)
+{
+  char why[160];
+  if (tr->nframes > 0 && row != tr->n)
+    return line_fail(L, AFV_EFORMAT, err, errlen, "the frame before this "
+                     "line has %d of %d cells", row, tr->n);
+  if (tr->nframes == INT_MAX || traj_grow_frames(tr, cap_frames) != AFV_OK)
+    return line_fail(L, AFV_ENOMEM, err, errlen, "out of memory (frame "
+                     "%d)", tr->nframes);
+  tr->step[tr->nframes] = step;
+  tr->t[tr->nframes] = t;
+  if (!runs_forward(tr->step, tr->t, tr->nframes, why, sizeof why))
+    return line_fail(L, AFV_EFORMAT, err, errlen, "%s", why);
+  tr->nframes++;
+  return AFV_OK;
+}
+
+/* One line of a format-1 body: a frame header, a comment, a blank line or
+** a cell line "x y theta" of the current frame (row of it). */
 static int traj_line(afv_lines *L, afv_traj *tr, int *row, int *cap_frames,
                      size_t *cap_rows, char *err, size_t errlen)
 {
@@ -523,17 +653,9 @@ static int traj_line(afv_lines *L, afv_traj *tr, int *row, int *cap_frames,
     h = parse_frame_header(L, w, split_words(L->line, w, 6), &step, &t, err,
                            errlen);
     if (h <= 0) return h < 0 ? AFV_EFORMAT : AFV_OK;
-    if (tr->nframes > 0 && *row != tr->n)
-      return line_fail(L, AFV_EFORMAT, err, errlen, "the frame before this "
-                       "line has %d of %d cells", *row, tr->n);
-    if (tr->nframes == INT_MAX || traj_grow_frames(tr, cap_frames) != AFV_OK)
-      return line_fail(L, AFV_ENOMEM, err, errlen, "out of memory (frame "
-                       "%d)", tr->nframes);
-    tr->step[tr->nframes] = step;
-    tr->t[tr->nframes] = t;
-    tr->nframes++;
+    h = traj_text_frame(L, tr, *row, cap_frames, step, t, err, errlen);
     *row = 0;
-    return AFV_OK;
+    return h;
   }
   f = number_row(L, v, 3, names, err, errlen);
   if (f <= 0) return f < 0 ? AFV_EFORMAT : AFV_OK;
@@ -553,12 +675,97 @@ static int traj_line(afv_lines *L, afv_traj *tr, int *row, int *cap_frames,
   return AFV_OK;
 }
 
-int afv_traj_read(const char *path, afv_traj *tr, char *err, size_t errlen)
+/* The frames of a format-1 file after its header line, every one into tr. */
+static int traj_read_text(afv_lines *L, afv_traj *tr, char *err,
+                          size_t errlen)
+{
+  size_t cap_rows = 0;
+  int cap_frames = 0, row = 0, st = AFV_OK, got;
+  while (st == AFV_OK && (got = afv_lines_next(L, err, errlen)) > 0) {
+    /* the last line has no newline: an interrupted writer; its frame is
+    ** incomplete and is dropped below */
+    if (!L->newline) break;
+    st = traj_line(L, tr, &row, &cap_frames, &cap_rows, err, errlen);
+  }
+  if (st == AFV_OK && got < 0) st = L->status;
+  /* a last frame cut short (an interrupted writer) is dropped; a short
+  ** frame anywhere else is an error (above) */
+  if (st == AFV_OK && tr->nframes > 0 && row != tr->n) tr->nframes--;
+  return st;
+}
+
+/* "FILE: frame K (byte B): " and the message in err; returns status. */
+static int frame_fail(const afv_traj_file *f, int k, int status, char *err,
+                      size_t errlen, const char *fmt, ...)
+{
+  va_list ap;
+  size_t m;
+  afv_errorf(err, errlen, "%s: frame %d (byte %lld): ", f->path, k,
+             f->head + (long long)k * f->record);
+  if (!err || (m = strlen(err)) + 1 >= errlen) return status;
+  va_start(ap, fmt);
+  vsnprintf(err + m, errlen - m, fmt, ap);
+  va_end(ap);
+  return status;
+}
+
+/* Reads len bytes of the record of frame k at offset `at` in it. */
+static int traj_fetch(afv_traj_file *f, int k, long long at, void *buf,
+                      size_t len, char *err, size_t errlen)
+{
+  if (fseeko(f->fp, (off_t)(f->head + (long long)k * f->record + at),
+             SEEK_SET) != 0
+      || fread(buf, 1, len, f->fp) != len)
+    return frame_fail(f, k, AFV_EIO, err, errlen, "cannot read: %s",
+                      ferror(f->fp) ? strerror(errno) : "the file is "
+                      "shorter than when it was opened");
+  return AFV_OK;
+}
+
+/* Format 2: every whole record's step and time, checked. */
+static int traj_index(afv_traj_file *f, long long size, char *err,
+                      size_t errlen)
+{
+  long long frames = (size - f->head) / f->record;
+  unsigned char b[TRAJ_HEAD_BYTES];
+  char why[160];
+  int k, st = AFV_OK;
+  if (frames > INT_MAX)
+    return frame_fail(f, INT_MAX, AFV_EFORMAT, err, errlen, "more than %d "
+                      "frames", INT_MAX);
+  f->step = malloc((size_t)(frames + 1) * sizeof *f->step);
+  f->t = malloc((size_t)(frames + 1) * sizeof *f->t);
+  if (!f->step || !f->t)
+    return frame_fail(f, 0, AFV_ENOMEM, err, errlen, "out of memory for "
+                      "%lld frames", frames);
+  for (k = 0; st == AFV_OK && k < frames; k++) {
+    uint64_t s;
+    if ((st = traj_fetch(f, k, 0, b, sizeof b, err, errlen)) != AFV_OK)
+      break;
+    s = get_u64(b);
+    f->t[k] = get_f64(b + 8);
+    f->step[k] = s <= (uint64_t)LLONG_MAX ? (long long)s : -1;
+    if (f->step[k] < 0)
+      st = frame_fail(f, k, AFV_EFORMAT, err, errlen, "step: %llu is not "
+                      "in 0 .. 2^63-1", (unsigned long long)s);
+    else if (!isfinite(f->t[k]))
+      st = frame_fail(f, k, AFV_EFORMAT, err, errlen, "time is not finite");
+    else if (!runs_forward(f->step, f->t, k, why, sizeof why))
+      st = frame_fail(f, k, AFV_EFORMAT, err, errlen, "%s", why);
+  }
+  f->nframes = (int)frames;
+  return st;
+}
+
+int afv_traj_open(afv_traj_file *f, const char *path, char *err,
+                  size_t errlen)
 {
   afv_lines L;
-  size_t cap_rows = 0;
-  int cap_frames = 0, row = 0, st, got;
-  memset(tr, 0, sizeof *tr);
+  afv_traj head;
+  int st, got;
+  memset(f, 0, sizeof *f);
+  memset(&head, 0, sizeof head);
+  f->path = path;
   if ((st = afv_lines_open(&L, path, err, errlen)) != AFV_OK) return st;
   got = afv_lines_next(&L, err, errlen);
   if (got == 0 && ++L.lineno)
@@ -567,18 +774,113 @@ int afv_traj_read(const char *path, afv_traj *tr, char *err, size_t errlen)
   else if (got < 0)
     st = L.status;
   else
-    st = parse_traj_header(&L, tr, err, errlen);
-  while (st == AFV_OK && (got = afv_lines_next(&L, err, errlen)) > 0) {
-    /* the last line has no newline: an interrupted writer; its frame is
-    ** incomplete and is dropped below */
-    if (!L.newline) break;
-    st = traj_line(&L, tr, &row, &cap_frames, &cap_rows, err, errlen);
+    st = parse_traj_header(&L, &head, &f->format, err, errlen);
+  if (st == AFV_OK && f->format == 1) {
+    st = traj_read_text(&L, &head, err, errlen);
+    f->text = head;
+    f->step = head.step;
+    f->t = head.t;
+    f->nframes = head.nframes;
   }
-  if (st == AFV_OK && got < 0) st = L.status;
+  f->n = head.n;
+  f->box = head.box;
+  f->head = (long long)L.len + 1;
+  f->record = TRAJ_HEAD_BYTES + (long long)TRAJ_CELL_BYTES * f->n;
+  if (st == AFV_OK && f->format == 2 && !L.newline)
+    f->nframes = 0;                       /* a header cut short: no frame */
+  else if (st == AFV_OK && f->format == 2 && !(f->fp = fopen(path, "rb")))
+    st = frame_fail(f, 0, AFV_EIO, err, errlen, "cannot open: %s",
+                    strerror(errno));
+  else if (st == AFV_OK && f->format == 2)
+    st = traj_index(f, L.size, err, errlen);
   afv_lines_close(&L);
-  /* a last frame cut short (an interrupted writer) is dropped; a short
-  ** frame anywhere else is an error (above) */
-  if (st == AFV_OK && tr->nframes > 0 && row != tr->n) tr->nframes--;
+  if (st != AFV_OK) {
+    if (f->format != 1) afv_traj_free(&head);
+    afv_traj_close(f);
+  }
+  return st;
+}
+
+int afv_traj_frame(afv_traj_file *f, int k, double *r, double *theta,
+                   char *err, size_t errlen)
+{
+  size_t n = (size_t)f->n, i;
+  int st;
+  if (k < 0 || k >= f->nframes) return AFV_EINVAL;
+  if (f->format == 1) {
+    memcpy(r, f->text.r + (size_t)k * 2 * n, 2 * n * sizeof(double));
+    if (theta) memcpy(theta, f->text.theta + (size_t)k * n,
+                      n * sizeof(double));
+    return AFV_OK;
+  }
+  if (!f->buf && !(f->buf = malloc(n * TRAJ_CELL_BYTES)))
+    return frame_fail(f, k, AFV_ENOMEM, err, errlen, "out of memory");
+  if ((st = traj_fetch(f, k, TRAJ_HEAD_BYTES, f->buf, n * TRAJ_CELL_BYTES,
+                       err, errlen)) != AFV_OK)
+    return st;
+  for (i = 0; i < n; i++) {
+    const unsigned char *p = f->buf + i * TRAJ_CELL_BYTES;
+    r[2*i] = get_f64(p);
+    r[2*i+1] = get_f64(p + 8);
+    if (theta) theta[i] = get_f32(p + 16);
+    if (!isfinite(r[2*i]) || !isfinite(r[2*i+1]) || !isfinite(get_f32(p + 16)))
+      return frame_fail(f, k, AFV_EFORMAT, err, errlen, "cell %lu: %s is "
+                        "not finite", (unsigned long)i, !isfinite(r[2*i])
+                        ? "x" : !isfinite(r[2*i+1]) ? "y" : "theta");
+  }
+  return AFV_OK;
+}
+
+void afv_traj_close(afv_traj_file *f)
+{
+  if (f->fp) fclose(f->fp);
+  if (f->format == 1) {
+    afv_traj_free(&f->text);
+  } else {
+    free(f->step);
+    free(f->t);
+  }
+  free(f->buf);
+  memset(f, 0, sizeof *f);
+}
+
+/* Every frame of an opened format-2 file into tr. */
+static int traj_load(afv_traj_file *f, afv_traj *tr, char *err,
+                     size_t errlen)
+{
+  size_t n = (size_t)f->n, frames = (size_t)f->nframes;
+  int k, st = AFV_OK;
+  tr->r = malloc((frames * n + 1) * 2 * sizeof(double));
+  tr->theta = malloc((frames * n + 1) * sizeof(double));
+  if (!tr->r || !tr->theta)
+    return frame_fail(f, 0, AFV_ENOMEM, err, errlen, "out of memory for "
+                      "%d frames", f->nframes);
+  for (k = 0; st == AFV_OK && k < f->nframes; k++)
+    st = afv_traj_frame(f, k, tr->r + (size_t)k * 2 * n,
+                        tr->theta + (size_t)k * n, err, errlen);
+  tr->step = f->step;
+  tr->t = f->t;
+  f->step = NULL;
+  f->t = NULL;
+  return st;
+}
+
+int afv_traj_read(const char *path, afv_traj *tr, char *err, size_t errlen)
+{
+  afv_traj_file f;
+  int st;
+  memset(tr, 0, sizeof *tr);
+  if ((st = afv_traj_open(&f, path, err, errlen)) != AFV_OK) return st;
+  if (f.format == 1) {
+    *tr = f.text;
+    memset(&f.text, 0, sizeof f.text);
+  } else {
+    tr->n = f.n;
+    tr->box = f.box;
+    tr->nframes = f.nframes;
+    st = traj_load(&f, tr, err, errlen);
+  }
+  afv_traj_close(&f);
   if (st != AFV_OK) afv_traj_free(tr);
   return st;
 }

@@ -61,8 +61,8 @@ static const char *analyze_usage =
 ** frame interval: else D_s would be measured at another lag (before, a
 ** window past the end gave D_s = 0, a glassy label for any tissue).
 ** Prints one line and returns 0 when it does not. */
-static int window_holds(const afv_traj *tr, const char *path, double from,
-                        double lag, int lag_given)
+static int window_holds(const afv_traj_file *tr, const char *path,
+                        double from, double lag, int lag_given)
 {
   int first = 0, last = tr->nframes - 1;
   double span;
@@ -188,7 +188,7 @@ int cmd_analyze(int argc, char **argv)
   char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
   double lag = NAN, from = 0, l = 1, v0 = 0.5, Dr = 0.1;
   double l_o = NAN, v0_o = NAN, Dr_o = NAN;   /* NAN: option not given */
-  afv_traj tr;
+  afv_traj_file tr;
   afv_analysis a;
   int k, st, bad = 0, lag_given;
   for (k = 1; k < argc && !bad; k++) {
@@ -228,21 +228,27 @@ int cmd_analyze(int argc, char **argv)
     return EXIT_BAD_INPUT;
   }
   snprintf(path, sizeof path, "%s/trajectory.dat", dir);
-  if (afv_traj_read(path, &tr, err, sizeof err) != AFV_OK)
+  if (afv_traj_open(&tr, path, err, sizeof err) != AFV_OK)
     return bad_input(err);
+  if (tr.nframes == 0) {
+    afv_traj_close(&tr);
+    fprintf(stderr, "afv analyze: %s: no complete frame\n", path);
+    return EXIT_BAD_INPUT;
+  }
   /* afv run writes unwrapped centres (io.c, TRAJECTORY format): no
   ** unwrapping here, which would fold moves of more than half a box
   ** between two frames back into the box */
   if (!window_holds(&tr, path, from, lag, lag_given)) {
-    afv_traj_free(&tr);
+    afv_traj_close(&tr);
     return EXIT_BAD_INPUT;
   }
-  st = afv_analyze(&a, &tr, l, v0, Dr, from, lag);
-  afv_traj_free(&tr);
+  err[0] = 0;
+  st = afv_analyze_file(&a, &tr, l, v0, Dr, from, lag, err, sizeof err);
+  afv_traj_close(&tr);
   if (st == AFV_OK) warn_if_lag_unsupported(&a, lag);
+  if (st != AFV_OK && err[0]) return bad_input(err);
   if (st != AFV_OK) {
-    fprintf(stderr, "afv analyze: %s: %s\n", path,
-            st == AFV_EINVAL ? "no complete frame" : afv_strerror(st));
+    fprintf(stderr, "afv analyze: %s: %s\n", path, afv_strerror(st));
     return EXIT_BAD_INPUT;
   }
   st = analyze_write(dir, &a);

@@ -44,6 +44,7 @@ typedef struct run_cfg {
   char init[16];          /* "cluster", "lattice", "random" or "file" */
   double spacing;         /* lattice start: lattice spacing, in l */
   double relax_tol;       /* relaxation force tolerance */
+  char relax[16];         /* "flow" (afv_relax) or "fire" (afv_relax_fire) */
   long long relax_max_steps;   /* relaxation step limit (0: no relaxation) */
   long long sample_every, frame_every, checkpoint_every, svg_every;
   int xyz;                /* 1: also write trajectory.xyz */
@@ -133,6 +134,7 @@ static const run_key run_keys[] = {
      "0 (overdamped steps of dt) stops when max_i |F_i| <= relax_tol, or "
      "at a kink of E (every cell's mean force over 1000 steps <= 1e-3, "
      "mean energy change <= 1e-4 of sum |e_i|, max |F| <= 5); must be > 0"),
+  RK("relax", K_WORD, relax, "flow", "flow|fire", "relaxation of the start: flow = the paper's overdamped steps at v0 = 0; fire = the FIRE 2.0 minimiser, to a true minimum of E, faster (not the paper's protocol)"),
   RK("relax_max_steps", K_INT, relax_max_steps, "100000", "steps",
      "relaxation step limit (0: no relaxation; reaching it is reported, "
      "and the run goes on); must be >= 0"),
@@ -601,7 +603,7 @@ static void run_log(run_state *R, const char *fmt, ...)
   }
 }
 
-/* log.txt (only): the program that writes what follows, "afv 0.2.0
+/* log.txt (only): the program that writes what follows, "afv 0.3.0
 ** (commit ...): a fresh run" or "...: resumed", so each part of a run can
 ** be traced to its code. */
 static void log_build(run_state *R, const char *what)
@@ -1325,48 +1327,68 @@ static int obs_agrees(ckpt_trust *T)
   return 1;
 }
 
-/* The header line "# step S time T" of the frame of lines lines that
-** ends at end, in file k (fd), checked against the last frame step. */
-static int frame_agrees(ckpt_trust *T, int k, int fd, long long lines,
-                        const char *fmt, int with_time)
+/* A little-endian 8-byte field of a format-2 frame (io.c writes them). */
+static unsigned long long le_u64(const unsigned char *p)
+{
+  unsigned long long v = 0;
+  int b;
+  for (b = 7; b >= 0; b--) v = v << 8 | p[b];
+  return v;
+}
+
+/* trajectory.dat (format 2, io.c): its text header line, then frames of
+** 16 + 20 N bytes whose first 16 are int64 step and float64 time; the
+** file must end, at the checkpoint's size, with the whole frame of the
+** last frame step.  A format-1 (text) trajectory of afv < 0.3 is not
+** appended to: its run is finished with the afv that began it. */
+static int traj_agrees(ckpt_trust *T, int fd)
 {
   const run_state *R = T->R;
-  long long end = T->ck->bytes[k], due_step = last_due(T->ck->step,
-                  R->cfg.frame_every), start, step = -1;
-  char line[4096], why[160];
-  double t = -1;
-  if (due_step < 0) {   /* no frames: the header line alone */
-    start = line_back(fd, end, 1);
-    return start == 0 || (k == OUT_XYZ && end == 0)
-           ? 1 : untrusted(T, k, "is not the header alone (frame_every 0)");
-  }
-  start = line_back(fd, end, lines);
-  if (start < 0 || !line_at(fd, start, end, line, sizeof line)
-      || sscanf(line, fmt, &step, &t) < 1 || step != due_step
-      || (with_time && t != (double)step * R->cfg.dt)) {
+  long long end = T->ck->bytes[OUT_TRAJ], frame = 16 + 20LL * R->cfg.N,
+            due_step = last_due(T->ck->step, R->cfg.frame_every), head, step;
+  char line[256], why[160];
+  unsigned char rec[17] = {0};   /* read_span ends what it reads with 0 */
+  double t;
+  unsigned long long bits;
+  if (!line_at(fd, 0, end, line, sizeof line)
+      || strncmp(line, "# afv trajectory ", 17) != 0)
+    return untrusted(T, OUT_TRAJ, "does not start with a trajectory header");
+  if (strncmp(line, "# afv trajectory 2 ", 19) != 0)
+    return untrusted(T, OUT_TRAJ, "is in format 1 (text, afv < 0.3), which "
+                     "this afv does not append to: finish the run with the "
+                     "afv that began it");
+  head = (long long)strlen(line) + 1;
+  if (due_step < 0)
+    return end == head ? 1 : untrusted(T, OUT_TRAJ, "is not the header "
+                                       "alone (frame_every 0)");
+  if (end < head + frame || (end - head) % frame != 0
+      || !read_span(fd, end - frame, end - frame + 16, (char *)rec,
+                    sizeof rec))
+    step = -1;
+  else
+    step = (long long)le_u64(rec);
+  bits = le_u64(rec + 8);
+  memcpy(&t, &bits, sizeof t);
+  if (step != due_step || t != (double)step * R->cfg.dt) {
     snprintf(why, sizeof why, "does not end with the whole frame of step "
              "%lld", due_step);
-    return untrusted(T, k, why);
+    return untrusted(T, OUT_TRAJ, why);
   }
   return 1;
 }
 
-/* trajectory.dat: a frame is its header, N rows and two blank lines;
-** trajectory.xyz: the count line, a comment with Step=S and N rows. */
+/* trajectory.dat (above); trajectory.xyz: the count line, a comment with
+** Step=S and N rows. */
 static int frames_agree(ckpt_trust *T)
 {
   const run_state *R = T->R;
-  char path[RUN_PATH_MAX + 32], tail[4];
+  char path[RUN_PATH_MAX + 32];
   int ok, fd;
-  long long n = R->cfg.N, end = T->ck->bytes[OUT_TRAJ];
+  long long n = R->cfg.N;
   snprintf(path, sizeof path, "%s/%s", R->dir, afv_checkpoint_files[OUT_TRAJ]);
   if ((fd = open(path, O_RDONLY)) < 0)
     return untrusted(T, OUT_TRAJ, "cannot be read");
-  ok = last_due(T->ck->step, R->cfg.frame_every) < 0
-       || (end >= 3 && read_span(fd, end - 3, end, tail, sizeof tail)
-           && strcmp(tail, "\n\n\n") == 0);
-  ok = ok ? frame_agrees(T, OUT_TRAJ, fd, n + 3, "# step %lld time %lf", 1)
-       : untrusted(T, OUT_TRAJ, "does not end a frame");
+  ok = traj_agrees(T, fd);
   close(fd);
   if (!ok || !R->cfg.xyz) return ok;
   snprintf(path, sizeof path, "%s/%s", R->dir, afv_checkpoint_files[OUT_XYZ]);
@@ -1518,6 +1540,21 @@ static void monitor_relax(void *ctx, long iter, double E, double fmax)
 ** criterion: afv.h, afv_relax). */
 static void log_relax(run_state *R, const afv_relax_report *rep)
 {
+  if (strcmp(R->cfg.relax, "fire") == 0) {      /* relax_fire.c, STOPS */
+    run_log(R, "relaxation by FIRE 2.0 (relax fire; a cell moves at most "
+            "0.1 l a step): %ld steps (FIRE time %.6g), energy %.10g -> "
+            "%.10g, max |F| %.3e: %s\n", rep->iterations, rep->time,
+            rep->energy0, rep->energy, rep->max_force, rep->converged
+            ? "converged" : rep->at_kink ? "stopped at a kink of E (the "
+            "lowest energy stopped falling, max |F| <= 5 there); the "
+            "lowest-energy state kept" : rep->refused ? "FIRE cannot step "
+            "down from here (2000 uphill restarts in a row, or the lowest "
+            "energy stopped falling at max |F| > 5); the lowest-energy state "
+            "kept, relax_tol NOT reached, the run goes on" : "NOT reached "
+            "within relax_max_steps; the lowest-energy state kept, the run "
+            "goes on");
+    return;
+  }
   if (R->sim.dyn.integrator == AFV_EULER)
     run_log(R, "relaxation at v0 = 0 (Euler steps of dt = %g): %ld steps "
             "(t = %.6g; %lld moved a cell more than %g l), energy %.10g -> "
@@ -1572,8 +1609,9 @@ static int relax_start(run_state *R)
     return AFV_OK;
   }
   R->last_progress = wall_seconds();
-  st = afv_relax(&R->sim, R->cfg.relax_tol, (long)R->cfg.relax_max_steps,
-                 &rep, monitor_relax, R);
+  st = (strcmp(R->cfg.relax, "fire") == 0 ? afv_relax_fire : afv_relax)
+       (&R->sim, R->cfg.relax_tol, (long)R->cfg.relax_max_steps, &rep,
+        monitor_relax, R);
   if (R->progress) fprintf(stderr, "\r%70s\r", "");
   if (st != AFV_OK) return st;
   log_relax(R, &rep);

@@ -3,7 +3,8 @@
 ** (afv_traj_read): a refused input gets a one-line message naming the
 ** file; an accepted one has n >= 1, steps >= 0, finite times and
 ** coordinates, a valid box, and written back (afv_traj_write_header and
-** _frame) it reads back bit for bit.
+** _frame: format 2) it reads back bit for bit, the angles as the float32
+** of the angle reduced to [-pi, pi].
 */
 #include "afv.h"
 #include "reader_fuzz.h"
@@ -54,8 +55,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                                && again.box.Ly == tr.box.Ly));
   for (f = 0; f < tr.nframes; f++)
     REQUIRE(again.step[f] == tr.step[f] && fuzz_same(&again.t[f], &tr.t[f], 1));
-  REQUIRE(fuzz_same(again.r, tr.r, 2 * cells)
-          && fuzz_same(again.theta, tr.theta, cells));
+  REQUIRE(fuzz_same(again.r, tr.r, 2 * cells));
+  for (f = 0; (size_t)f < cells; f++)
+    REQUIRE(again.theta[f]
+            == (double)(float)remainder(tr.theta[f], 6.28318530717958647692));
   afv_traj_free(&again);
   afv_traj_free(&tr);
   return 0;

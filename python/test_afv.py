@@ -175,7 +175,7 @@ def compute_agrees_with_afv_eval():
 
 @test
 def version_is_the_programs():
-    # "afv 0.2.0", and " (commit ...)" after it in a build from git
+    # "afv 0.3.0", and " (commit ...)" after it in a build from git
     out = subprocess.run([args.afv, "--version"], check=True,
                          capture_output=True, text=True).stdout.split()
     if out[:2] != ["afv", afv.__version__]:

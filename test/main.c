@@ -67,6 +67,7 @@ int main(void)
   suite_api();
   suite_integrator();
   suite_paper();
+  suite_relax_fire();
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;
 }

@@ -99,5 +99,6 @@ void suite_docs(void);
 void suite_api(void);
 void suite_paper(void);
 void suite_integrator(void);
+void suite_relax_fire(void);
 
 #endif

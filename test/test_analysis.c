@@ -9,7 +9,7 @@
 */
 #define _POSIX_C_SOURCE 200809L
 #include "afv.h"
-#include "test.h"
+#include "test.h"   /* and afv_internal.h: afv_analyze_ring */
 
 #include <math.h>
 #include <stdlib.h>
@@ -989,6 +989,76 @@ static void analyze_keeps_unwrapped_jumps(void)
   run_status(cmd);
 }
 
+/* Two analyses hold the same results, bit for bit. */
+static int same_analysis(const afv_analysis *x, const afv_analysis *y)
+{
+  size_t f = (size_t)x->nframes, L = (size_t)x->msd.nlags;
+  return x->nframes == y->nframes && x->first == y->first
+         && x->msd.nlags == y->msd.nlags
+         && !memcmp(x->t, y->t, f * sizeof(double))
+         && !memcmp(x->ngc_frac, y->ngc_frac, f * sizeof(double))
+         && !memcmp(x->n_clusters, y->n_clusters, f * sizeof(double))
+         && !memcmp(x->omega, y->omega, f * sizeof(double))
+         && !memcmp(x->t1, y->t1, f * sizeof(double))
+         && !memcmp(x->csd, y->csd, ((size_t)x->n + 1) * sizeof(double))
+         && !memcmp(x->msd.lag, y->msd.lag, L * sizeof(int))
+         && !memcmp(x->msd.dt, y->msd.dt, L * sizeof(double))
+         && !memcmp(x->msd.msd, y->msd.msd, L * sizeof(double))
+         && !memcmp(x->msd.msd_rel, y->msd.msd_rel, L * sizeof(double))
+         && !memcmp(x->msd.samples, y->msd.samples, L * sizeof(long))
+         && !memcmp(x->mean, y->mean, sizeof x->mean)
+         && !memcmp(x->sd, y->sd, sizeof x->sd)
+         && !memcmp(&x->ds, &y->ds, sizeof x->ds)
+         && !memcmp(&x->t1_rate, &y->t1_rate, sizeof x->t1_rate)
+         && !memcmp(&x->msd_beta, &y->msd_beta, sizeof x->msd_beta)
+         && !memcmp(&x->tau_ngc, &y->tau_ngc, sizeof x->tau_ngc);
+}
+
+/* afv analyze's streaming (analysis.c, STREAMING): from the file with a
+** ring of 2, 5 or 40 frames (the shorter ones send most lags to the second
+** pass) the same bits as from every frame in memory. */
+static void analyze_streaming_same_bits(void)
+{
+  static const long ring[3] = {2, 5, 40};
+  char dir[64], cmd[512], path[128], err[512] = "";
+  afv_traj tr;
+  afv_traj_file f;
+  afv_analysis whole, part;
+  int k;
+  if (access("./afv", X_OK) != 0) {
+    SKIP("./afv not built");
+    return;
+  }
+  snprintf(dir, sizeof dir, "/tmp/afv_stream_%ld", (long)getpid());
+  snprintf(cmd, sizeof cmd, "rm -rf %s && ./afv run --N 64 --P0 6 --v0 1 "
+           "--steps 1200 --frame_every 20 --svg_every 0 --relax_max_steps "
+           "200 --quiet --out %s > /dev/null 2>&1", dir, dir);
+  CHECK(run_status(cmd) == 0, "%s failed", cmd);
+  snprintf(path, sizeof path, "%s/trajectory.dat", dir);
+  if (afv_traj_read(path, &tr, err, sizeof err) != AFV_OK) {
+    CHECK(0, "%s", err);
+    return;
+  }
+  CHECK(afv_analyze(&whole, &tr, 1, 1, 0.1, 3, 5) == AFV_OK
+        && whole.msd.nlags > 10, "analysis in memory");
+  for (k = 0; k < 3; k++) {
+    long bytes = ring[k] * (44 * 64 + 64) + 1;
+    CHECK(afv_traj_open(&f, path, err, sizeof err) == AFV_OK, "%s", err);
+    CHECK(afv_analyze_ring(&part, NULL, &f, 1, 1, 0.1, 3, 5, bytes, err,
+                           sizeof err) == AFV_OK, "%s", err);
+    CHECK(same_analysis(&whole, &part), "ring of %ld frames: not the same "
+          "bits (msd[last] %.17g vs %.17g)", ring[k],
+          part.msd.msd[part.msd.nlags - 1],
+          whole.msd.msd[whole.msd.nlags - 1]);
+    afv_analysis_free(&part);
+    afv_traj_close(&f);
+  }
+  afv_analysis_free(&whole);
+  afv_traj_free(&tr);
+  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+  run_status(cmd);
+}
+
 /* The trajectory reader: a last line cut by an interrupted writer drops
 ** its frame; a frame short of cells in the middle of the file is an error
 ** that names the line. */
@@ -1047,4 +1117,5 @@ void suite_analysis(void)
   RUN(commands_end_to_end);
   RUN(analyze_keeps_unwrapped_jumps);
   RUN(traj_reader_truncation);
+  RUN(analyze_streaming_same_bits);
 }

@@ -13,6 +13,7 @@
 #include "test.h"
 #include "afv.h"
 
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -337,6 +338,103 @@ static void test_trajectory_no_split_no_nul(void)
   free(text);
 }
 
+/* Frames whose time runs back or repeats (a damaged or spliced file) were
+** analysed with exit 0; now each reader names the first such frame: the
+** line in a format-1 file, the frame and byte in a format-2 one. */
+static void test_trajectory_time_runs_forward(void)
+{
+  static const struct { const char *times, *want; } bad[] = {
+    {"0 1 2 3 2 1 0 5", ":10: time 2 is not after the previous frame's "
+     "time 3"},
+    {"0 1 1 2", ":6: time 1 is not after"}};
+  static const double t[5] = {0, 1, 2, 1.5, 3};
+  double r[2] = {1, 2}, th = 0;
+  afv_traj tr;
+  size_t k;
+  FILE *fp;
+  int f, st;
+  mkdir(at("run_back"), 0777);
+  put_text("run_back/params.txt", "l 1\nv0 0.5\nDr 0.1\n");
+  for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+    char text[1024] = "# afv trajectory cells 1 box open\n", *p, *end;
+    long step = 0;
+    for (p = (char *)bad[k].times; *p; p = end, step++) {
+      double time = strtod(p, &end);
+      snprintf(text + strlen(text), sizeof text - strlen(text),
+               "# step %ld time %g\n0 0 0\n", step, time);
+    }
+    st = read_traj("t.dat", text, &tr);
+    CHECK(st == AFV_EFORMAT && says("t.dat", bad[k].want, NULL), "case %d: "
+          "status %d: %s", (int)k, st, msg);
+    afv_traj_free(&tr);
+    put_text("run_back/trajectory.dat", text);
+    st = sh("./afv analyze %s", at("run_back"));
+    CHECK(st == 2 && one_line_with("run_back/trajectory.dat", bad[k].want),
+          "afv analyze, case %d: exit %d: %s", (int)k, st, msg);
+  }
+  fp = fopen(at("t2.dat"), "wb");
+  CHECK(fp != NULL, "cannot write t2.dat");
+  if (!fp) return;
+  afv_traj_write_header(fp, 1, NULL);
+  for (f = 0; f < 5; f++) afv_traj_write_frame(fp, f, t[f], 1, r, &th);
+  fclose(fp);
+  msg[0] = 0;
+  st = afv_traj_read(at("t2.dat"), &tr, msg, sizeof msg);
+  CHECK(st == AFV_EFORMAT && says("t2.dat: frame 3 (byte ", "time 1.5 is "
+        "not after the previous frame's time 2", NULL), "status %d: %s", st,
+        msg);
+  afv_traj_free(&tr);
+}
+
+/* Format 2 (binary frames): centres read back bit for bit, angles as
+** float32 of the angle reduced to [-pi, pi]; 16 + 20 N bytes a frame; a
+** record cut short at the end is no frame.  Format 1 (text) is still read. */
+static void test_trajectory_format2_exact_format1_read(void)
+{
+  double r[6] = {0.1, -1234.5678901234567, 1e-300, 3.0000000000000004,
+                 50.123456789012345, -7.25};
+  double th[3] = {7.5, -100.0, 3.0}, r2[6];
+  afv_box b = {1, 50.5, 40.25};
+  afv_traj tr;
+  FILE *fp = fopen(at("f2.dat"), "wb");
+  struct stat sb;
+  long head = 0;
+  int i, k, st;
+  CHECK(fp != NULL, "cannot write f2.dat");
+  if (!fp) return;
+  afv_traj_write_header(fp, 3, &b);
+  head = ftell(fp);
+  for (k = 0; k < 2; k++) {
+    for (i = 0; i < 6; i++) r2[i] = r[i] + k;
+    afv_traj_write_frame(fp, 10 * k, 0.5 * k, 3, r2, th);
+  }
+  fwrite("partial", 1, 7, fp);          /* an interrupted writer */
+  fclose(fp);
+  CHECK(stat(at("f2.dat"), &sb) == 0 && sb.st_size == head + 2 * 76 + 7,
+        "size %ld, want %ld", (long)sb.st_size, head + 2 * 76 + 7);
+  msg[0] = 0;
+  st = afv_traj_read(at("f2.dat"), &tr, msg, sizeof msg);
+  CHECK(st == AFV_OK && tr.n == 3 && tr.nframes == 2 && tr.box.periodic
+        && tr.box.Lx == 50.5 && tr.box.Ly == 40.25 && tr.step[1] == 10
+        && tr.t[1] == 0.5, "status %d, %d frames: %s", st, tr.nframes, msg);
+  for (k = 0; st == AFV_OK && k < 2; k++)
+    for (i = 0; i < 3; i++) {
+      double x = r[2*i] + k, y = r[2*i+1] + k;
+      float a = (float)remainder(th[i], 6.28318530717958647692);
+      CHECK(tr.r[6*k + 2*i] == x && tr.r[6*k + 2*i + 1] == y
+            && tr.theta[3*k + i] == (double)a, "frame %d cell %d: %.17g %.17g"
+            " %.9g", k, i, tr.r[6*k + 2*i], tr.r[6*k + 2*i + 1],
+            tr.theta[3*k + i]);
+    }
+  afv_traj_free(&tr);
+  st = read_traj("f1.dat", "# afv trajectory cells 1 box periodic 10 10\n"
+                 "# step 0 time 0\n0.1 0.2 9\n\n\n# step 5 time 0.05\n"
+                 "0.30000000000000004 0.2 9\n\n\n", &tr);
+  CHECK(st == AFV_OK && tr.nframes == 2 && tr.r[2] == 0.30000000000000004
+        && tr.theta[1] == 9, "format 1: status %d: %s", st, msg);
+  afv_traj_free(&tr);
+}
+
 /* ---- through afv run: config file, T1 reference, resume ------------------- */
 #define QUICK "--N 64 --relax_max_steps 0 --svg_every 0 --quiet"
 
@@ -493,6 +591,8 @@ void suite_readers(void)
   RUN(test_checkpoint_long_line_read_whole);
   RUN(test_trajectory_fields_whole);
   RUN(test_trajectory_no_split_no_nul);
+  RUN(test_trajectory_time_runs_forward);
+  RUN(test_trajectory_format2_exact_format1_read);
   RUN(test_config_directory_refused);
   RUN(test_config_long_line_not_split);
   RUN(test_config_nul_and_long_path);

@@ -382,6 +382,13 @@ static void test_failed_resume_changes_nothing(void)
      "c.tmp && mv c.tmp checkpoint.txt", "", "bytes trajectory.dat 0"},
     {"awk '/^bytes trajectory.dat/ { $3 -= 5 } { print }' checkpoint.txt > "
      "c.tmp && mv c.tmp checkpoint.txt", "--steps 50", "bytes trajectory.dat"},
+    /* a whole frame (16 + 20 x 64 bytes) short: the file then ends
+    ** with the frame before the checkpoint's */
+    {"awk '/^bytes trajectory.dat/ { $3 -= 1296 } { print }' checkpoint.txt"
+     " > c.tmp && mv c.tmp checkpoint.txt", "", "whole frame of step 100"},
+    /* a format-1 (text) trajectory of afv < 0.3 is not appended to */
+    {"sed '1s/^# afv trajectory 2 /# afv trajectory 1 /' trajectory.dat > "
+     "t.tmp && mv t.tmp trajectory.dat", "--steps 50", "format 1"},
     {"awk '/^bytes observables.csv/ { $3 -= 9 } { print }' checkpoint.txt > "
      "c.tmp && mv c.tmp checkpoint.txt", "", "bytes observables.csv"},
     {"awk '/^step/ { $2 = 90 } { print }' checkpoint.txt > c.tmp && "

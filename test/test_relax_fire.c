@@ -1,0 +1,129 @@
+/*
+** test_relax_fire.c -- the FIRE minimiser (relax_fire.c): it converges on
+** a small tissue to a state the flow also reaches, and when it stops
+** early it ends in the lowest-energy state it saw.
+*/
+#include "test.h"
+#include "afv.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#define NCELLS 19
+
+/* The lowest energy the monitor saw. */
+static void lowest(void *ctx, long iter, double energy, double max_force)
+{
+  double *low = ctx;
+  (void)iter;
+  (void)max_force;
+  if (energy < *low) *low = energy;
+}
+
+/* A patch of 19 lattice cells (spacing 1.8 l, open space) at P0. */
+static afv_sim *patch(double P0)
+{
+  double r[2 * NCELLS], theta[NCELLS] = {0};
+  afv_params p;
+  afv_box b = {0, 0, 0};
+  afv_dyn d;
+  afv_sim *s = afv_sim_new();
+  afv_params_default(&p);
+  afv_dyn_default(&d);
+  p.P0 = P0;
+  if (!s || afv_init_cluster(NCELLS, 1.8, &b, r) != AFV_OK
+      || afv_sim_init(s, NCELLS, r, theta, &p, &b, &d) != AFV_OK) {
+    afv_sim_delete(s);
+    return NULL;
+  }
+  return s;
+}
+
+/* Converged, to the energy of the flow's minimum (the same basin). */
+static void fire_converges_to_the_flows_minimum(void)
+{
+  afv_sim *a = patch(4), *b = patch(4);
+  afv_relax_report fire, flow;
+  CHECK(a && b, "no simulation");
+  if (a && b) {
+    CHECK(afv_relax_fire(a, 1e-8, 100000, &fire, NULL, NULL) == AFV_OK
+          && fire.converged && !fire.at_kink && !fire.refused
+          && fire.max_force <= 1e-8, "FIRE: %ld steps, max |F| %.3g, "
+          "converged %d", fire.iterations, fire.max_force, fire.converged);
+    CHECK(afv_relax(b, 1e-8, 100000, &flow, NULL, NULL) == AFV_OK
+          && flow.converged, "flow: max |F| %.3g", flow.max_force);
+    CHECK_CLOSE(fire.energy, flow.energy, 1e-9, 0, "E at FIRE's minimum");
+    CHECK(fire.iterations < flow.iterations, "FIRE %ld steps, flow %ld",
+          fire.iterations, flow.iterations);
+    printf("  19 cells, P0 4: FIRE %ld steps, flow %ld, E %.10g\n",
+           fire.iterations, flow.iterations, fire.energy);
+  }
+  afv_sim_delete(a);
+  afv_sim_delete(b);
+}
+
+/* Stopped by the step limit: the lowest energy seen, not the last. */
+static void fire_keeps_the_best_state(void)
+{
+  afv_sim *s = patch(8);
+  afv_relax_report rep;
+  double low = HUGE_VAL;
+  long k;
+  CHECK(s != NULL, "no simulation");
+  if (!s) return;
+  for (k = 5; k <= 40; k += 5) {
+    afv_sim *t = patch(8);
+    low = HUGE_VAL;
+    if (!t) break;
+    CHECK(afv_relax_fire(t, 1e-12, k, &rep, lowest, &low) == AFV_OK
+          && !rep.converged && rep.iterations == k, "%ld steps", k);
+    CHECK(rep.energy == fmin(low, rep.energy0), "after %ld steps: E %.17g, "
+          "lowest seen %.17g", k, rep.energy, low);
+    CHECK(afv_sim_max_force(t) == rep.max_force, "forces not of the state");
+    afv_sim_delete(t);
+  }
+  afv_sim_delete(s);
+}
+
+/* Where the flow stops at a kink (60 lattice cells at phi 0.5, P0 6, as in
+** test_dynamics.c),
+** FIRE goes on and stops honestly: converged, or at the kink with the
+** energy no higher than the flow's; not by the step limit. */
+static void fire_stops_at_the_flows_kink(void)
+{
+  enum { N = 60 };
+  afv_box b = {1, 0, 0};
+  afv_params p;
+  afv_dyn d;
+  afv_relax_report flow, fire;
+  double r[2 * N];
+  afv_sim *s = afv_sim_new();
+  CHECK(s != NULL, "no simulation");
+  if (!s) return;
+  afv_params_default(&p);
+  p.P0 = 6;
+  b.Lx = b.Ly = sqrt(N * 3.14159265358979323846 / 0.5);
+  afv_init_cluster(N, 1.8, &b, r);
+  afv_dyn_default(&d);
+  CHECK(afv_sim_init(s, N, r, NULL, &p, &b, &d) == AFV_OK
+        && afv_relax(s, 1e-6, 100000, &flow, NULL, NULL) == AFV_OK
+        && flow.at_kink, "the flow did not stop at a kink");
+  CHECK(afv_relax_fire(s, 1e-6, 100000, &fire, NULL, NULL) == AFV_OK
+        && (fire.converged || fire.at_kink) && !fire.refused
+        && fire.iterations < 100000 && fire.energy <= flow.energy,
+        "FIRE after the flow: %ld steps, converged %d, at_kink %d, refused "
+        "%d, E %.17g (flow %.17g)", fire.iterations, fire.converged,
+        fire.at_kink, fire.refused, fire.energy, flow.energy);
+  printf("  60 cells, P0 6, from the flow's kink: FIRE %ld steps, %s, max|F| "
+         "%.3g, E %.10g -> %.10g\n", fire.iterations, fire.converged
+         ? "converged" : fire.at_kink ? "at kink" : fire.refused ? "refused"
+         : "step limit", fire.max_force, flow.energy, fire.energy);
+  afv_sim_delete(s);
+}
+
+void suite_relax_fire(void)
+{
+  RUN(fire_stops_at_the_flows_kink);
+  RUN(fire_converges_to_the_flows_minimum);
+  RUN(fire_keeps_the_best_state);
+}
