@@ -26,7 +26,8 @@
 
 static const char *analyze_usage =
   "usage: afv analyze DIR [--lag L] [--steady-from T] [--l L] [--v0 V]"
-  " [--Dr D]\n\n"
+  " [--Dr D]\n"
+  "                   [--partial]\n\n"
   "Reads DIR/trajectory.dat (and l, v0, Dr from DIR/params.txt; options\n"
   "override) and writes DIR/analysis/:\n"
   "  summary.txt  KEY VALUE: steady means and standard deviations of\n"
@@ -53,7 +54,11 @@ static const char *analyze_usage =
   "  --v0 V           self-propulsion speed for D_0 (default: params.txt,\n"
   "                   else 0.5)\n"
   "  --Dr D           rotational diffusion for D_0 (default: params.txt,\n"
-  "                   else 0.1)\n";
+  "                   else 0.1)\n"
+  "  --partial        analyse a run that has not finished (its checkpoint\n"
+  "                   short of its steps, or afv run still writing in DIR)\n"
+  "                   from the frames it has so far; without it such a run\n"
+  "                   is refused, exit status 1, nothing written\n";
 
 
 /* The steady window [steady_from, end] must hold two frames, and a lag
@@ -182,6 +187,57 @@ static int run_dir_readable(const char *dir)
   return 1;
 }
 
+/* 1 if the run in dir has not finished, with the reason in why: afv run
+** still writes in it (it holds the lock on observables.csv), or its
+** checkpoint is short of the steps params.txt asks for (or missing, or
+** unreadable), or it stopped before writing final.svg, its last output.
+** 0 if it finished, or if dir holds no afv run's params.txt with steps (a
+** trajectory from elsewhere: nothing to compare with). */
+static int run_unfinished(const char *dir, char *why, size_t len)
+{
+  char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
+  double steps;
+  long pid = run_lock_holder(dir);
+  afv_checkpoint ck;
+  long long at;
+  if (pid > 0) {
+    snprintf(why, len, "the run is still being written by process %ld (it "
+             "holds the lock on %s/observables.csv)", pid, dir);
+    return 1;
+  }
+  snprintf(path, sizeof path, "%s/params.txt", dir);
+  if (run_param(path, "steps", &steps) != 1) return 0;
+  snprintf(path, sizeof path, "%s/checkpoint.txt", dir);
+  if (afv_checkpoint_read(path, &ck, err, sizeof err) != AFV_OK) {
+    snprintf(why, len, "the run's end is unknown: %s", err);
+    return 1;
+  }
+  at = ck.step;
+  afv_checkpoint_free(&ck);
+  snprintf(path, sizeof path, "%s/final.svg", dir);
+  if (at >= (long long)steps && access(path, F_OK) == 0) return 0;
+  snprintf(why, len, "the run is unfinished: checkpoint.txt is at step %lld "
+           "of the %.0f in params.txt%s", at, steps, at >= (long long)steps
+           ? ", and final.svg, its last output, is missing" : "");
+  return 1;
+}
+
+/* Refuses an unfinished run (exit EXIT_RUN_UNFINISHED), or with --partial
+** (accept) says that its frames so far are analysed; 0 to go on. */
+static int refuse_unfinished(const char *dir, int accept)
+{
+  char why[2 * RUN_PATH_MAX + 256];
+  if (!run_unfinished(dir, why, sizeof why)) return 0;
+  if (accept) {
+    fprintf(stderr, "afv analyze: warning: %s: %s: analysing its frames so "
+            "far (--partial)\n", dir, why);
+    return 0;
+  }
+  fprintf(stderr, "afv analyze: %s: %s; nothing written (--partial "
+          "analyses its frames so far)\n", dir, why);
+  return EXIT_RUN_UNFINISHED;
+}
+
 int cmd_analyze(int argc, char **argv)
 {
   const char *dir = NULL;
@@ -190,11 +246,15 @@ int cmd_analyze(int argc, char **argv)
   double l_o = NAN, v0_o = NAN, Dr_o = NAN;   /* NAN: option not given */
   afv_traj_file tr;
   afv_analysis a;
-  int k, st, bad = 0, lag_given;
+  int k, st, bad = 0, lag_given, partial = 0;
   for (k = 1; k < argc && !bad; k++) {
     if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
       fputs(analyze_usage, stdout);
       return 0;
+    }
+    if (strcmp(argv[k], "--partial") == 0) {
+      partial = 1;
+      continue;
     }
     if (double_option(argc, argv, &k, "--lag", &lag, &bad)
         || double_option(argc, argv, &k, "--steady-from", &from, &bad)
@@ -227,6 +287,7 @@ int cmd_analyze(int argc, char **argv)
     fprintf(stderr, "afv analyze: --Dr: %g: must be >= 0\n", Dr);
     return EXIT_BAD_INPUT;
   }
+  if ((st = refuse_unfinished(dir, partial)) != 0) return st;
   snprintf(path, sizeof path, "%s/trajectory.dat", dir);
   if (afv_traj_open(&tr, path, err, sizeof err) != AFV_OK)
     return bad_input(err);
