@@ -121,6 +121,22 @@ bad:
   return 0;
 }
 
+/* A sweep's table.csv (afv collect) with one state point or more; else
+** one line naming the file and what it lacks (a header only: no run of the
+** sweep finished and verified). */
+static int table_read(const char *sweep_dir, csv *t)
+{
+  char path[PATH_LEN];
+  snprintf(path, sizeof path, "%s/table.csv", sweep_dir);
+  if (!csv_read(path, t)) return 0;
+  if (t->nrow > 0) return 1;
+  fprintf(stderr, "afv paper: %s: no state point, only a header (no run of "
+          "%s finished and passed afv collect's checks: see %s/missing.txt)"
+          "\n", path, sweep_dir, sweep_dir);
+  csv_free(t);
+  return 0;
+}
+
 static int csv_col(const csv *t, const char *name)
 {
   int k;
@@ -199,8 +215,7 @@ static int plane_read(const char *out, plane *P)
   int r, q, cp, cv, cq[N_Q], cs[N_Q];
   memset(P, 0, sizeof *P);
   snprintf(P->dir, sizeof P->dir, "%s/grid", out);
-  snprintf(path, sizeof path, "%s/table.csv", P->dir);
-  if (!csv_read(path, &t)) return 0;
+  if (!table_read(P->dir, &t)) return 0;
   snprintf(path, sizeof path, "%s/points.csv", P->dir);
   if (!csv_read(path, &P->points)) { csv_free(&t); return 0; }
   cp = csv_col(&t, "P0");
@@ -1360,8 +1375,7 @@ static int fss_read(const char *out, fss *F)
   static const char *const keys[3] = {"N", "P0", "v0"};
   memset(F, 0, sizeof *F);
   snprintf(dir, sizeof dir, "%s/fss", out);
-  snprintf(path, sizeof path, "%s/table.csv", dir);
-  if (!csv_read(path, &t)) return 0;
+  if (!table_read(dir, &t)) return 0;
   snprintf(path, sizeof path, "%s/points.csv", dir);
   if (!csv_read(path, &pts)) { csv_free(&t); return 0; }
   cn = csv_col(&t, "N"); cp = csv_col(&t, "P0"); cv = csv_col(&t, "v0");

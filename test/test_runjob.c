@@ -705,6 +705,38 @@ static void test_analyze_refuses_unfinished_run(void)
   free(after);
 }
 
+/* A write that fails during afv analyze (a file size limit: ulimit -f,
+** with SIGXFSZ ignored, makes write(2) fail with EFBIG, as a full disk
+** makes it fail with ENOSPC): exit 2, one line naming the file and the
+** system's reason, and the earlier analysis/ unchanged, no staging folder
+** left.  (The code before: "msd.svg: input/output error", and the files
+** written before the failing one replaced.) */
+static void test_analyze_write_error_changes_nothing(void)
+{
+  char *e, *before, *after;
+  long n0, n1;
+  int st;
+  CHECK(test_sh("./afv run " FAST " --steps 200 --out %s/full", root) == 0
+        && test_sh("./afv analyze %s/full --steady-from 0 --lag 0.5 "
+                   "> /dev/null 2>&1", root) == 0, "the run and analysis");
+  before = picture("full/analysis", &n0);
+  st = test_sh("(trap '' XFSZ; ulimit -f 1; exec ./afv analyze %s/full "
+               "--steady-from 0 --lag 1 > /dev/null) 2> %s/err.txt", root,
+               root);
+  e = last_err();
+  CHECK(st == 2, "analyze with writes failing: exit %d, want 2", st);
+  CHECK(strstr(e, "msd.svg") && strstr(e, strerror(EFBIG))
+        && strchr(e, '\n') == e + strlen(e) - 1, "the message is not one "
+        "line naming msd.svg and '%s': %s", strerror(EFBIG), e);
+  after = picture("full/analysis", &n1);
+  CHECK(n0 > 0 && n0 == n1 && memcmp(before, after, (size_t)n0) == 0,
+        "a failed analyze changed analysis/");
+  CHECK(!exists("full/analysis.tmp"), "analysis.tmp left behind");
+  free(e);
+  free(before);
+  free(after);
+}
+
 /* ---- messages ------------------------------------------------------------ */
 /* A snapshot that cannot be written: the message names the file and the
 ** reason (the code before: "DIR: cannot write the outputs"). */
@@ -781,5 +813,6 @@ void suite_runjob(void)
   RUN(test_bounds_printed_in_full);
   RUN(test_lag_printed_in_full);
   RUN(test_analyze_refuses_unfinished_run);
+  RUN(test_analyze_write_error_changes_nothing);
   test_sh("rm -rf %s", root);
 }
