@@ -160,7 +160,7 @@ static void stage_clear(const char *dir, int rmdir_too)
   DIR *d = opendir(dir);
   struct dirent *e;
   while (d && (e = readdir(d)))
-    if (e->d_name[0] != '.' || (e->d_name[1] && strcmp(e->d_name, ".."))) {
+    if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0) {
       snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
       remove(path);
     }
