@@ -24,6 +24,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <unistd.h>
 
 /* The paper's thresholds (as afv collect): clustered if N_GC/N >= 0.99,
 ** epithelial if Omega >= 0.5, glassy if D_eff < 1e-8; and collect's own
@@ -225,9 +226,12 @@ static int plane_read(const char *out, plane *P)
     csv_free(&t);
     return 0;
   }
-  for (r = 0; r < t.nrow; r++) {
-    add_value(P->p0, &P->np, csv_num(&t, r, cp));
-    add_value(P->v0, &P->nv, csv_num(&t, r, cv));
+  /* The grid is the sweep's design (points.csv), not the table's rows: a
+  ** state point whose runs have not finished stays NaN ("not measured"),
+  ** so no claim is ever taken from a neighbouring point instead. */
+  for (r = 0; r < P->points.nrow; r++) {
+    add_value(P->p0, &P->np, csv_num(&P->points, r, csv_col(&P->points, "P0")));
+    add_value(P->v0, &P->nv, csv_num(&P->points, r, csv_col(&P->points, "v0")));
   }
   for (q = 0; q < N_Q; q++) {
     char name[CELL_MAX + 8];
@@ -312,6 +316,8 @@ static double *run_column(const char *dir, const char *file, const char *name,
   int r, c;
   *n = 0;
   snprintf(path, sizeof path, "%s/analysis/%s", dir, file);
+  /* a run not analysed yet is one of collect's missing.txt: no message */
+  if (access(path, F_OK) != 0 && errno == ENOENT) return NULL;
   if (!csv_read(path, &t)) return NULL;
   c = csv_col(&t, name);
   x = malloc((size_t)(t.nrow + 1) * sizeof *x);
