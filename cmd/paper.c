@@ -373,17 +373,22 @@ static void read_scale(const char *out)
 ** move with dt (doc/reproduction/convergence.md). */
 static char integration[320] = "integration not recorded";
 
-/* "afv VERSION" of the program that wrote the grid's first run (its
-** params.txt's first line, "... written by afv 0.3.0 (commit ...)": the
-** version without the commit), or "afv version not recorded". */
+/* "afv VERSION" of the program that wrote the grid's first started run
+** (its params.txt's first line, "... written by afv 0.3.0 (commit ...)":
+** the version without the commit), or "afv version not recorded".  Job
+** ids are 0001, 0002, ... (afv sweep); a partial grid may lack the first. */
 static void read_version(const char *out, char *buf, size_t len)
 {
   char path[PATH_LEN], line[512], version[64];
   const char *at;
-  FILE *fp;
+  FILE *fp = NULL;
+  int id;
   snprintf(buf, len, "afv version not recorded");
-  snprintf(path, sizeof path, "%s/grid/runs/0001/params.txt", out);
-  if (!(fp = fopen(path, "r"))) return;
+  for (id = 1; id <= 99999 && !fp; id++) {
+    snprintf(path, sizeof path, "%s/grid/runs/%04d/params.txt", out, id);
+    fp = fopen(path, "r");
+  }
+  if (!fp) return;
   if (fgets(line, sizeof line, fp) && (at = strstr(line, "written by afv "))
       && sscanf(at + 15, "%63[^ (:\n]", version) == 1)
     snprintf(buf, len, "afv %s", version);
