@@ -7,6 +7,7 @@
 ** answer is known.
 */
 #include "afv.h"
+#include "afv_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -201,8 +202,8 @@ static void collapse_grid(int nc, int n, const double *x, const double *y,
                           double a_hi, double da, double *best)
 {
   double v, a, c;
-  for (v = v_lo; v <= v_hi + 1e-12; v += dv)
-    for (a = a_lo; a <= a_hi + 1e-12; a += da) {
+  for (v = v_lo; v <= v_hi + AFV_GRID_END_TOL; v += dv)
+    for (a = a_lo; a <= a_hi + AFV_GRID_END_TOL; a += da) {
       c = collapse_cost(nc, n, x, y, p, use, v, a, s);
       if (c < best[2]) { best[0] = v; best[1] = a; best[2] = c; }
     }
