@@ -41,8 +41,9 @@ LDLIBS  += -fopenmp
 endif
 
 # The library, one file per idea (doc/reference.md has the reading order);
-# afv_internal.h, fastmath.h and rng.h are shared by its files only (not
-# part of the API, afv.h).
+# afv_internal.h, fastmath.h and rng.h are shared by its files only, and
+# afv_tool.h holds what only the program uses (line readers, checkpoints,
+# plots, fits): none of them is installed, afv.h is the API.
 LIB_SRC  = neighbours.c geom.c fastmath.c afv.c dynamics.c substeps.c rng.c \
            analysis.c svg.c io.c phase.c api.c fits.c relax_fire.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
@@ -68,7 +69,7 @@ BUILD_FLAGS = $(CC) $(CFLAGS) $(LDLIBS)
 
 FORCE:
 
-$(LIB_OBJ): afv_internal.h fastmath.h rng.h
+$(LIB_OBJ): afv_internal.h afv_tool.h fastmath.h rng.h
 
 libafv.a: $(LIB_OBJ)
 	$(AR) rcs $@ $(LIB_OBJ)
@@ -80,7 +81,7 @@ CLI_OBJ  = $(CLI_SRC:.c=.o)
 afv: $(CLI_OBJ) libafv.a .build-flags
 	$(CC) $(CFLAGS) -o $@ $(CLI_OBJ) libafv.a $(LDLIBS)
 
-%.o: %.c afv.h afv_internal.h .build-flags
+%.o: %.c afv.h afv_internal.h afv_tool.h .build-flags
 	$(CC) $(CFLAGS) -c -o $@ $<
 
 $(CLI_OBJ): cli.h
@@ -97,7 +98,7 @@ AFV_COMMIT := $(shell git rev-parse --short=12 HEAD 2>/dev/null)$(shell \
 	@printf '%s\n' '$(AFV_COMMIT)' | cmp -s - $@ \
 	  || printf '%s\n' '$(AFV_COMMIT)' > $@
 
-cli.o: cli.c afv.h afv_internal.h cli.h .build-flags .build-commit
+cli.o: cli.c afv.h afv_internal.h afv_tool.h cli.h .build-flags .build-commit
 	$(CC) $(CFLAGS) $(if $(AFV_COMMIT),-DAFV_COMMIT='"$(AFV_COMMIT)"') \
 	  -c -o $@ cli.c
 
@@ -106,7 +107,7 @@ cli.o: cli.c afv.h afv_internal.h cli.h .build-flags .build-commit
 # keep their objects (and their speed) exactly as without it.
 PIC_OBJ  = $(LIB_SRC:.c=.pic.o)
 
-%.pic.o: %.c afv.h afv_internal.h .build-flags
+%.pic.o: %.c afv.h afv_internal.h afv_tool.h .build-flags
 	$(CC) $(CFLAGS) -fPIC -c -o $@ $<
 
 # Its SONAME is libafv.so.MAJOR (AFV_VERSION_MAJOR in afv.h): a program
@@ -130,7 +131,8 @@ python-test: afv libafv.so python/check_driver
 	$(PYTHON) python/test_afv.py --driver python/check_driver --afv ./afv \
 	  --no-numpy
 
-test/run_tests: $(TEST_SRC) test/test.h libafv.a afv.h afv_internal.h .build-flags
+test/run_tests: $(TEST_SRC) test/test.h libafv.a afv.h afv_internal.h \
+                 afv_tool.h .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ $(TEST_SRC) libafv.a $(LDLIBS)
 
 test: afv test/run_tests
@@ -150,7 +152,7 @@ run: afv
 # The benchmark (test/bench.c): one line per state and N, see its header.
 BENCH_STATES = random cluster
 
-test/bench: test/bench.c libafv.a afv.h afv_internal.h .build-flags
+test/bench: test/bench.c libafv.a afv.h afv_internal.h afv_tool.h .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ test/bench.c libafv.a $(LDLIBS)
 
 bench: test/bench
@@ -186,7 +188,7 @@ FUZZ_CFLAGS  = -O1 -g -std=c99 -fno-omit-frame-pointer \
 FUZZ_NAMES   = $(patsubst fuzz/fuzz_%.c,%,$(wildcard fuzz/fuzz_*.c))
 FUZZ_OBJ     = $(patsubst %.c,fuzz/build/%.o,$(LIB_SRC) cli.c)
 
-fuzz/build/%.o: %.c afv.h afv_internal.h fastmath.h rng.h cli.h
+fuzz/build/%.o: %.c afv.h afv_internal.h afv_tool.h fastmath.h rng.h cli.h
 	@mkdir -p fuzz/build
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -c -o $@ $<
 
@@ -196,7 +198,7 @@ fuzz/build/libafv_fuzz.a: $(FUZZ_OBJ)
 # (run.c: the config and collect harnesses include it; collect.c: the
 # collect harness)
 fuzz/build/fuzz_%: fuzz/fuzz_%.c fuzz/build/libafv_fuzz.a $(wildcard fuzz/*.h) \
-                   run.c collect.c cli.h afv.h
+                   run.c collect.c cli.h afv.h afv_tool.h
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -I. -o $@ $< \
 	  fuzz/build/libafv_fuzz.a -lm
 
@@ -258,7 +260,8 @@ paper-fss: paper-sweeps
 # resumable) and writes DIR/convergence.csv, verdicts.csv and figures/.
 CONV_OUT ?= convergence
 
-tools/convergence_plot: tools/convergence_plot.c libafv.a afv.h .build-flags
+tools/convergence_plot: tools/convergence_plot.c libafv.a afv.h afv_tool.h \
+                        .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ tools/convergence_plot.c libafv.a $(LDLIBS)
 
 convergence: afv tools/convergence_plot

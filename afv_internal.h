@@ -4,11 +4,13 @@
 ** geometry and of the simulation, the OpenMP macros.  Included by the
 ** library's .c files, the white-box tests and the parts of the program
 ** that need the internals; not installed (make install copies afv.h only).
+** It includes afv_tool.h, the program's part of the library.
 */
 #ifndef AFV_INTERNAL_H
 #define AFV_INTERNAL_H
 
 #include "afv.h"
+#include "afv_tool.h"
 
 #include <float.h>
 #include <stddef.h>

@@ -33,7 +33,7 @@ static void line_fit(int m, const double *x, const double *y, double *slope,
   *se = m > 2 ? sqrt(rss / (m - 2) / sxx) : NAN;
 }
 
-int afv_csd_powerlaw(const double *csd, int n, int nmax, afv_powerlaw *fit)
+int afv_powerlaw_fit(const double *csd, int n, int nmax, afv_powerlaw *fit)
 {
   int lo[AFV_CSD_MAX_BINS], hi[AFV_CSD_MAX_BINS], nb, k, peak = -1, m = 0;
   double p[AFV_CSD_MAX_BINS], dens[AFV_CSD_MAX_BINS];
@@ -123,8 +123,8 @@ static double jackknife_se(int nc, const double *t)
   return sqrt((m - 1.0) / m * s);
 }
 
-int afv_common_crossing(int nc, int n, const double *x, const double *y,
-                        afv_crossing_fit *out)
+int afv_curves_cross_common(int nc, int n, const double *x, const double *y,
+                            afv_crossing_fit *out)
 {
   int *use, i;
   double *loo;

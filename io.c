@@ -14,6 +14,7 @@
 */
 #define _POSIX_C_SOURCE 200809L  /* stat: readers refuse directories, devices */
 #include "afv.h"
+#include "afv_tool.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -336,7 +337,7 @@ static int push_point(double **r, int *n, int *cap, double x, double y)
   return AFV_OK;
 }
 
-int afv_read_points(const char *path, int *n_out, double **r_out, char *err,
+int afv_points_read(const char *path, int *n_out, double **r_out, char *err,
                     size_t errlen)
 {
   static const char *const names[2] = {"x", "y"};
@@ -959,7 +960,7 @@ static int cells_line(const afv_lines *L, afv_cells *c, const int *order,
   return AFV_OK;
 }
 
-int afv_read_cells(const char *path, afv_cells *c, char *err, size_t errlen)
+int afv_cells_read(const char *path, afv_cells *c, char *err, size_t errlen)
 {
   afv_lines L;
   char name[40] = "";
@@ -990,7 +991,7 @@ int afv_read_cells(const char *path, afv_cells *c, char *err, size_t errlen)
   return st;
 }
 
-int afv_write_cells(FILE *fp, const afv_cells *c)
+int afv_cells_write(FILE *fp, const afv_cells *c)
 {
   int i, k, first = 1;
   fputs("#", fp);

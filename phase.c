@@ -12,8 +12,8 @@
 #include <string.h>
 
 /* ---- crossings -------------------------------------------------------------- */
-int afv_crossing(int n, const double *x, const double *y, double level,
-                 double *xc)
+int afv_curve_cross(int n, const double *x, const double *y, double level,
+                    double *xc)
 {
   int i, prev = -1;
   for (i = 0; i < n; i++) {

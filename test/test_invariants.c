@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#ifndef NDEBUG
 /* Runs afv_cell_shape on cell 0 of g in a child process, its standard
 ** error into err (len bytes); returns the child's wait status. */
 static int shape_in_child(afv_geom *g, char *err, size_t len)
@@ -37,6 +38,7 @@ static int shape_in_child(afv_geom *g, char *err, size_t len)
   if (pid < 0 || waitpid(pid, &status, 0) != pid) return -1;
   return status;
 }
+#endif
 
 /* Cell 0's neighbour list, sorted by direction (neighbours.c), with two
 ** slots swapped: the clipping relies on the order, so afv_cell_shape's
