@@ -74,8 +74,10 @@ $(LIB_OBJ): afv_internal.h afv_tool.h fastmath.h rng.h
 libafv.a: $(LIB_OBJ)
 	$(AR) rcs $@ $(LIB_OBJ)
 
-# The program: main.c dispatches to the commands (cli.h lists their files).
-CLI_SRC  = main.c cli.c inspect.c run.c report.c sweep.c collect.c paper.c
+# The program, in cmd/: main.c dispatches to the commands (cmd/cli.h lists
+# their files); they include the library's headers from the top level.
+CLI_SRC  = $(addprefix cmd/,main.c cli.c inspect.c run.c report.c sweep.c \
+           collect.c paper.c)
 CLI_OBJ  = $(CLI_SRC:.c=.o)
 
 afv: $(CLI_OBJ) libafv.a .build-flags
@@ -84,12 +86,15 @@ afv: $(CLI_OBJ) libafv.a .build-flags
 %.o: %.c afv.h afv_internal.h afv_tool.h .build-flags
 	$(CC) $(CFLAGS) -c -o $@ $<
 
-$(CLI_OBJ): cli.h
+$(CLI_OBJ): cmd/cli.h
+
+cmd/%.o: cmd/%.c afv.h afv_internal.h afv_tool.h cmd/cli.h .build-flags
+	$(CC) $(CFLAGS) -I. -c -o $@ $<
 
 # The git commit of the sources, when built from a git checkout ("-dirty"
-# with uncommitted changes): cli.c records it in params.txt, log.txt and
+# with uncommitted changes): cmd/cli.c records it in params.txt, log.txt and
 # afv --version.  A build from a tarball (no git) records the version only.
-# .build-commit changes only with the commit, so only cli.o is rebuilt.
+# .build-commit changes only with the commit, so only cmd/cli.o is rebuilt.
 AFV_COMMIT := $(shell git rev-parse --short=12 HEAD 2>/dev/null)$(shell \
   git rev-parse --git-dir >/dev/null 2>&1 && ! git diff-index --quiet HEAD \
   -- 2>/dev/null && echo -dirty)
@@ -98,9 +103,10 @@ AFV_COMMIT := $(shell git rev-parse --short=12 HEAD 2>/dev/null)$(shell \
 	@printf '%s\n' '$(AFV_COMMIT)' | cmp -s - $@ \
 	  || printf '%s\n' '$(AFV_COMMIT)' > $@
 
-cli.o: cli.c afv.h afv_internal.h afv_tool.h cli.h .build-flags .build-commit
-	$(CC) $(CFLAGS) $(if $(AFV_COMMIT),-DAFV_COMMIT='"$(AFV_COMMIT)"') \
-	  -c -o $@ cli.c
+cmd/cli.o: cmd/cli.c afv.h afv_internal.h afv_tool.h cmd/cli.h .build-flags \
+           .build-commit
+	$(CC) $(CFLAGS) -I. $(if $(AFV_COMMIT),-DAFV_COMMIT='"$(AFV_COMMIT)"') \
+	  -c -o $@ cmd/cli.c
 
 # The shared library: the same sources compiled again as position-
 # independent code into *.pic.o, so the static library and the program
@@ -174,7 +180,7 @@ bench-compare: test/bench
 
 # ---- fuzzing: clang's libFuzzer -------------------------------------------
 # Every fuzz/fuzz_NAME.c is a harness (LLVMFuzzerTestOneInput), linked with
-# the library and cli.c built apart in fuzz/build/ with AddressSanitizer and
+# the library and cmd/cli.c built apart in fuzz/build/ with AddressSanitizer and
 # UndefinedBehaviorSanitizer (any report is a crash).  make fuzz runs each
 # for FUZZ_SECONDS s from its committed seed corpus fuzz/corpus/NAME/ (see
 # fuzz/run.sh) and fails on any crash, which it leaves in fuzz/build/.
@@ -186,19 +192,19 @@ FUZZ_CFLAGS  = -O1 -g -std=c99 -fno-omit-frame-pointer \
                -fsanitize=address,undefined -fno-sanitize-recover=all \
                -DAFV_LINES_BLOCK=61 -DAFV_LINE_MAX=3000
 FUZZ_NAMES   = $(patsubst fuzz/fuzz_%.c,%,$(wildcard fuzz/fuzz_*.c))
-FUZZ_OBJ     = $(patsubst %.c,fuzz/build/%.o,$(LIB_SRC) cli.c)
+FUZZ_OBJ     = $(patsubst %.c,fuzz/build/%.o,$(LIB_SRC) cmd/cli.c)
 
-fuzz/build/%.o: %.c afv.h afv_internal.h afv_tool.h fastmath.h rng.h cli.h
-	@mkdir -p fuzz/build
-	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -c -o $@ $<
+fuzz/build/%.o: %.c afv.h afv_internal.h afv_tool.h fastmath.h rng.h cmd/cli.h
+	@mkdir -p $(dir $@)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -fsanitize=fuzzer-no-link -c -o $@ $<
 
 fuzz/build/libafv_fuzz.a: $(FUZZ_OBJ)
 	$(AR) rcs $@ $(FUZZ_OBJ)
 
-# (run.c: the config and collect harnesses include it; collect.c: the
-# collect harness)
+# (cmd/run.c: the config and collect harnesses include it; cmd/collect.c:
+# the collect harness)
 fuzz/build/fuzz_%: fuzz/fuzz_%.c fuzz/build/libafv_fuzz.a $(wildcard fuzz/*.h) \
-                   run.c collect.c cli.h afv.h afv_tool.h
+                   cmd/run.c cmd/collect.c cmd/cli.h afv.h afv_tool.h
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -I. -o $@ $< \
 	  fuzz/build/libafv_fuzz.a -lm
 
@@ -311,7 +317,7 @@ uninstall:
 	sh tools/install.sh uninstall '$(DESTDIR)$(PREFIX)'
 
 clean:
-	rm -f *.o libafv.a libafv.so afv.pc afv test/run_tests test/bench \
+	rm -f *.o cmd/*.o libafv.a libafv.so afv.pc afv test/run_tests test/bench \
 	  python/check_driver \
 	  test/protocol_check tools/convergence_plot .build-flags
 	rm -f test/twins reference/afv_plain

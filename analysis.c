@@ -30,6 +30,7 @@
 */
 #include "afv_internal.h"
 
+#include <errno.h>
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
@@ -1109,12 +1110,12 @@ static int write_one(const char *dir, const char *name, writer_fn fn,
   }
   fp = afv_atomic_open(path, tmp, sizeof tmp);
   if (!fp) {
-    afv_errorf(err, errlen, "%s: cannot create", path);
+    afv_errorf(err, errlen, "%s: cannot create: %s", path, strerror(errno));
     return AFV_EIO;
   }
   fn(fp, a);
-  if (afv_atomic_commit(fp, tmp, path) != AFV_OK) {
-    afv_errorf(err, errlen, "%s: write failed", path);
+  if (afv_atomic_commit(fp, tmp, path) != AFV_OK) {   /* errno: the reason */
+    afv_errorf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
     return AFV_EIO;
   }
   return AFV_OK;

@@ -378,12 +378,16 @@ FILE *afv_atomic_open(const char *path, char *tmp, size_t tmplen)
   return fopen(tmp, "w");
 }
 
+/* On failure errno keeps the system's reason (ENOSPC on a full disk), not
+** that of the clean-up: the caller names it. */
 int afv_atomic_commit(FILE *fp, const char *tmp, const char *path)
 {
-  int bad = fflush(fp) != 0 || ferror(fp);
-  bad |= fclose(fp) != 0;
-  if (bad || rename(tmp, path) != 0) {
+  int bad = fflush(fp) != 0 || ferror(fp), why = errno;  /* a failed write */
+  if (fclose(fp) != 0 && !bad) bad = 1, why = errno;
+  if (!bad && rename(tmp, path) != 0) bad = 1, why = errno;
+  if (bad) {
     remove(tmp);
+    errno = why ? why : EIO;
     return AFV_EIO;
   }
   return AFV_OK;

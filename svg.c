@@ -2,7 +2,7 @@
 ** svg.c -- pictures: a tissue drawn like the paper's Fig. 1, a small
 ** self-contained line-plot helper, and the plots of an analysis.  Nothing
 ** here computes an order parameter: analysis.c gives the numbers, the
-** commands (report.c) write the files.
+** commands (cmd/report.c) write the files.
 **
 ** Tissue.  The picture is a canvas in pixels holding the tissue's own
 ** viewport in model coordinates (unit l), y up: the drawing sits in a

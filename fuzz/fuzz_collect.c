@@ -8,8 +8,8 @@
 ** afv collect and no state point without a verified job, and exit 0
 ** means every job of points.csv was verified (missing.txt lists none).
 */
-#include "../run.c"
-#include "../collect.c"
+#include "../cmd/run.c"
+#include "../cmd/collect.c"
 #include "reader_fuzz.h"
 
 #include <fcntl.h>

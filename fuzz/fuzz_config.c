@@ -8,7 +8,7 @@
 ** passes them, and then params.txt written from it reads back to the same
 ** params.txt, byte for byte.
 */
-#include "../run.c"
+#include "../cmd/run.c"
 #include "reader_fuzz.h"
 
 /* params.txt of cfg in the directory of name; its contents in buf. */

@@ -25,6 +25,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -895,6 +896,105 @@ out:
   free(T.paths);
 }
 
+/* ---- doc/reproduction names versions ------------------------------------- */
+/* A run is traced by `afv --version` (params.txt records it), not by the
+** history of the repository: no commit hash, issue number or branch in
+** doc/reproduction/.  A commit-like token: 7 to 40 lower-case hex digits
+** with a digit and a letter other than e (so no number such as 1234567e,
+** the digits of a float), not after '#' (a colour) or '.'. */
+static int is_commit_like(const char *line, const char *p, size_t n)
+{
+  size_t k;
+  int digit = 0, letter = 0;
+  if (n < 7 || n > 40 || (p > line && (p[-1] == '#' || p[-1] == '.')))
+    return 0;
+  for (k = 0; k < n; k++) {
+    if (p[k] >= '0' && p[k] <= '9') digit = 1;
+    else if (p[k] >= 'a' && p[k] <= 'f') letter |= p[k] != 'e';
+    else return 0;
+  }
+  return digit && letter;
+}
+
+/* 1 if the n characters at p are word, in any case. */
+static int word_is(const char *p, size_t n, const char *word)
+{
+  return n == strlen(word) && strncasecmp(p, word, n) == 0;
+}
+
+/* The first history reference in line ("issue 30", "branch", a commit
+** hash) into what; 1 if there is one. */
+static int history_reference(const char *line, char *what, size_t len)
+{
+  const char *p = line;
+  while (*p) {
+    size_t n = 0;
+    while (word_char((unsigned char)p[n]) && p[n] != '_') n++;
+    if (n == 0) { p++; continue; }
+    if (is_commit_like(line, p, n) || word_is(p, n, "branch")
+        || word_is(p, n, "branches")) {
+      snprintf(what, len, "%.*s", (int)n, p);
+      return 1;
+    }
+    if (word_is(p, n, "issue") || word_is(p, n, "issues")) {
+      const char *q = p + n;
+      while (*q == ' ' || *q == '#') q++;
+      if (*q >= '0' && *q <= '9') {
+        snprintf(what, len, "%.*s", (int)(q - p + strspn(q, "0123456789")),
+                 p);
+        return 1;
+      }
+    }
+    p += n;
+  }
+  return 0;
+}
+
+/* Checks every text file under dir (recursively); the number of files. */
+static int check_reproduction_dir(const char *dir, char *text, size_t len)
+{
+  DIR *d = opendir(dir);
+  struct dirent *e;
+  int files = 0;
+  while (d && (e = readdir(d)) != NULL) {
+    char path[1024], what[64], *line, *save = NULL;
+    struct stat st;
+    int lineno = 0;
+    if (e->d_name[0] == '.') continue;
+    snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+    if (stat(path, &st) != 0) continue;
+    if (S_ISDIR(st.st_mode)) {
+      files += check_reproduction_dir(path, text, len);
+      continue;
+    }
+    if (!ends_with(path, ".md") && !ends_with(path, ".csv")
+        && !ends_with(path, ".txt") && !ends_with(path, ".svg"))
+      continue;
+    files++;
+    read_text(path, text, len);
+    for (line = text; line; line = save) {
+      if ((save = strchr(line, '\n'))) *save++ = 0;
+      lineno++;
+      CHECK(!history_reference(line, what, sizeof what), "%s:%d: '%s': "
+            "doc/reproduction names versions (afv --version of the run), "
+            "not commits, issues or branches", path, lineno, what);
+    }
+  }
+  if (d) closedir(d);
+  return files;
+}
+
+static void test_reproduction_names_versions(void)
+{
+  char *text = malloc(TREE_TEXT);
+  int files;
+  if (!text) return;
+  files = check_reproduction_dir("doc/reproduction", text, TREE_TEXT);
+  CHECK(files > 0, "doc/reproduction: no text file");
+  printf("  doc/reproduction: %d files\n", files);
+  free(text);
+}
+
 void suite_docs(void)
 {
   char cmd[96];
@@ -912,6 +1012,7 @@ void suite_docs(void)
   RUN(test_quench_per_cell_v0);
   RUN(test_parameter_change_needs_refresh);
   RUN(test_doc_names_exist);
+  RUN(test_reproduction_names_versions);
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);   /* mkdtemp's own dir */
   if (system(cmd) != 0) printf("  note: could not remove %s\n", tmp);
 }

@@ -9,7 +9,9 @@
 #include "test.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -155,6 +157,59 @@ static void paper_refuses_missing_sweeps(void)
         "folder created");
 }
 
+/* Writes text to dir/name (the folder exists). */
+static void put_file(const char *dir, const char *name, const char *text)
+{
+  char path[256];
+  FILE *fp;
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  if ((fp = fopen(path, "w"))) {
+    fputs(text, fp);
+    fclose(fp);
+  }
+}
+
+/* afv paper on a sweep whose table.csv is a header only (afv collect of a
+** sweep where no run finished): exit 2, one line naming that table,
+** nothing written; first the grid's, then the fss's beside a grid with a
+** row.  (The code before: exit 2 without a word for the grid, and for the
+** fss figures and claims written from nothing, exit 0.) */
+static void paper_names_header_only_table(void)
+{
+  static const char *const which[2] = {"grid", "fss"};
+  char dir[128], err[160], msg[1024];
+  int k;
+  if (access("./afv", X_OK) != 0) { SKIP("./afv not built"); return; }
+  snprintf(dir, sizeof dir, "/tmp/afv_paper_test_header.%ld", (long)getpid());
+  snprintf(err, sizeof err, "%s.err", dir);
+  for (k = 0; k < 2; k++) {
+    FILE *fp;
+    size_t m = 0;
+    int st;
+    test_sh("rm -rf %s && mkdir -p %s/grid %s/fss", dir, dir, dir);
+    put_file(dir, "grid/points.csv", "id,P0,v0,seed\n0001,4,0.1,1\n");
+    put_file(dir, "grid/table.csv", k == 0 ? "P0,v0,ngc_frac_mean\n"
+             : "P0,v0,ngc_frac_mean\n4,0.1,1\n");
+    put_file(dir, "fss/points.csv", "id,N,P0,v0,seed\n0001,400,4,0.1,1\n");
+    put_file(dir, "fss/table.csv", "N,P0,v0,ngc_frac_mean,ngc_frac_sem\n");
+    st = test_sh("./afv paper %s > /dev/null 2> %s", dir, err);
+    msg[0] = 0;
+    if ((fp = fopen(err, "r"))) {
+      m = fread(msg, 1, sizeof msg - 1, fp);
+      fclose(fp);
+    }
+    msg[m] = 0;
+    CHECK(st == 2, "%s table a header only: exit %d, want 2", which[k], st);
+    CHECK(strstr(msg, which[k]) && strstr(msg, "/table.csv")
+          && strchr(msg, '\n') == msg + m - 1, "%s table a header only: "
+          "not one line naming %s/table.csv: '%s'", which[k], which[k], msg);
+    CHECK(test_sh("test -e %s/figures || test -e %s/claims.csv", dir, dir)
+          != 0, "%s table a header only: figures or claims written",
+          which[k]);
+  }
+  test_sh("rm -rf %s %s", dir, err);
+}
+
 void suite_paper(void)
 {
   RUN(powerlaw_recovers_exponent);
@@ -163,4 +218,5 @@ void suite_paper(void)
   RUN(common_crossing_of_lines);
   RUN(collapse_recovers);
   RUN(paper_refuses_missing_sweeps);
+  RUN(paper_names_header_only_table);
 }

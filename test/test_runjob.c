@@ -652,6 +652,91 @@ static void test_unfinished_run_rerunnable(void)
         == 2, "a completed run was overwritten");
 }
 
+/* ---- afv analyze on a run that has not finished ---------------------------- */
+/* The size of root/sub/file, -1 if it has none. */
+static long file_size(const char *sub, const char *file)
+{
+  char p[512];
+  struct stat sb;
+  snprintf(p, sizeof p, "%s/%s/%s", root, sub, file);
+  return stat(p, &sb) == 0 ? (long)sb.st_size : -1;
+}
+
+/* analyze on a run still being written, then on the same run killed short
+** of its steps: refused (exit 1, one line saying why, naming the writer's
+** process while it lives), nothing written or changed; with --partial
+** analysed from the frames so far (exit 0).  (The code before: exit 0
+** from the frames so far, without a word.) */
+static void test_analyze_refuses_unfinished_run(void)
+{
+  char out[512], want[64], *e, *before, *after;
+  long n0, n1;
+  pid_t pid = start_live_writer("an", out, sizeof out, want, sizeof want);
+  int st, waited;
+  for (waited = 0; waited < 20000 && file_size("an", "trajectory.dat")
+       < 4 * (16 + 20 * 64); waited += 5)   /* 4 frames of 64 cells */
+    sleep_ms(5);
+  st = test_sh("./afv analyze %s --steady-from 0 --lag 0.1 > /dev/null "
+               "2> %s/err.txt", out, root);
+  e = last_err();
+  CHECK(st == 1, "analyze of a live run: exit %d, want 1: %s", st, e);
+  CHECK(strstr(e, want) && strchr(e, '\n') == e + strlen(e) - 1,
+        "the message is not one line naming %s: %s", want, e);
+  CHECK(!exists("an/analysis"), "analyze of a live run wrote analysis/");
+  free(e);
+  st = test_sh("./afv analyze %s --steady-from 0 --lag 0.1 --partial "
+               "> /dev/null 2> %s/err.txt", out, root);
+  CHECK(st == 0 && exists("an/analysis/summary.txt"), "analyze --partial of "
+        "a live run: exit %d, no summary.txt", st);
+  kill(pid, SIGKILL);
+  exit_status(pid);
+  before = picture("an/analysis", &n0);
+  st = test_sh("./afv analyze %s --steady-from 0 --lag 0.1 > /dev/null "
+               "2> %s/err.txt", out, root);
+  e = last_err();
+  CHECK(st == 1 && strstr(e, "unfinished") && strstr(e, "of the 100000000"),
+        "analyze of a killed run: exit %d, want 1 saying it is unfinished: "
+        "%s", st, e);
+  after = picture("an/analysis", &n1);
+  CHECK(n0 == n1 && memcmp(before, after, (size_t)n0) == 0, "the refused "
+        "analyze changed analysis/");
+  free(e);
+  free(before);
+  free(after);
+}
+
+/* A write that fails during afv analyze (a file size limit: ulimit -f,
+** with SIGXFSZ ignored, makes write(2) fail with EFBIG, as a full disk
+** makes it fail with ENOSPC): exit 2, one line naming the file and the
+** system's reason, and the earlier analysis/ unchanged, no staging folder
+** left.  (The code before: "msd.svg: input/output error", and the files
+** written before the failing one replaced.) */
+static void test_analyze_write_error_changes_nothing(void)
+{
+  char *e, *before, *after;
+  long n0, n1;
+  int st;
+  CHECK(test_sh("./afv run " FAST " --steps 200 --out %s/full", root) == 0
+        && test_sh("./afv analyze %s/full --steady-from 0 --lag 0.5 "
+                   "> /dev/null 2>&1", root) == 0, "the run and analysis");
+  before = picture("full/analysis", &n0);
+  st = test_sh("(trap '' XFSZ; ulimit -f 1; exec ./afv analyze %s/full "
+               "--steady-from 0 --lag 1 > /dev/null) 2> %s/err.txt", root,
+               root);
+  e = last_err();
+  CHECK(st == 2, "analyze with writes failing: exit %d, want 2", st);
+  CHECK(strstr(e, "msd.svg") && strstr(e, strerror(EFBIG))
+        && strchr(e, '\n') == e + strlen(e) - 1, "the message is not one "
+        "line naming msd.svg and '%s': %s", strerror(EFBIG), e);
+  after = picture("full/analysis", &n1);
+  CHECK(n0 > 0 && n0 == n1 && memcmp(before, after, (size_t)n0) == 0,
+        "a failed analyze changed analysis/");
+  CHECK(!exists("full/analysis.tmp"), "analysis.tmp left behind");
+  free(e);
+  free(before);
+  free(after);
+}
+
 /* ---- messages ------------------------------------------------------------ */
 /* A snapshot that cannot be written: the message names the file and the
 ** reason (the code before: "DIR: cannot write the outputs"). */
@@ -727,5 +812,7 @@ void suite_runjob(void)
   RUN(test_io_error_names_file_and_reason);
   RUN(test_bounds_printed_in_full);
   RUN(test_lag_printed_in_full);
+  RUN(test_analyze_refuses_unfinished_run);
+  RUN(test_analyze_write_error_changes_nothing);
   test_sh("rm -rf %s", root);
 }

@@ -306,6 +306,43 @@ static void sweep_of_cells_files(void)
   CHECK(afv("collect %s/cf") == 0, "a sweep of cells files: %s", err_text);
 }
 
+/* A value longer than a sweep holds (63 bytes), given as it is or as a
+** cells file whose absolute path (what the jobs name) is that long: one
+** line naming the key and the limit, exit 2, no DIR.  (The code before:
+** "value 1 of the list is too long" for one value, and "Invalid argument"
+** for a short relative path with a long absolute one.) */
+static void sweep_value_too_long(void)
+{
+  char name[64], cwd[512], cmd[1400];
+  const char *forms[3] = {"--cells %s/%s", "--cells %s/five.txt,%s/%s",
+                          "--cells %s"};
+  int k;
+  if (!have_afv() || !getcwd(cwd, sizeof cwd)) return;
+  memset(name, 'c', 44);     /* 48 bytes; base/NAME more than 63 */
+  snprintf(name + 44, sizeof name - 44, ".txt");
+  write_rel(name, "# x y\n1 1\n3 1\n");
+  write_rel("five.txt", "# x y\n1 1\n3 1\n1 3\n3 3\n5 5\n");
+  for (k = 0; k < 3; k++) {
+    char opt[256], se[128];
+    int st;
+    if (k == 0) snprintf(opt, sizeof opt, forms[0], base, name);
+    else if (k == 1) snprintf(opt, sizeof opt, forms[1], base, base, name);
+    else snprintf(opt, sizeof opt, forms[2], name);  /* relative to base */
+    snprintf(se, sizeof se, "%s/stderr", base);
+    snprintf(cmd, sizeof cmd, "cd %s && %s/afv sweep --out %s/long %s "
+             "--steps 20 --frame_every 10 >/dev/null 2>%s", base, cwd, base,
+             opt, se);
+    st = system(cmd);
+    slurp(se, err_text);
+    CHECK(st != -1 && WIFEXITED(st) && WEXITSTATUS(st) == 2, "'%s': not "
+          "exit 2", opt);
+    CHECK(count_lines(err_text) == 1 && strstr(err_text, "--cells ")
+          && strstr(err_text, "63 bytes"), "'%s': not one line naming "
+          "--cells and the 63 bytes: %s", opt, err_text);
+    CHECK(!exists("long"), "'%s': DIR created", opt);
+  }
+}
+
 /* ---- collect ------------------------------------------------------------------ */
 /* A finished run of 10 cells and 20 steps (3 frames) in c/template: the
 ** run of every fake job. */
@@ -773,6 +810,7 @@ void suite_sweep(void)
   RUN(sweep_bad_values);
   RUN(sweep_slurm_and_reanalyze);
   RUN(sweep_of_cells_files);
+  RUN(sweep_value_too_long);
   RUN(collect_known_summaries);
   RUN(collect_verifies_jobs);
   RUN(boundary_fit_recovers);

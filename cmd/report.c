@@ -11,6 +11,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <string.h>
+#include <dirent.h>
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <time.h>
@@ -26,7 +27,8 @@
 
 static const char *analyze_usage =
   "usage: afv analyze DIR [--lag L] [--steady-from T] [--l L] [--v0 V]"
-  " [--Dr D]\n\n"
+  " [--Dr D]\n"
+  "                   [--partial]\n\n"
   "Reads DIR/trajectory.dat (and l, v0, Dr from DIR/params.txt; options\n"
   "override) and writes DIR/analysis/:\n"
   "  summary.txt  KEY VALUE: steady means and standard deviations of\n"
@@ -53,7 +55,11 @@ static const char *analyze_usage =
   "  --v0 V           self-propulsion speed for D_0 (default: params.txt,\n"
   "                   else 0.5)\n"
   "  --Dr D           rotational diffusion for D_0 (default: params.txt,\n"
-  "                   else 0.1)\n";
+  "                   else 0.1)\n"
+  "  --partial        analyse a run that has not finished (its checkpoint\n"
+  "                   short of its steps, or afv run still writing in DIR)\n"
+  "                   from the frames it has so far; without it such a run\n"
+  "                   is refused, exit status 1, nothing written\n";
 
 
 /* The steady window [steady_from, end] must hold two frames, and a lag
@@ -105,9 +111,12 @@ static void warn_if_lag_unsupported(const afv_analysis *a, double lag)
             m->samples[k] / a->n, MIN_LAG_ORIGINS);
 }
 
-/* The pictures of an analysis, each written atomically into out: the
-** numbers come from analysis.c, the drawing from svg.c. */
-static int analyze_plots(const char *out, const afv_analysis *a)
+/* The pictures of an analysis, written into dir (the staging folder): the
+** numbers come from analysis.c, the drawing from svg.c.  On failure one
+** line names the file and the system's reason (ENOSPC: "No space left on
+** device", not "input/output error"). */
+static int analyze_plots(const char *dir, const afv_analysis *a,
+                         const char *keep)
 {
   static const char *names[3] = {"msd.svg", "series.svg", "csd.svg"};
   int (*const draw[3])(FILE *, const afv_analysis *) = {
@@ -117,41 +126,106 @@ static int analyze_plots(const char *out, const afv_analysis *a)
   int k;
   for (k = 0; k < 3; k++) {
     FILE *fp;
-    int st;
-    snprintf(path, sizeof path, "%s/%s", out, names[k]);
+    int st, why;
+    snprintf(path, sizeof path, "%s/%s", dir, names[k]);
     if (!(fp = afv_atomic_open(path, tmp, sizeof tmp))) {
-      fprintf(stderr, "afv analyze: %s: cannot create: %s\n", path,
-              strerror(errno));
+      fprintf(stderr, "afv analyze: %s: cannot create: %s (%s is "
+              "unchanged)\n", path, strerror(errno), keep);
       return EXIT_BAD_INPUT;
     }
-    if ((st = draw[k](fp, a)) != AFV_OK) {   /* the old file stays */
+    st = draw[k](fp, a);
+    why = errno;                       /* a failed write's reason */
+    if (st != AFV_OK) {
       fclose(fp);
       remove(tmp);
+      errno = why;
     } else {
       st = afv_atomic_commit(fp, tmp, path);
     }
     if (st != AFV_OK) {
-      fprintf(stderr, "afv analyze: %s: %s\n", path, afv_strerror(st));
+      fprintf(stderr, "afv analyze: %s: cannot write: %s (%s is "
+              "unchanged)\n", path, st == AFV_EIO ? strerror(errno)
+              : afv_strerror(st), keep);
       return EXIT_BAD_INPUT;
     }
   }
   return 0;
 }
 
-static int analyze_write(const char *dir, const afv_analysis *a)
+/* Removes the files in the staging folder dir (left by an analyze that was
+** killed or failed), and dir itself if rmdir_too. */
+static void stage_clear(const char *dir, int rmdir_too)
 {
-  char out[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
-  snprintf(out, sizeof out, "%s/analysis", dir);
+  char path[RUN_PATH_MAX + 320];
+  DIR *d = opendir(dir);
+  struct dirent *e;
+  while (d && (e = readdir(d)))
+    if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0) {
+      snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+      remove(path);
+    }
+  if (d) closedir(d);
+  if (rmdir_too) rmdir(dir);
+}
+
+/* Moves every file of the staging folder into out, summary.txt last (the
+** sign that an analysis is complete).  0, or EXIT_BAD_INPUT with a line. */
+static int stage_commit(const char *stage, const char *out)
+{
+  char from[RUN_PATH_MAX + 320], to[RUN_PATH_MAX + 320];
+  DIR *d;
+  struct dirent *e;
+  int last;
   if (mkdir(out, 0777) != 0 && errno != EEXIST) {
     fprintf(stderr, "afv analyze: cannot create %s: %s\n", out,
             strerror(errno));
     return EXIT_BAD_INPUT;
   }
-  /* the plots first: afv_analysis_write writes summary.txt last, the
-  ** sign that the analysis is complete */
-  if (analyze_plots(out, a) != 0) return EXIT_BAD_INPUT;
-  if (afv_analysis_write(a, out, err, sizeof err) != AFV_OK)
-    return bad_input(err);
+  for (last = 0; last < 2; last++) {
+    if (!(d = opendir(stage))) break;
+    while ((e = readdir(d)))
+      if (e->d_name[0] != '.'
+          && (strcmp(e->d_name, "summary.txt") == 0) == last) {
+        snprintf(from, sizeof from, "%s/%s", stage, e->d_name);
+        snprintf(to, sizeof to, "%s/%s", out, e->d_name);
+        if (rename(from, to) != 0) {
+          fprintf(stderr, "afv analyze: cannot move %s to %s: %s\n", from,
+                  to, strerror(errno));
+          closedir(d);
+          return EXIT_BAD_INPUT;
+        }
+      }
+    closedir(d);
+  }
+  rmdir(stage);
+  return 0;
+}
+
+/* Writes the analysis into DIR/analysis.tmp/, then, once every file is
+** written, moves them into DIR/analysis/: a full disk or any other write
+** error leaves DIR/analysis/ as it was. */
+static int analyze_write(const char *dir, const afv_analysis *a)
+{
+  char out[RUN_PATH_MAX + 32], stage[RUN_PATH_MAX + 32];
+  char err[RUN_PATH_MAX + 128];
+  snprintf(out, sizeof out, "%s/analysis", dir);
+  snprintf(stage, sizeof stage, "%s/analysis.tmp", dir);
+  stage_clear(stage, 0);
+  if (mkdir(stage, 0777) != 0 && errno != EEXIST) {
+    fprintf(stderr, "afv analyze: cannot create %s: %s\n", stage,
+            strerror(errno));
+    return EXIT_BAD_INPUT;
+  }
+  if (analyze_plots(stage, a, out) != 0) {
+    stage_clear(stage, 1);
+    return EXIT_BAD_INPUT;
+  }
+  if (afv_analysis_write(a, stage, err, sizeof err) != AFV_OK) {
+    stage_clear(stage, 1);
+    fprintf(stderr, "afv analyze: %s (%s is unchanged)\n", err, out);
+    return EXIT_BAD_INPUT;
+  }
+  if (stage_commit(stage, out) != 0) return EXIT_BAD_INPUT;
   printf("frames %d (steady from %d)\nngc_frac_mean %.6g\nn_clusters_mean "
          "%.6g\nomega_mean %.6g\nt1_final %g\nD_s %.6g\nD_eff %.6g\n"
          "tau_NGC %.6g\nt1_rate %.6g\nmsd_beta %.6g\nwritten: %s/\n",
@@ -182,6 +256,57 @@ static int run_dir_readable(const char *dir)
   return 1;
 }
 
+/* 1 if the run in dir has not finished, with the reason in why: afv run
+** still writes in it (it holds the lock on observables.csv), or its
+** checkpoint is short of the steps params.txt asks for (or missing, or
+** unreadable), or it stopped before writing final.svg, its last output.
+** 0 if it finished, or if dir holds no afv run's params.txt with steps (a
+** trajectory from elsewhere: nothing to compare with). */
+static int run_unfinished(const char *dir, char *why, size_t len)
+{
+  char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
+  double steps;
+  long pid = run_lock_holder(dir);
+  afv_checkpoint ck;
+  long long at;
+  if (pid > 0) {
+    snprintf(why, len, "the run is still being written by process %ld (it "
+             "holds the lock on %s/observables.csv)", pid, dir);
+    return 1;
+  }
+  snprintf(path, sizeof path, "%s/params.txt", dir);
+  if (run_param(path, "steps", &steps) != 1) return 0;
+  snprintf(path, sizeof path, "%s/checkpoint.txt", dir);
+  if (afv_checkpoint_read(path, &ck, err, sizeof err) != AFV_OK) {
+    snprintf(why, len, "the run's end is unknown: %s", err);
+    return 1;
+  }
+  at = ck.step;
+  afv_checkpoint_free(&ck);
+  snprintf(path, sizeof path, "%s/final.svg", dir);
+  if (at >= (long long)steps && access(path, F_OK) == 0) return 0;
+  snprintf(why, len, "the run is unfinished: checkpoint.txt is at step %lld "
+           "of the %.0f in params.txt%s", at, steps, at >= (long long)steps
+           ? ", and final.svg, its last output, is missing" : "");
+  return 1;
+}
+
+/* Refuses an unfinished run (exit EXIT_RUN_UNFINISHED), or with --partial
+** (accept) says that its frames so far are analysed; 0 to go on. */
+static int refuse_unfinished(const char *dir, int accept)
+{
+  char why[2 * RUN_PATH_MAX + 256];
+  if (!run_unfinished(dir, why, sizeof why)) return 0;
+  if (accept) {
+    fprintf(stderr, "afv analyze: warning: %s: %s: analysing its frames so "
+            "far (--partial)\n", dir, why);
+    return 0;
+  }
+  fprintf(stderr, "afv analyze: %s: %s; nothing written (--partial "
+          "analyses its frames so far)\n", dir, why);
+  return EXIT_RUN_UNFINISHED;
+}
+
 int cmd_analyze(int argc, char **argv)
 {
   const char *dir = NULL;
@@ -190,11 +315,15 @@ int cmd_analyze(int argc, char **argv)
   double l_o = NAN, v0_o = NAN, Dr_o = NAN;   /* NAN: option not given */
   afv_traj_file tr;
   afv_analysis a;
-  int k, st, bad = 0, lag_given;
+  int k, st, bad = 0, lag_given, partial = 0;
   for (k = 1; k < argc && !bad; k++) {
     if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
       fputs(analyze_usage, stdout);
       return 0;
+    }
+    if (strcmp(argv[k], "--partial") == 0) {
+      partial = 1;
+      continue;
     }
     if (double_option(argc, argv, &k, "--lag", &lag, &bad)
         || double_option(argc, argv, &k, "--steady-from", &from, &bad)
@@ -227,6 +356,7 @@ int cmd_analyze(int argc, char **argv)
     fprintf(stderr, "afv analyze: --Dr: %g: must be >= 0\n", Dr);
     return EXIT_BAD_INPUT;
   }
+  if ((st = refuse_unfinished(dir, partial)) != 0) return st;
   snprintf(path, sizeof path, "%s/trajectory.dat", dir);
   if (afv_traj_open(&tr, path, err, sizeof err) != AFV_OK)
     return bad_input(err);

@@ -28,8 +28,9 @@
 #define SWEEP_MAX_JOBS 100000
 /* At most this many --KEY options. */
 #define SWEEP_MAX_KEYS 64
-/* Longest value text of one grid point. */
-#define VALUE_MAX 64
+/* Longest value text of one grid point (bytes), and its buffer size. */
+#define VALUE_LEN_MAX 63
+#define VALUE_MAX (VALUE_LEN_MAX + 1)
 /* Tasks of one SLURM job array at most, by default (SLURM's default
 ** MaxArraySize is 1001: indices 0 .. 1000). */
 #define SLURM_ARRAY_MAX 1000
@@ -75,8 +76,10 @@ static const char *sweep_usage =
   "  --KEY v          fixed\n"
   "  --seeds K        K replicas per state point, seeds 1..K (default 1),\n"
   "                   unless --seed lists the seeds\n"
-  "Two values of a key that are the same number (4, 4.0) or text, or a\n"
-  "value with a space or a control character, are refused.\n"
+  "Two values of a key that are the same number (4, 4.0) or text, a\n"
+  "value with a space or a control character, and a value longer than\n"
+  AFV_STR(VALUE_LEN_MAX) " bytes (a cells file's absolute path included) are"
+  " refused.\n"
   "Options:\n"
   "  --out DIR        the sweep's folder (created with its parents)\n"
   "  --steady-from T  --lag L   passed to afv analyze (steady window, lag\n"
@@ -157,6 +160,17 @@ static int expand_range(sweep_axis *x, char *err, size_t errlen)
   return 1;
 }
 
+/* "is M bytes long, more than ..." for a value of key longer than a
+** sweep's values may be, into buf; returns buf. */
+static const char *too_long(const char *key, size_t m, char *buf, size_t len)
+{
+  snprintf(buf, len, "is %lu bytes long, more than the %d bytes a sweep's "
+           "value may have%s", (unsigned long)m, VALUE_LEN_MAX,
+           strcmp(key, "cells") ? "" : " (give the file by a shorter "
+           "absolute path, such as a symbolic link's)");
+  return buf;
+}
+
 /* v1,v2,... (or one value) -> the values as given. */
 static int expand_list(sweep_axis *x, char *err, size_t errlen)
 {
@@ -167,9 +181,16 @@ static int expand_list(sweep_axis *x, char *err, size_t errlen)
     return 0;
   for (p = x->text; k < n; k++) {
     size_t m = strcspn(p, ",");
-    if (m == 0 || m >= VALUE_MAX) {
-      afv_errorf(err, errlen, "--%s %s: value %d of the list is %s", x->key,
-                 x->text, k + 1, m ? "too long" : "empty");
+    if (m == 0) {
+      afv_errorf(err, errlen, "--%s %s: value %d of the list is empty",
+                 x->key, x->text, k + 1);
+      return 0;
+    }
+    if (m >= VALUE_MAX) {
+      char why[160], which[40] = "the value";
+      if (n > 1) snprintf(which, sizeof which, "value %d of the list", k + 1);
+      afv_errorf(err, errlen, "--%s %s: %s %s", x->key, x->text, which,
+                 too_long(x->key, m, why, sizeof why));
       return 0;
     }
     memcpy(x->value[k], p, m);
@@ -998,10 +1019,16 @@ static int absolute_cells(sweep_opts *o, char *buf)
     sweep_axis *x = &o->ax[k];
     for (v = 0; !strcmp(x->key, "cells") && v < x->n; v++) {
       if (x->value[v][0] == '/' || !strcmp(x->value[v], "none")) continue;
-      errno = 0;
-      if (!realpath(x->value[v], buf) || strlen(buf) >= VALUE_MAX) {
+      if (!realpath(x->value[v], buf)) {
         fprintf(stderr, "afv sweep: --cells %s: %s\n", x->value[v],
-                errno ? strerror(errno) : "absolute path too long");
+                strerror(errno));
+        return 0;
+      }
+      if (strlen(buf) >= VALUE_MAX) {   /* the jobs name it by this path */
+        char why[160];
+        fprintf(stderr, "afv sweep: --cells %s: its absolute path %s %s\n",
+                x->value[v], buf, too_long("cells", strlen(buf), why,
+                                           sizeof why));
         return 0;
       }
       snprintf(x->value[v], VALUE_MAX, "%s", buf);

@@ -1943,8 +1943,9 @@ static int report_in_use(const char *dir, long pid)
 
 /* The process holding DIR's lock, or 0 (none, or no lock file: nothing is
 ** created).  Only for a process that does not hold the lock itself:
-** closing any descriptor of the file drops the caller's own locks on it. */
-static long lock_holder(const char *dir)
+** closing any descriptor of the file drops the caller's own locks on it.
+** (afv analyze asks it too: a run still being written is unfinished.) */
+long run_lock_holder(const char *dir)
 {
   char path[RUN_PATH_MAX + 32];
   struct flock fl;
@@ -2034,7 +2035,7 @@ static int holds_run(const run_state *R)
   long pid;
   snprintf(path, sizeof path, "%s/checkpoint.txt", R->dir);
   if (access(path, F_OK) != 0) return 0;
-  if (R->lock_fd < 0 && (pid = lock_holder(R->dir)) > 0)
+  if (R->lock_fd < 0 && (pid = run_lock_holder(R->dir)) > 0)
     report_in_use(R->dir, pid);
   else
     fprintf(stderr, "afv run: %s already holds a run (checkpoint.txt): "
@@ -2181,7 +2182,7 @@ static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
   long holder;
   if (strlen(a->out) > RUN_PATH_MAX - 64) return bad_input("--out: path too long");
   snprintf(R->dir, sizeof R->dir, "%s", a->out);
-  if ((holder = lock_holder(R->dir)) > 0)   /* at once, before the start */
+  if ((holder = run_lock_holder(R->dir)) > 0)   /* at once, before the start */
     return report_in_use(R->dir, holder);
   if ((st = requested_cfg(&R->cfg, &R->cells, a, argc, argv, set)) != 0)
     return st;

@@ -121,6 +121,22 @@ bad:
   return 0;
 }
 
+/* A sweep's table.csv (afv collect) with one state point or more; else
+** one line naming the file and what it lacks (a header only: no run of the
+** sweep finished and verified). */
+static int table_read(const char *sweep_dir, csv *t)
+{
+  char path[PATH_LEN];
+  snprintf(path, sizeof path, "%s/table.csv", sweep_dir);
+  if (!csv_read(path, t)) return 0;
+  if (t->nrow > 0) return 1;
+  fprintf(stderr, "afv paper: %s: no state point, only a header (no run of "
+          "%s finished and passed afv collect's checks: see %s/missing.txt)"
+          "\n", path, sweep_dir, sweep_dir);
+  csv_free(t);
+  return 0;
+}
+
 static int csv_col(const csv *t, const char *name)
 {
   int k;
@@ -199,8 +215,7 @@ static int plane_read(const char *out, plane *P)
   int r, q, cp, cv, cq[N_Q], cs[N_Q];
   memset(P, 0, sizeof *P);
   snprintf(P->dir, sizeof P->dir, "%s/grid", out);
-  snprintf(path, sizeof path, "%s/table.csv", P->dir);
-  if (!csv_read(path, &t)) return 0;
+  if (!table_read(P->dir, &t)) return 0;
   snprintf(path, sizeof path, "%s/points.csv", P->dir);
   if (!csv_read(path, &P->points)) { csv_free(&t); return 0; }
   cp = csv_col(&t, "P0");
@@ -345,16 +360,33 @@ static void read_scale(const char *out)
   smoke = !strcmp(word, "smoke");
 }
 
-/* How the grid's runs were integrated, from the first job's keys
-** (OUT/grid/jobs/0001.conf: integrator, dt, cap, max_move), e.g.
-** "integrator euler, dt 0.01, exact force"; every claim's note ends with
-** it, since N_GC/N and what depends on it move with dt
-** (doc/reproduction/convergence.md). */
-static char integration[128] = "integration not recorded";
+/* The afv version of the grid's runs and how they were integrated, from
+** the first job's keys (OUT/grid/jobs/0001.conf: integrator, dt, cap,
+** max_move), e.g. "afv 0.3.0, integrator euler, dt 0.01, exact force";
+** every claim's note ends with it, since N_GC/N and what depends on it
+** move with dt (doc/reproduction/convergence.md). */
+static char integration[320] = "integration not recorded";
+
+/* "afv VERSION" of the program that wrote the grid's first run (its
+** params.txt's first line, "... written by afv 0.3.0 (commit ...)": the
+** version without the commit), or "afv version not recorded". */
+static void read_version(const char *out, char *buf, size_t len)
+{
+  char path[PATH_LEN], line[512], version[64];
+  const char *at;
+  FILE *fp;
+  snprintf(buf, len, "afv version not recorded");
+  snprintf(path, sizeof path, "%s/grid/runs/0001/params.txt", out);
+  if (!(fp = fopen(path, "r"))) return;
+  if (fgets(line, sizeof line, fp) && (at = strstr(line, "written by afv "))
+      && sscanf(at + 15, "%63[^ (:\n]", version) == 1)
+    snprintf(buf, len, "afv %s", version);
+  fclose(fp);
+}
 
 static void read_integration(const char *out)
 {
-  char path[PATH_LEN], line[256], key[64], val[64];
+  char path[PATH_LEN], line[256], key[64], val[64], version[96], how[160];
   char integ[64] = "substeps", dt[64] = "?", cap[64] = "0", mm[64] = "?";
   FILE *fp;
   snprintf(path, sizeof path, "%s/grid/jobs/0001.conf", out);
@@ -368,15 +400,14 @@ static void read_integration(const char *out)
     }
   fclose(fp);
   if (!strcmp(integ, "substeps"))
-    snprintf(integration, sizeof integration, "integrator substeps, dt %s, "
-             "max_move %s", dt, mm);
+    snprintf(how, sizeof how, "integrator substeps, dt %.20s, max_move %.20s",
+             dt, mm);
   else
-    snprintf(integration, sizeof integration, "integrator %s, dt %s, %s",
-             integ, dt, strtod(cap, NULL) > 0 ? "cap" : "exact force");
-  if (strtod(cap, NULL) > 0) {
-    size_t m = strlen(integration);
-    snprintf(integration + m, sizeof integration - m, " %s", cap);
-  }
+    snprintf(how, sizeof how, "integrator %.20s, dt %.20s, %s%.20s", integ,
+             dt, strtod(cap, NULL) > 0 ? "cap " : "exact force",
+             strtod(cap, NULL) > 0 ? cap : "");
+  read_version(out, version, sizeof version);
+  snprintf(integration, sizeof integration, "%s, %s", version, how);
 }
 
 /* nc curves y[c n + k] against x[k] (or x[c n + k] if xper), labelled,
@@ -1360,8 +1391,7 @@ static int fss_read(const char *out, fss *F)
   static const char *const keys[3] = {"N", "P0", "v0"};
   memset(F, 0, sizeof *F);
   snprintf(dir, sizeof dir, "%s/fss", out);
-  snprintf(path, sizeof path, "%s/table.csv", dir);
-  if (!csv_read(path, &t)) return 0;
+  if (!table_read(dir, &t)) return 0;
   snprintf(path, sizeof path, "%s/points.csv", dir);
   if (!csv_read(path, &pts)) { csv_free(&t); return 0; }
   cn = csv_col(&t, "N"); cp = csv_col(&t, "P0"); cv = csv_col(&t, "v0");
@@ -1555,13 +1585,15 @@ static const char *paper_usage =
 "  OUT/claims.csv           claim,paper,afv,afv_err,agrees,note: each\n"
 "                           number the paper states and afv's; numeric\n"
 "                           claims agree when |afv - paper| <= 2 sqrt(\n"
-"                           afv_err^2 + paper_err^2)\n"
+"                           afv_err^2 + paper_err^2); each note ends\n"
+"                           with the runs' afv version and integration\n"
 "When OUT/grid/scale says smoke (make paper SCALE=smoke), every agrees\n"
 "is 'not established (smoke run)' and every figure says SMOKE RUN.\n"
 "  OUT/fss.csv              the finite-size table\n"
 "  OUT/halves.csv           the grid's N_GC/N over each half of the steady\n"
 "                           window, and v0* from each (a run-length test)\n"
-"Exit status: 0 written, 2 a sweep's table is missing or unreadable.\n";
+"Exit status: 0 written, 2 a sweep's table is missing, unreadable or\n"
+"a header only (no run finished).\n";
 
 int cmd_paper(int argc, char **argv)
 {

@@ -11,8 +11,9 @@
 **   collect.c  collect: a sweep's table, missing jobs, fits and figures
 **   paper.c    paper: the paper's figures and claims table (make paper)
 **
-** Exit status of every command: 0 success, 1 a check failed, 2 bad input
-** or options, 3 a run stopped on an unstable step.  Only these files decide
+** Exit status of every command: 0 success, 1 a check failed (or jobs are
+** missing, or the run analysed is unfinished), 2 bad input or options, 3 a
+** run stopped on an unstable step.  Only these files decide
 ** to exit; the library returns status codes.
 */
 #ifndef AFV_CLI_H
@@ -25,6 +26,8 @@
 #define EXIT_BAD_INPUT    2
 #define EXIT_UNSTABLE     3
 #define EXIT_CHECK_UNSURE 4   /* afv check: finite differences cannot decide */
+#define EXIT_RUN_UNFINISHED 1 /* afv analyze: the run has not finished and
+                              ** --partial was not given */
 
 /* The text of a macro's value: AFV_STR(AFV_MAX_SUBSTEPS) is "64".  Help
 ** texts quote the code's constants through it, so they cannot drift. */
@@ -119,5 +122,8 @@ int run_param(const char *path, const char *key, double *v);
 int read_run_params(const char *path, double *l, double *v0, double *Dr);
 /* l of the run whose trajectory is at path, from params.txt beside it. */
 void run_l_beside(const char *path, double *l);
+/* The process id of the afv run writing in DIR (it holds the lock on
+** DIR/observables.csv), or 0 if none does. */
+long run_lock_holder(const char *dir);
 
 #endif

@@ -1,0 +1,44 @@
+#!/bin/sh
+# tools/msd_plateau.sh SWEEP -- the cage-relative MSD's plateau of every
+# finished run of an afv sweep, against P0 and v0 (issue: the paper's
+# D_eff = 10^-8 floor for glassy states).
+#
+# For each run with analysis/summary.txt it prints one CSV row:
+#   id,P0,v0,seed,lag,msd_rel,plateau_over_v0sq,D_eff,D_eff_from_plateau,msd_beta
+# lag: D_s's lag (summary's D_s_lag); msd_rel: the relative MSD at that
+# lag (analysis/msd.csv); plateau_over_v0sq = msd_rel / v0^2.  A caged
+# state's relative MSD stops growing at a plateau set by how far a cell
+# rattles in its cage, which grows as v0^2, and D_0 = v0^2 / (2 Dr) grows
+# the same way, so D_eff = msd_rel / (4 lag D_0) of a caged state does not
+# fall with v0: D_eff_from_plateau = plateau_over_v0sq * 2 Dr / (4 lag)
+# is that value (Dr from the run's params.txt).  Rows are in points.csv's
+# order; runs without a summary are left out (their count goes to stderr).
+set -e
+SWEEP=${1:?usage: tools/msd_plateau.sh SWEEP_DIR}
+[ -f "$SWEEP/points.csv" ] || { echo "tools/msd_plateau.sh: $SWEEP/points.csv: no such file (not an afv sweep)" >&2; exit 2; }
+echo "id,P0,v0,seed,lag,msd_rel,plateau_over_v0sq,D_eff,D_eff_from_plateau,msd_beta"
+missing=0
+# points.csv: id,P0,v0,seed (header first)
+tail -n +2 "$SWEEP/points.csv" | while IFS=, read -r id P0 v0 seed; do
+  run=$SWEEP/runs/$id
+  if [ ! -f "$run/analysis/summary.txt" ]; then
+    missing=$((missing + 1)); echo "$missing" > "${TMPDIR:-/tmp}/msd_plateau.$$"
+    continue
+  fi
+  awk -v id="$id" -v P0="$P0" -v v0="$v0" -v seed="$seed" '
+    FILENAME ~ /params.txt$/ && $1 == "Dr" { Dr = $2 }
+    FILENAME ~ /summary.txt$/ { s[$1] = $2 }
+    FILENAME ~ /msd.csv$/ && FNR > 1 {
+      split($0, f, ","); if (f[1] + 0 == s["D_s_lag"] + 0) rel = f[3] }
+    END {
+      if (rel == "" || v0 + 0 == 0) exit
+      p = rel / (v0 * v0)
+      printf "%s,%s,%s,%s,%s,%.6g,%.6g,%s,%.6g,%s\n", id, P0, v0, seed,
+             s["D_s_lag"], rel, p, s["D_eff"], p * 2 * Dr / (4 * s["D_s_lag"]),
+             s["msd_beta"]
+    }' "$run/params.txt" "$run/analysis/summary.txt" "$run/analysis/msd.csv"
+done
+if [ -f "${TMPDIR:-/tmp}/msd_plateau.$$" ]; then
+  echo "tools/msd_plateau.sh: $(cat "${TMPDIR:-/tmp}/msd_plateau.$$") runs of $SWEEP have no analysis yet (left out)" >&2
+  rm -f "${TMPDIR:-/tmp}/msd_plateau.$$"
+fi
