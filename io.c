@@ -11,11 +11,17 @@
 ** file only, each line whole, no NUL byte; every field is parsed whole and
 ** range-checked, and a count is checked against what the file can hold
 ** before anything is allocated for it.  Messages: "FILE:LINE: field: what".
+**
+** Invariant of an open afv_lines (asserted by afv_lines_next in a build
+** without -DNDEBUG): the unread part of its block is buf[pos .. fill),
+** pos <= fill <= AFV_LINES_BLOCK; a line handed out is NUL-ended at len,
+** len <= AFV_LINE_MAX.
 */
 #define _POSIX_C_SOURCE 200809L  /* stat: readers refuse directories, devices */
 #include "afv.h"
 #include "afv_tool.h"
 
+#include <assert.h>
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -118,6 +124,7 @@ int afv_lines_next(afv_lines *L, char *err, size_t errlen)
   for (;;) {
     const char *at = L->buf + L->pos, *nl, *nul;
     size_t k;
+    assert(L->pos <= L->fill && L->fill <= sizeof L->buf);
     if (L->pos == L->fill) {
       L->pos = 0;
       L->fill = fread(L->buf, 1, sizeof L->buf, L->fp);
@@ -156,6 +163,7 @@ int afv_lines_next(afv_lines *L, char *err, size_t errlen)
     L->lineno--;
     return 0;
   }
+  assert(L->len <= AFV_LINE_MAX && L->line[L->len] == 0);
   return 1;
 }
 
