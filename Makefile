@@ -29,8 +29,11 @@
 # reads errno) take 2-4% fewer instructions per step than -O2 (callgrind)
 # and give the same result bits: neither changes floating-point semantics
 # (-std=c99 also keeps gcc from contracting a*b+c into an fma).
+# -DNDEBUG: the library's asserts of its invariants (doc/design.md) cost
+# 9% more instructions per step; a build with its own CFLAGS (make
+# CFLAGS="-O1 -g -std=c99", .ci/run's sanitizer section) checks them.
 CC      ?= cc
-CFLAGS  ?= -O3 -fno-math-errno -std=c99 -pedantic -Wall -Wextra
+CFLAGS  ?= -O3 -fno-math-errno -std=c99 -pedantic -Wall -Wextra -DNDEBUG
 LDLIBS  = -lm
 ifeq ($(OPENMP),1)
 CFLAGS  += -fopenmp
@@ -38,8 +41,9 @@ LDLIBS  += -fopenmp
 endif
 
 # The library, one file per idea (doc/reference.md has the reading order);
-# afv_internal.h, fastmath.h and rng.h are shared by its files only (not
-# part of the API, afv.h).
+# afv_internal.h, fastmath.h and rng.h are shared by its files only, and
+# afv_tool.h holds what only the program uses (line readers, checkpoints,
+# plots, fits): none of them is installed, afv.h is the API.
 LIB_SRC  = neighbours.c geom.c fastmath.c afv.c dynamics.c substeps.c rng.c \
            analysis.c svg.c io.c phase.c api.c fits.c relax_fire.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
@@ -65,7 +69,7 @@ BUILD_FLAGS = $(CC) $(CFLAGS) $(LDLIBS)
 
 FORCE:
 
-$(LIB_OBJ): afv_internal.h fastmath.h rng.h
+$(LIB_OBJ): afv_internal.h afv_tool.h fastmath.h rng.h
 
 libafv.a: $(LIB_OBJ)
 	$(AR) rcs $@ $(LIB_OBJ)
@@ -79,12 +83,12 @@ CLI_OBJ  = $(CLI_SRC:.c=.o)
 afv: $(CLI_OBJ) libafv.a .build-flags
 	$(CC) $(CFLAGS) -o $@ $(CLI_OBJ) libafv.a $(LDLIBS)
 
-%.o: %.c afv.h afv_internal.h .build-flags
+%.o: %.c afv.h afv_internal.h afv_tool.h .build-flags
 	$(CC) $(CFLAGS) -c -o $@ $<
 
 $(CLI_OBJ): cmd/cli.h
 
-cmd/%.o: cmd/%.c afv.h afv_internal.h cmd/cli.h .build-flags
+cmd/%.o: cmd/%.c afv.h afv_internal.h afv_tool.h cmd/cli.h .build-flags
 	$(CC) $(CFLAGS) -I. -c -o $@ $<
 
 # The git commit of the sources, when built from a git checkout ("-dirty"
@@ -99,7 +103,8 @@ AFV_COMMIT := $(shell git rev-parse --short=12 HEAD 2>/dev/null)$(shell \
 	@printf '%s\n' '$(AFV_COMMIT)' | cmp -s - $@ \
 	  || printf '%s\n' '$(AFV_COMMIT)' > $@
 
-cmd/cli.o: cmd/cli.c afv.h afv_internal.h cmd/cli.h .build-flags .build-commit
+cmd/cli.o: cmd/cli.c afv.h afv_internal.h afv_tool.h cmd/cli.h .build-flags \
+           .build-commit
 	$(CC) $(CFLAGS) -I. $(if $(AFV_COMMIT),-DAFV_COMMIT='"$(AFV_COMMIT)"') \
 	  -c -o $@ cmd/cli.c
 
@@ -108,7 +113,7 @@ cmd/cli.o: cmd/cli.c afv.h afv_internal.h cmd/cli.h .build-flags .build-commit
 # keep their objects (and their speed) exactly as without it.
 PIC_OBJ  = $(LIB_SRC:.c=.pic.o)
 
-%.pic.o: %.c afv.h afv_internal.h .build-flags
+%.pic.o: %.c afv.h afv_internal.h afv_tool.h .build-flags
 	$(CC) $(CFLAGS) -fPIC -c -o $@ $<
 
 # Its SONAME is libafv.so.MAJOR (AFV_VERSION_MAJOR in afv.h): a program
@@ -132,7 +137,8 @@ python-test: afv libafv.so python/check_driver
 	$(PYTHON) python/test_afv.py --driver python/check_driver --afv ./afv \
 	  --no-numpy
 
-test/run_tests: $(TEST_SRC) test/test.h libafv.a afv.h afv_internal.h .build-flags
+test/run_tests: $(TEST_SRC) test/test.h libafv.a afv.h afv_internal.h \
+                 afv_tool.h .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ $(TEST_SRC) libafv.a $(LDLIBS)
 
 test: afv test/run_tests
@@ -152,7 +158,7 @@ run: afv
 # The benchmark (test/bench.c): one line per state and N, see its header.
 BENCH_STATES = random cluster
 
-test/bench: test/bench.c libafv.a afv.h afv_internal.h .build-flags
+test/bench: test/bench.c libafv.a afv.h afv_internal.h afv_tool.h .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ test/bench.c libafv.a $(LDLIBS)
 
 bench: test/bench
@@ -188,7 +194,7 @@ FUZZ_CFLAGS  = -O1 -g -std=c99 -fno-omit-frame-pointer \
 FUZZ_NAMES   = $(patsubst fuzz/fuzz_%.c,%,$(wildcard fuzz/fuzz_*.c))
 FUZZ_OBJ     = $(patsubst %.c,fuzz/build/%.o,$(LIB_SRC) cmd/cli.c)
 
-fuzz/build/%.o: %.c afv.h afv_internal.h fastmath.h rng.h cmd/cli.h
+fuzz/build/%.o: %.c afv.h afv_internal.h afv_tool.h fastmath.h rng.h cmd/cli.h
 	@mkdir -p $(dir $@)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -fsanitize=fuzzer-no-link -c -o $@ $<
 
@@ -198,7 +204,7 @@ fuzz/build/libafv_fuzz.a: $(FUZZ_OBJ)
 # (cmd/run.c: the config and collect harnesses include it; cmd/collect.c:
 # the collect harness)
 fuzz/build/fuzz_%: fuzz/fuzz_%.c fuzz/build/libafv_fuzz.a $(wildcard fuzz/*.h) \
-                   cmd/run.c cmd/collect.c cmd/cli.h afv.h
+                   cmd/run.c cmd/collect.c cmd/cli.h afv.h afv_tool.h
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -I. -o $@ $< \
 	  fuzz/build/libafv_fuzz.a -lm
 
@@ -260,7 +266,8 @@ paper-fss: paper-sweeps
 # resumable) and writes DIR/convergence.csv, verdicts.csv and figures/.
 CONV_OUT ?= convergence
 
-tools/convergence_plot: tools/convergence_plot.c libafv.a afv.h .build-flags
+tools/convergence_plot: tools/convergence_plot.c libafv.a afv.h afv_tool.h \
+                        .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ tools/convergence_plot.c libafv.a $(LDLIBS)
 
 convergence: afv tools/convergence_plot

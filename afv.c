@@ -54,9 +54,15 @@
 **     and the same with j and k exchanged for the motion with r_k.
 **     At a triple junction both pieces are edges, so only P changes.
 ** Every formula is checked against central differences of E in the tests.
+**
+** Invariants (asserted where relied on, in a build without -DNDEBUG): every
+** edge piece of a cell belongs to one of its own neighbour slots (its G is
+** written there), and every slot s has its reverse, nbr_rev[nbr_rev[s]] =
+** s (gather_forces pairs G_js with G_rev(s); neighbours.c).
 */
 #include "afv_internal.h"
 
+#include <assert.h>
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -286,6 +292,7 @@ void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
       prev = pc;
       continue;
     }
+    assert(pc->slot >= g->nbr_start[i] && pc->slot < g->nbr_end[i]);
     E = edge_of(g, pc->slot);
     ab = grad + 2 * pc->slot;
     area_terms(pc, wA, ab);                   /* (A) */
@@ -327,6 +334,7 @@ static void gather_forces(const afv_geom *g, int n, double *f)
       const double *e = g->edge + 4 * s;
       double a = g->grad[2*s] + g->grad[2*t];
       double bt = (g->grad[2*s+1] + g->grad[2*t+1]) / (e[2] + e[2]);
+      assert(g->nbr_rev[t] == s && g->nbr[t] == j);
       fx += a * e[0] - bt * e[1];             /* (F): F_j += G_js - G_rev(s) */
       fy += a * e[1] + bt * e[0];
     }
@@ -568,7 +576,7 @@ static double tension_scale(const afv_geom *g, int n, const afv_params *p)
 
 /* The rounding of an energy, relative to its energy_magnitude: the shapes
 ** are sums of a few dozen rounded terms. */
-#define ENERGY_ROUNDING (64 * DBL_EPSILON)
+#define ENERGY_ROUNDING AFV_SUM_ROUNDING
 
 /* Distance of c (at the origin of the local centres x, cells 1 .. m-1)
 ** to its nearest kink: min over the others of d and |d - 2l|. */

@@ -27,9 +27,17 @@
 ** contact graph has one (quadrilateral) face there, which keeps Euler's
 ** count V3 = Ec - N + 1 of a confluent cluster exact, omega = 1.  A real
 ** 4-fold vertex (edge exactly 0) is the same case.
+**
+** Invariants (asserted where relied on, in a build without -DNDEBUG):
+** partner[] is an involution, partner[partner[q]] = q (a cell has at most
+** one edge per neighbour: join_vertices identifies the two views of an
+** edge by it); the clusters partition the cells, their sizes summing to N
+** (N_GC and Omega's weights); a list of contacting pairs C is strictly
+** increasing in (i, j), i < j (afv_t1_count merges two of them).
 */
 #include "afv_internal.h"
 
+#include <assert.h>
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -319,6 +327,7 @@ static void join_vertices(afv_clusters *c, const afv_geom *g)
     for (q = g->piece_start[i]; q < g->piece_start[i] + g->n_pieces[i]; q++) {
       int nq = next_piece(g, i, q);
       if (g->pieces[q].nbr < 0) continue;
+      assert(c->partner[q] < 0 || c->partner[c->partner[q]] == q);
       if (c->partner[q] >= 0) vjoin(c->work->vparent, nq, c->partner[q]);
       if (!c->contact[q]) vjoin(c->work->vparent, q, nq);
     }
@@ -380,6 +389,29 @@ static void cluster_omega(afv_clusters *c, int n)
   c->omega = n > 0 ? sum / n : 0;
 }
 
+#ifndef NDEBUG
+/* 1 if the count clusters of c hold the n cells between them. */
+static int clusters_partition(const afv_clusters *c, int n)
+{
+  long cells = 0;
+  int k;
+  for (k = 0; k < c->count; k++) cells += c->size[k];
+  return cells == n;
+}
+
+/* 1 if the m pairs p are strictly increasing in (i, j), each with i < j. */
+static int pairs_increasing(const int *p, int m)
+{
+  int k;
+  for (k = 0; k < m; k++)
+    if (!(p[2*k] < p[2*k+1])
+        || (k > 0 && !(p[2*k-2] < p[2*k]
+                       || (p[2*k-2] == p[2*k] && p[2*k-1] < p[2*k+1]))))
+      return 0;
+  return 1;
+}
+#endif
+
 int afv_clusters_compute(afv_clusters *c, const afv_geom *g, const double *r,
                          double l, const afv_box *b)
 {
@@ -393,6 +425,7 @@ int afv_clusters_compute(afv_clusters *c, const afv_geom *g, const double *r,
   if ((st = collect_pairs(c, g)) != AFV_OK) return st;
   find_clusters(c, g, l);
   label_clusters(c, n);
+  assert(clusters_partition(c, n));
   for (k = 0; k < c->n_pairs; k++) c->ec[c->label[c->pairs[2*k]]]++;
   join_vertices(c, g);
   if ((st = count_junctions(c, g, r, b)) != AFV_OK) return st;
@@ -433,6 +466,8 @@ double afv_t1_count(const afv_t1 *t, const afv_clusters *c)
 {
   int a = 0, b = 0;
   long diff = 0;
+  assert(pairs_increasing(t->pairs0, t->n_pairs0));
+  assert(pairs_increasing(c->pairs, c->n_pairs));
   while (a < t->n_pairs0 || b < c->n_pairs) {
     int cmp;
     if (a == t->n_pairs0) cmp = 1;

@@ -21,12 +21,15 @@
 ** The random numbers (Philox4x32-10, Box-Muller): rng.h.
 **
 ** Invariant of afv_sim between calls: f, geom and geom.energy describe r.
+** afv_init_cluster's disk of radius sqrt(n sqrt(3) / (2 pi)) + 2 holds
+** at least n lattice sites (asserted).
 */
 #include "afv.h"
 #include "afv_internal.h"
 #include "fastmath.h"
 #include "rng.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -687,7 +690,8 @@ int afv_init_cluster(int n, double a, const afv_box *b, double *r)
       S[m].j = j;
       m++;
     }
-  if (m < n) {                 /* cannot happen: the disk holds >= n sites */
+  assert(m >= n);              /* the disk holds >= n sites */
+  if (m < n) {                 /* (without asserts: refused, not overrun) */
     free(S);
     return AFV_EINVAL;
   }

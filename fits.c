@@ -7,6 +7,7 @@
 ** answer is known.
 */
 #include "afv.h"
+#include "afv_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -32,7 +33,7 @@ static void line_fit(int m, const double *x, const double *y, double *slope,
   *se = m > 2 ? sqrt(rss / (m - 2) / sxx) : NAN;
 }
 
-int afv_csd_powerlaw(const double *csd, int n, int nmax, afv_powerlaw *fit)
+int afv_powerlaw_fit(const double *csd, int n, int nmax, afv_powerlaw *fit)
 {
   int lo[AFV_CSD_MAX_BINS], hi[AFV_CSD_MAX_BINS], nb, k, peak = -1, m = 0;
   double p[AFV_CSD_MAX_BINS], dens[AFV_CSD_MAX_BINS];
@@ -122,8 +123,8 @@ static double jackknife_se(int nc, const double *t)
   return sqrt((m - 1.0) / m * s);
 }
 
-int afv_common_crossing(int nc, int n, const double *x, const double *y,
-                        afv_crossing_fit *out)
+int afv_curves_cross_common(int nc, int n, const double *x, const double *y,
+                            afv_crossing_fit *out)
 {
   int *use, i;
   double *loo;
@@ -201,8 +202,8 @@ static void collapse_grid(int nc, int n, const double *x, const double *y,
                           double a_hi, double da, double *best)
 {
   double v, a, c;
-  for (v = v_lo; v <= v_hi + 1e-12; v += dv)
-    for (a = a_lo; a <= a_hi + 1e-12; a += da) {
+  for (v = v_lo; v <= v_hi + AFV_GRID_END_TOL; v += dv)
+    for (a = a_lo; a <= a_hi + AFV_GRID_END_TOL; a += da) {
       c = collapse_cost(nc, n, x, y, p, use, v, a, s);
       if (c < best[2]) { best[0] = v; best[1] = a; best[2] = c; }
     }

@@ -12,6 +12,12 @@
 ** cache of every pair (u = D/d, h = d/2, half-chord sqrt(l^2 - h^2)):
 ** neighbours.c finds them; this file starts from them.
 **
+** Invariants (asserted by afv_cell_shape in a build without -DNDEBUG):
+** it relies on the lists being sorted by direction (neighbours.c), and a
+** shape lies in the disk and is convex:  0 <= A_i <= pi l^2,
+** 0 <= L_i <= P_i <= 2 pi l  (to AFV_SUM_ROUNDING), at most one edge per
+** neighbour.
+**
 ** Algorithm, per cell, in coordinates centred on r_i (afv_cell_shape):
 **   1. Every neighbour j's bisector line x.u = d/2 (u = (r_j - r_i)/d)
 **      cuts the disk in a chord (d < 2l).  The cell is the disk cut by the
@@ -41,6 +47,7 @@
 #include "afv_internal.h"
 #include "fastmath.h"
 
+#include <assert.h>
 #include <float.h>
 #include <limits.h>
 #include <math.h>
@@ -49,17 +56,6 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-
-/* Two kept parts of the boundary meet on the circle within roundoff: their
-** computed gap may then come out as a hair below zero, which wraps around to
-** a full turn.  A gap within ANGLE_TOL of 2 pi between two distinct edges is
-** taken to be such a zero gap (a true gap that large would need every
-** contact edge of the cell shorter than about 1e-12 l). */
-#define ANGLE_TOL 1e-12
-
-/* Two bisectors of a cell closer than this to parallel (|t_a.u_b|) are
-** clipped with care (clip_near_parallel). */
-#define NEAR_PARALLEL 1e-6
 
 /* ---- one cell's shape --------------------------------------------------- */
 /* The line of neighbour slot s, in the cell's frame: x.u = h, with
@@ -138,7 +134,7 @@ static void bound(segment *S, double rhs, double c)
 }
 
 /* The pair's bounds for nearly parallel lines a and b (slots a < b),
-** |t_a.u_b| below NEAR_PARALLEL and u_a.u_b > 0 (lines on opposite sides
+** |t_a.u_b| below AFV_NEAR_PARALLEL and u_a.u_b > 0 (lines on opposite sides
 ** of the centre meet far outside the disk, and the plain bounds serve).
 ** There h_b - h_a u_a.u_b and t_a.u_b are both small and lose their
 ** digits: two nearly coincident neighbours seen from afar gave each line
@@ -155,10 +151,9 @@ static void bound(segment *S, double rhs, double c)
 ** taken as parallel: the nearer line kept, the other dropped (one line
 ** twice, e = 0, kept once).  The shape is then off by about d l.  So are
 ** two neighbours in nearly one direction but not close to each other
-** (|e| >= NEAR_PARALLEL_GAP |D_a|): their lines meet 1e6 l away or more,
+** (|e| >= AFV_NEAR_PARALLEL_GAP |D_a|): their lines meet 1e6 l away or more,
 ** and the nearer line hides the other (the e-form's signs were noise
 ** there: a fuzzer case, test_geometry.c). */
-#define NEAR_PARALLEL_GAP 1e-3
 static void clip_near_parallel(const double *Da, const double *Db,
                                const double *ea, const double *eb,
                                segment *Sa, segment *Sb)
@@ -170,7 +165,7 @@ static void clip_near_parallel(const double *Da, const double *Db,
   int ccw = lower_half(Da[0], Da[1]) == lower_half(Db[0], Db[1])
             || Da[0] < 0;               /* b should turn ccw from a */
   int close = fmax(fabs(ex), fabs(ey))
-              < NEAR_PARALLEL_GAP * fmax(fabs(Da[0]), fabs(Da[1]));
+              < AFV_NEAR_PARALLEL_GAP * fmax(fabs(Da[0]), fabs(Da[1]));
   if (close && (ccw ? (ca > 0 && cb < 0) : (ca < 0 && cb > 0))) {
     bound(Sa, ra, ca);
     bound(Sb, rb, cb);
@@ -209,10 +204,10 @@ static inline int clip_pairs(const double *edge, const double *D, int s0,
       double c = uax * eb[1] - uay * eb[0];             /* t_a.u_b */
       double cu = uax * eb[0] + uay * eb[1];            /* u_a.u_b */
       double ra = eb[2] - ha * cu, rb = ha - eb[2] * cu;
-      if (c > NEAR_PARALLEL) {
+      if (c > AFV_NEAR_PARALLEL) {
         bound_above(&seg[a], ra, c);
         bound_below(&seg[b], rb, -c);
-      } else if (c < -NEAR_PARALLEL) {
+      } else if (c < -AFV_NEAR_PARALLEL) {
         bound_below(&seg[a], ra, c);
         bound_above(&seg[b], rb, -c);
       } else if (cu < 0) {             /* (nearly) opposite lines */
@@ -257,7 +252,7 @@ static COLD int sliver_kept(segment *seg, int ns, int a, int nn,
   up = e + 4 * (p->slot - slot0);
   uq = e + 4 * (q->slot - slot0);
   if (!(up[0] * uq[0] + up[1] * uq[1] < 0
-        && fabs(up[0] * uq[1] - up[1] * uq[0]) < NEAR_PARALLEL))
+        && fabs(up[0] * uq[1] - up[1] * uq[0]) < AFV_NEAR_PARALLEL))
     return 0;
   seg[a].tau1 = seg[a].tau0;
   return 1;
@@ -273,7 +268,7 @@ static inline int keep_parts(segment *seg, int nn, const double *e,
   for (a = 0; a < nn; a++) {
     double t0 = seg[a].tau0, t1 = seg[a].tau1;
     if (!(t0 < t1)
-        && !(t0 - t1 <= 8 * DBL_EPSILON * (fabs(t0) + fabs(t1))
+        && !(t0 - t1 <= AFV_SLIVER_ROUNDING * (fabs(t0) + fabs(t1))
              && !seg[a].start_on_circle && !seg[a].end_on_circle
              && sliver_kept(seg, ns, a, nn, e, slot0)))
       continue;
@@ -287,7 +282,7 @@ static inline int keep_parts(segment *seg, int nn, const double *e,
 /* A cell with more than PRUNE_FROM neighbours is clipped by its nearest
 ** ones first, as Voro++ does: the cell they leave lies within R of the
 ** centre (R its farthest vertex, l if an arc remains), and a neighbour
-** whose bisector lies farther than R + PRUNE_MARGIN l cannot cut it: its
+** whose bisector lies farther than R + AFV_PRUNE_MARGIN l cannot cut it: its
 ** half-plane holds the whole disk of radius R.  So the neighbours are
 ** taken in order of distance (h = d/2), the cell clipped by those with
 ** h <= R, R recomputed, until no more come in: about the nearest 16 in
@@ -298,7 +293,6 @@ static inline int keep_parts(segment *seg, int nn, const double *e,
 ** pruning.  At the paper's densities cells have fewer neighbours, and the
 ** plain clipping serves. */
 #define PRUNE_FROM   16
-#define PRUNE_MARGIN 1e-9
 
 /* The work space of a pruned clipping, past nn + 1 segments: the slots in
 ** order of distance, their ranks, and the edge cache and displacements
@@ -382,7 +376,7 @@ static int clip_pruned(const afv_geom *g, int i, double l, segment *seg,
       int q = seg[k].slot;            /* in place for farthest_vertex */
       if (q != k) memcpy(w->edge + 4 * k, w->edge + 4 * q, 4 * sizeof(double));
     }
-    R = farthest_vertex(w->edge, seg, ns, l) + PRUNE_MARGIN * l;
+    R = farthest_vertex(w->edge, seg, ns, l) + AFV_PRUNE_MARGIN * l;
     while (more < nn && edge[4 * w->order[more] + 2] <= R) more++;
     if (more == m) break;
     m = more;
@@ -451,7 +445,7 @@ static double gap_angle(const afv_geom *g, double ax, double ay,
   if (phi < 0) phi = 0;   /* afv_angle's absolute error: an angle of ~0
                           ** came out as -3e-17 (a fuzzer case: area < 0) */
   if (single && phi == 0) phi = TWO_PI;
-  if (!single && phi > TWO_PI - ANGLE_TOL) phi = 0;
+  if (!single && phi > TWO_PI - AFV_ANGLE_TOL) phi = 0;
   return phi;
 }
 
@@ -510,10 +504,24 @@ static double *thread_work(const afv_geom *g)
 #endif
 }
 
+#ifndef NDEBUG
+/* 1 if cell i's shape lies within the bounds of a convex part of the disk
+** (the header's invariant), to rounding. */
+static int shape_in_bounds(const afv_geom *g, int i, double l)
+{
+  double most = 1 + AFV_SUM_ROUNDING, A = g->area[i], P = g->perim[i],
+         L = g->arc[i];
+  return A >= 0 && A <= PI * l * l * most && L >= 0 && L <= P * most
+         && P <= TWO_PI * l * most
+         && g->contacts[i] <= g->nbr_end[i] - g->nbr_start[i];
+}
+#endif
+
 void afv_cell_shape(afv_geom *g, int i, double l)
 {
   segment *seg = (segment *)thread_work(g);
   int ns;
+  assert(afv_slots_sorted(g, i));
   g->n_pieces[i] = 0;
   g->contacts[i] = 0;
   /* the slots are sorted by the direction of u (sort_slots), which is the
@@ -522,6 +530,7 @@ void afv_cell_shape(afv_geom *g, int i, double l)
   ns = clip_chords(g, i, l, seg);
   if (ns == 0) isolated_cell(g, i, l);
   else assemble_boundary(g, i, l, seg, ns);
+  assert(shape_in_bounds(g, i, l));
 }
 
 /* Work space for one cell with up to max_nn neighbours: max_nn segments;

@@ -11,10 +11,17 @@
 ** file only, each line whole, no NUL byte; every field is parsed whole and
 ** range-checked, and a count is checked against what the file can hold
 ** before anything is allocated for it.  Messages: "FILE:LINE: field: what".
+**
+** Invariant of an open afv_lines (asserted by afv_lines_next in a build
+** without -DNDEBUG): the unread part of its block is buf[pos .. fill),
+** pos <= fill <= AFV_LINES_BLOCK; a line handed out is NUL-ended at len,
+** len <= AFV_LINE_MAX.
 */
 #define _POSIX_C_SOURCE 200809L  /* stat: readers refuse directories, devices */
 #include "afv.h"
+#include "afv_tool.h"
 
+#include <assert.h>
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -117,6 +124,7 @@ int afv_lines_next(afv_lines *L, char *err, size_t errlen)
   for (;;) {
     const char *at = L->buf + L->pos, *nl, *nul;
     size_t k;
+    assert(L->pos <= L->fill && L->fill <= sizeof L->buf);
     if (L->pos == L->fill) {
       L->pos = 0;
       L->fill = fread(L->buf, 1, sizeof L->buf, L->fp);
@@ -155,6 +163,7 @@ int afv_lines_next(afv_lines *L, char *err, size_t errlen)
     L->lineno--;
     return 0;
   }
+  assert(L->len <= AFV_LINE_MAX && L->line[L->len] == 0);
   return 1;
 }
 
@@ -336,7 +345,7 @@ static int push_point(double **r, int *n, int *cap, double x, double y)
   return AFV_OK;
 }
 
-int afv_read_points(const char *path, int *n_out, double **r_out, char *err,
+int afv_points_read(const char *path, int *n_out, double **r_out, char *err,
                     size_t errlen)
 {
   static const char *const names[2] = {"x", "y"};
@@ -963,7 +972,7 @@ static int cells_line(const afv_lines *L, afv_cells *c, const int *order,
   return AFV_OK;
 }
 
-int afv_read_cells(const char *path, afv_cells *c, char *err, size_t errlen)
+int afv_cells_read(const char *path, afv_cells *c, char *err, size_t errlen)
 {
   afv_lines L;
   char name[40] = "";
@@ -994,7 +1003,7 @@ int afv_read_cells(const char *path, afv_cells *c, char *err, size_t errlen)
   return st;
 }
 
-int afv_write_cells(FILE *fp, const afv_cells *c)
+int afv_cells_write(FILE *fp, const afv_cells *c)
 {
   int i, k, first = 1;
   fputs("#", fp);

@@ -32,10 +32,21 @@
 ** buffers of an afv_geom are grown here too (afv_grow, grow_cells).
 ** Every per-cell loop may run on OpenMP threads with the same result bits
 ** (afv_internal.h).
+**
+** Invariants of the lists after afv_neighbours (asserted where relied on,
+** in a build without -DNDEBUG):
+**   - symmetric: j is in i's list iff i is in j's, with D_t = -D_s
+**     exactly (fold is odd), so nbr_rev[nbr_rev[s]] = s (link_cell;
+**     gather_forces in afv.c);
+**   - each list sorted by comes_after, the counter-clockwise order of the
+**     edges (afv_slots_sorted; afv_cell_shape in geom.c);
+**   - every pair closer than 2l and apart: the edge cache's h = d/2 is
+**     in (0, l] (fill_edge_pair; the clipping's half-chords).
 */
 #include "afv.h"
 #include "afv_internal.h"
 
+#include <assert.h>
 #include <float.h>
 #include <limits.h>
 #include <math.h>
@@ -509,7 +520,8 @@ static void bin_range(double x, double Q, double x0, double w, int nb,
 ** (x, y): nx by ny bins from (fx, fy) on (wrapped mod the grid if
 ** periodic).  A cell now within R was binned within Q of (x, y): since the
 ** rebuild it moved at most cand_moved up to the last afv_neighbours
-** (candidates_valid), then at most `moved`; 1e-9 l covers rounding. */
+** (candidates_valid), then at most `moved`; AFV_REACH_MARGIN l covers
+** rounding. */
 typedef struct bin_window {
   int fx, nx, fy, ny;
 } bin_window;
@@ -518,7 +530,7 @@ static bin_window window_around(const afv_geom *g, double x, double y,
                                 double R, double moved)
 {
   const grid *G = &g->cand_grid;
-  double Q = R + g->cand_moved + moved + 1e-9 * g->cand_l;
+  double Q = R + g->cand_moved + moved + AFV_REACH_MARGIN * g->cand_l;
   bin_window w;
   if (G->periodic) {
     x = wrap1(x, G->Lx);
@@ -715,14 +727,14 @@ static int cut_by_bisector(cut_polygon *P, double dx, double dy)
 }
 
 /* The radius of security of P: its farthest vertex, at most l, widened by
-** 1e-9 l for the rounding of the vertices. */
+** AFV_REACH_MARGIN l for the rounding of the vertices. */
 static double security_radius(const cut_polygon *P, double l)
 {
   double most = 0;
   int k;
   for (k = 0; k < P->m; k++)
     most = fmax(most, P->v[2*k] * P->v[2*k] + P->v[2*k+1] * P->v[2*k+1]);
-  return fmin(l, sqrt(most) + 1e-9 * l);
+  return fmin(l, sqrt(most) + AFV_REACH_MARGIN * l);
 }
 
 /* The bin offsets along one axis of nb bins that a walk may visit, each
@@ -1058,6 +1070,14 @@ static int slot_after(const int *nbr, const double *d, int a, int b)
   return comes_after(d[2*a], d[2*a+1], nbr[a], d[2*b], d[2*b+1], nbr[b]);
 }
 
+int afv_slots_sorted(const afv_geom *g, int i)
+{
+  int s;
+  for (s = g->nbr_start[i]; s + 1 < g->nbr_end[i]; s++)
+    if (slot_after(g->nbr, g->nbr_d, s, s + 1)) return 0;
+  return 1;
+}
+
 /* Insertion sort of a cell's m slots by direction (lists hold ~6).  The
 ** order is the counter-clockwise order of the edges (clip_chords relies on
 ** it) and fixes the order in which each chord meets its bounds, which
@@ -1152,23 +1172,21 @@ static void sort_candidates(afv_geom *g, int n, const afv_box *b)
   }
 }
 
-/* Wrapping rounds a centre to a multiple of eps L, so the displacement of
-** two wrapped centres is off by up to ~eps L: nothing next to a distance
-** of l, everything next to one of 1e-16 l.  Below NEAR max(Lx, Ly) it is
-** taken from the unwrapped centres instead (exact_image), whose error is
-** then below eps / NEAR = 2.3e-10 relative.  Never reached in a tissue
-** (cells there are 1e-5 l apart at the very least). */
-#define NEAR 9.5367431640625e-07   /* 2^-20 */
-
-/* Below this d^2 a displacement is taken from the unwrapped centres (NEAR
-** max(Lx, Ly) in a periodic box); in open space, below the smallest
-** normal double, where d^2 may be 0 for centres that differ. */
+/* NEAR.  Wrapping rounds a centre to a multiple of eps L, so the
+** displacement of two wrapped centres is off by up to ~eps L: nothing next
+** to a distance of l, everything next to one of 1e-16 l.  Below
+** AFV_NEAR_IMAGE max(Lx, Ly) (afv_internal.h) it is taken from the
+** unwrapped centres instead (exact_image).  Never reached in a tissue
+** (cells there are 1e-5 l apart at the very least).
+** near_limit2: below this d^2 a displacement is taken from the unwrapped
+** centres (periodic box); in open space, below the smallest normal
+** double, where d^2 may be 0 for centres that differ. */
 static double near_limit2(const afv_box *b)
 {
   double L;
   if (!b || !b->periodic) return DBL_MIN;
   L = b->Lx > b->Ly ? b->Lx : b->Ly;
-  return NEAR * NEAR * L * L;
+  return AFV_NEAR_IMAGE * AFV_NEAR_IMAGE * L * L;
 }
 
 /* The minimum image of r_j - r_i from the unwrapped centres, for each
@@ -1272,6 +1290,7 @@ static inline void fill_edge_pair(afv_geom *g, int s, int t, double l)
     h = 0.5 * d > 0 ? 0.5 * d : d;  /* h > 0 for the smallest subnormal d
                                     ** too: keeps b / 2h finite (afv.c) */
   }
+  assert(h > 0 && h <= l);          /* a pair apart and closer than 2l */
   e[0] = dx / d;
   e[1] = dy / d;
   e[2] = h;                         /* h, not d: clip_chords' inner loop
@@ -1304,7 +1323,7 @@ static int reverse_slot(const afv_geom *g, int i, int j, double x, double y)
   }
   for (t = g->nbr_start[j]; t < g->nbr_end[j]; t++)
     if (g->nbr[t] == i) return t;
-  return -1;                        /* cannot happen: the lists are symmetric */
+  return -1;                        /* never: the lists are symmetric */
 }
 
 /* Links slot s (of i) and t (of j), its reverse. */
@@ -1326,6 +1345,7 @@ static COLD void link_long_cell(afv_geom *g, int i, double l)
     int j = g->nbr[s];
     if (j > i) continue;
     t = reverse_slot(g, i, j, -g->nbr_d[2*s], -g->nbr_d[2*s+1]);
+    assert(t >= 0);                 /* the lists are symmetric */
     if (t >= 0) link_pair(g, s, t, l);
   }
 }
@@ -1357,6 +1377,7 @@ static void link_cell(afv_geom *g, int i, double l)
         g->grad[2*t] = g->grad[2*t+1] = 0;
         break;
       }
+    assert(t < g->nbr_end[j]);      /* the lists are symmetric */
   }
 }
 

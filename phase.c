@@ -5,14 +5,15 @@
 ** contour.  Used by afv collect; no state, no files of its own.
 */
 #include "afv.h"
+#include "afv_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 /* ---- crossings -------------------------------------------------------------- */
-int afv_crossing(int n, const double *x, const double *y, double level,
-                 double *xc)
+int afv_curve_cross(int n, const double *x, const double *y, double level,
+                    double *xc)
 {
   int i, prev = -1;
   for (i = 0; i < n; i++) {
@@ -48,7 +49,7 @@ static double linear_fit(int n, const double *p0, const double *vs,
     su += u; sv += vs[i]; suu += u * u; suv += u * vs[i];
   }
   det = n * suu - su * su;
-  if (!(fabs(det) > 1e-300 * (suu + 1)) || !isfinite(det)) return HUGE_VAL;
+  if (!(fabs(det) > AFV_FIT_SINGULAR * (suu + 1)) || !isfinite(det)) return HUGE_VAL;
   *c = -(n * suv - su * sv) / det;
   *v0star = (sv + *c * su) / n;
   for (i = 0; i < n; i++) {
@@ -118,7 +119,7 @@ int afv_boundary_fit(int n, const double *p0, const double *vs,
   x2 = a + g * (d - a);
   f1 = rss_at(n, p0, vs, x1);
   f2 = rss_at(n, p0, vs, x2);
-  for (k = 0; k < 200 && d - a > 1e-13; k++) {
+  for (k = 0; k < 200 && d - a > AFV_FIT_ALPHA_TOL; k++) {
     if (f1 < f2) { d = x2; x2 = x1; f2 = f1; x1 = d - g * (d - a);
                    f1 = rss_at(n, p0, vs, x1); }
     else         { a = x1; x1 = x2; f1 = f2; x2 = a + g * (d - a);
@@ -347,7 +348,7 @@ int afv_svg_map(FILE *out, const afv_map *m)
     if (z > f.zhi) f.zhi = z;
   }
   if (!any) f.zlo = 0, f.zhi = 1;
-  if (f.zhi - f.zlo < 1e-12) { f.zlo -= 0.5; f.zhi += 0.5; }
+  if (f.zhi - f.zlo < AFV_PLOT_SPAN_TOL) { f.zlo -= 0.5; f.zhi += 0.5; }
   fprintf(out, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\""
           "http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" "
           "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"%g\" "

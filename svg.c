@@ -488,7 +488,7 @@ static void draw_arc(FILE *out, const view *v, double cx, double cy,
 {
   char cb[4][COORD_LEN];
   double phi = a->length / v->l, l = v->l;
-  if (phi >= 2 * PI - 1e-9) {    /* full circle: two half arcs */
+  if (phi >= 2 * PI - AFV_FULL_CIRCLE_TOL) {    /* full circle: two half arcs */
     fprintf(out, "<path class=\"arc\" d=\"M %s %s A %.6g %.6g 0 1 1 "
             "%s %s A %.6g %.6g 0 1 1 %s %s\"/>\n", C(0, cx + l), C(1, cy),
             l, l, C(2, cx - l), C(3, cy), l, l, C(0, cx + l), C(1, cy));
@@ -748,7 +748,7 @@ static void fit_axis(axis *a, const afv_plot_series *s, int ns, int use_y)
       if (!any || v > a->hi) a->hi = v;
       any = 1;
     }
-  if (a->hi - a->lo < 1e-12 * (fabs(a->lo) + 1)) {  /* one value: widen */
+  if (a->hi - a->lo < AFV_PLOT_SPAN_TOL * (fabs(a->lo) + 1)) {  /* one value: widen */
     a->lo -= a->log ? 1 : 0.5 * (fabs(a->lo) + 1);
     a->hi += a->log ? 1 : 0.5 * (fabs(a->hi) + 1);
   } else {              /* a margin, so that no point sits on the frame */
@@ -778,7 +778,7 @@ static void tick_label(FILE *out, const axis *a, double t)
   if (a->log)
     fprintf(out, "10<tspan dy=\"-6\" font-size=\"9\">%.0f</tspan>", t);
   else
-    fprintf(out, "%g", fabs(t) < 1e-9 * a->step ? 0.0 : t);
+    fprintf(out, "%g", fabs(t) < AFV_PLOT_TICK_TOL * a->step ? 0.0 : t);
 }
 
 static void draw_axes(FILE *out, const axis *ax, const axis *ay)
@@ -787,7 +787,7 @@ static void draw_axes(FILE *out, const axis *ax, const axis *ay)
   double t;
   fprintf(out, "<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" "
           "fill=\"none\" stroke=\"black\"/>\n", x0, y1, x1 - x0, y0 - y1);
-  for (t = ax->lo; t <= ax->hi + 1e-9 * ax->step; t += ax->step) {
+  for (t = ax->lo; t <= ax->hi + AFV_PLOT_TICK_TOL * ax->step; t += ax->step) {
     double px = x0 + (t - ax->lo) / (ax->hi - ax->lo) * (x1 - x0);
     fprintf(out, "<line x1=\"%.2f\" y1=\"%g\" x2=\"%.2f\" y2=\"%g\" "
             "stroke=\"black\"/>\n<text x=\"%.2f\" y=\"%g\" "
@@ -795,7 +795,7 @@ static void draw_axes(FILE *out, const axis *ax, const axis *ay)
     tick_label(out, ax, t);
     fprintf(out, "</text>\n");
   }
-  for (t = ay->lo; t <= ay->hi + 1e-9 * ay->step; t += ay->step) {
+  for (t = ay->lo; t <= ay->hi + AFV_PLOT_TICK_TOL * ay->step; t += ay->step) {
     double py = y0 + (t - ay->lo) / (ay->hi - ay->lo) * (y1 - y0);
     fprintf(out, "<line x1=\"%g\" y1=\"%.2f\" x2=\"%g\" y2=\"%.2f\" "
             "stroke=\"black\"/>\n<text x=\"%g\" y=\"%.2f\" "

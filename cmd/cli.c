@@ -281,7 +281,7 @@ int load_points(const char *path, const afv_box *b, int *n, double **r)
 {
   char err[512];
   int i;
-  if (afv_read_points(path, n, r, err, sizeof err) != AFV_OK)
+  if (afv_points_read(path, n, r, err, sizeof err) != AFV_OK)
     return !bad_input(err);
   for (i = 0; i < *n; i++) afv_wrap(b, &(*r)[2*i], &(*r)[2*i+1]);
   return 1;

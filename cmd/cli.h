@@ -20,6 +20,7 @@
 #define AFV_CLI_H
 
 #include "afv.h"
+#include "afv_tool.h"
 
 #define EXIT_CHECK_FAILED 1
 #define EXIT_BAD_INPUT    2

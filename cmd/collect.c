@@ -860,7 +860,8 @@ static int boundary(const sweep_table *T, const plane *P, double *bp,
   plane_values(T, P, P_NGC, z);
   for (i = 0; i < P->nx; i++) {
     for (j = 0; j < P->ny; j++) col[j] = z[j * P->nx + i];
-    if (afv_crossing(P->ny, P->y, col, CLUSTER_LEVEL, &bv[nb])) bp[nb++] = P->x[i];
+    if (afv_curve_cross(P->ny, P->y, col, CLUSTER_LEVEL, &bv[nb]))
+      bp[nb++] = P->x[i];
   }
   if (nb >= 3) *fitted = afv_boundary_fit(nb, bp, bv, fit) == AFV_OK;
   free(z);

@@ -480,7 +480,7 @@ static int color_values(const draw_job *J, int traj, int n, double **out)
   if (!cells && traj && beside(J->path, "cells.txt", path, sizeof path)
       && access(path, F_OK) == 0)
     cells = path;
-  if (cells && afv_read_cells(cells, &cl, err, sizeof err) != AFV_OK)
+  if (cells && afv_cells_read(cells, &cl, err, sizeof err) != AFV_OK)
     return !bad_input(err);
   if (cells && cl.n != n) {
     fprintf(stderr, "afv draw: %s: %d cells, the picture has %d\n", cells,

@@ -659,7 +659,7 @@ static int plot_csd(const char *out, const plane *P, double p0, double v0,
   fit->nbins = 0;
   if (!csd || n < 1) { free(csd); return 1; }
   if (ncells < n) ncells = n;
-  afv_csd_powerlaw(csd, n, (int)(CSD_FIT_FRACTION * ncells), fit);
+  afv_powerlaw_fit(csd, n, (int)(CSD_FIT_FRACTION * ncells), fit);
   nb = afv_csd_log_bins(csd, n, lo, hi, p);
   for (k = 0; k < nb; k++) {
     double d = p[k] / (hi[k] - lo[k] + 1);
@@ -799,7 +799,7 @@ static int dispersal_boundary(const plane *P, double *bp, double *bv,
   int ip, nb = 0;
   for (ip = 0; ip < P->np; ip++) {
     ngc_column(P, ip, y);
-    if (afv_crossing(P->nv, P->v0, y, CLUSTER_LEVEL, &bv[nb])) {
+    if (afv_curve_cross(P->nv, P->v0, y, CLUSTER_LEVEL, &bv[nb])) {
       bp[nb] = P->p0[ip];
       nb++;
     }
@@ -868,7 +868,7 @@ static int cluster_figures(const char *out, const plane *P, claims *C)
   claim *c;
   if (!y) return 0;
   for (ip = 0; ip < P->np; ip++) ngc_column(P, ip, y + ip * P->nv);
-  afv_common_crossing(P->np, P->nv, P->v0, y, &cr);
+  afv_curves_cross_common(P->np, P->nv, P->v0, y, &cr);
   afv_collapse_fit(P->np, P->nv, P->v0, y, P->p0, &cf);
   c = claim_add(C, "v0_star", 1.85, 0.06, cr.x, cr.se);
   snprintf(c->note, sizeof c->note, "paper (clustering section): all N_GC/N "
@@ -1086,7 +1086,7 @@ static int confluency_figures(const char *out, const plane *P, claims *C)
   /* Omega against P0 at the lowest v0: where it falls below 0.5. */
   for (ip = 0; ip < P->np; ip++) row[ip] = at(P, Q_OMEGA, ip, 0, 0);
   c = claim_add(C, "P0_omega_half_low_v0", 5.73, 0, NAN, NAN);
-  if (afv_crossing(P->np, P->p0, row, CONFLUENCY_LEVEL, &xc)) {
+  if (afv_curve_cross(P->np, P->p0, row, CONFLUENCY_LEVEL, &xc)) {
     /* Error: the standard errors of the two bracketing means, carried
     ** through the linear interpolation to P0. */
     for (ip = 0; ip + 1 < P->np; ip++)
@@ -1270,7 +1270,7 @@ static int boundary_points(const plane *P, int q, double level, int sign,
       if (logq) v = v > 0 ? log10(v) : NAN;
       line[j] = sign * v;
     }
-    if (afv_crossing(m, along_p0 ? P->p0 : P->v0, line,
+    if (afv_curve_cross(m, along_p0 ? P->p0 : P->v0, line,
                      sign * (logq ? log10(level) : level), &xc)) {
       bx[nb] = along_p0 ? xc : P->p0[i];
       by[nb] = along_p0 ? P->v0[i] : xc;
@@ -1575,7 +1575,7 @@ static int halves_table(const char *out, const plane *P)
       fprintf(fp, "%g,%g,%.6g,%.6g\n", P->p0[ip], P->v0[iv],
               y[ip * P->nv + iv], y[n + ip * P->nv + iv]);
   for (h = 0; h < 2; h++) {
-    afv_common_crossing(P->np, P->nv, P->v0, y + h * n, &cr);
+    afv_curves_cross_common(P->np, P->nv, P->v0, y + h * n, &cr);
     fprintf(fp, "# v0_star_%s_half %.6g se %.6g pairs %d\n",
             h ? "second" : "first", cr.x, cr.se, cr.pairs);
   }

@@ -415,7 +415,7 @@ static int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
 {
 #define BAD(...) do { afv_errorf(err, errlen, __VA_ARGS__); return 0; } while (0)
   if (strcmp(c->cells, "none") != 0) {
-    if (afv_read_cells(c->cells, cl, err, errlen) != AFV_OK) return 0;
+    if (afv_cells_read(c->cells, cl, err, errlen) != AFV_OK) return 0;
     if (set[find_key("N") - run_keys] && c->N != cl->n)
       BAD("N: %lld, but the cells file %s has %d cells", c->N, c->cells,
           cl->n);
@@ -518,7 +518,7 @@ static int write_cells_copy(const char *dir, const afv_cells *cl)
   FILE *fp;
   snprintf(path, sizeof path, "%s/cells.txt", dir);
   if (!(fp = afv_atomic_open(path, tmp, sizeof tmp))) return AFV_EIO;
-  afv_write_cells(fp, cl);
+  afv_cells_write(fp, cl);
   return afv_atomic_commit(fp, tmp, path);
 }
 

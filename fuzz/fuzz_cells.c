@@ -1,8 +1,8 @@
 /*
-** fuzz_cells.c -- libFuzzer harness of the CELLS reader (afv_read_cells): a
+** fuzz_cells.c -- libFuzzer harness of the CELLS reader (afv_cells_read): a
 ** refused input gets a one-line message naming the file; an accepted one
 ** has n >= 1 finite values in its columns (x and y together), and written
-** back with afv_write_cells it reads back bit for bit.
+** back with afv_cells_write it reads back bit for bit.
 */
 #include "afv.h"
 #include "reader_fuzz.h"
@@ -16,7 +16,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   FILE *fp;
   int k, i;
   const char *path = fuzz_input_file("cells", data, size);
-  if (afv_read_cells(path, &c, err, sizeof err) != AFV_OK) {
+  if (afv_cells_read(path, &c, err, sizeof err) != AFV_OK) {
     REQUIRE(strncmp(err, path, strlen(path)) == 0 && !strchr(err, '\n'));
     return 0;
   }
@@ -25,8 +25,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   for (k = 0; k < AFV_NCOLS; k++)
     for (i = 0; c.has[k] && i < c.n; i++) REQUIRE(isfinite(c.col[k][i]));
   fp = fopen(fuzz_path("cells.again", again_path, sizeof again_path), "w");
-  REQUIRE(fp && afv_write_cells(fp, &c) == AFV_OK && fclose(fp) == 0);
-  REQUIRE(afv_read_cells(again_path, &again, err, sizeof err) == AFV_OK);
+  REQUIRE(fp && afv_cells_write(fp, &c) == AFV_OK && fclose(fp) == 0);
+  REQUIRE(afv_cells_read(again_path, &again, err, sizeof err) == AFV_OK);
   REQUIRE(again.n == c.n);
   for (k = 0; k < AFV_NCOLS; k++)
     REQUIRE(again.has[k] == c.has[k]

@@ -1,5 +1,5 @@
 /*
-** fuzz_points.c -- libFuzzer harness of the POINTS reader (afv_read_points):
+** fuzz_points.c -- libFuzzer harness of the POINTS reader (afv_points_read):
 ** any input either is refused with a message naming the file, or gives
 ** n >= 0 finite points.
 */
@@ -14,7 +14,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   double *r = NULL;
   int n = -1, i;
   const char *path = fuzz_input_file("points", data, size);
-  if (afv_read_points(path, &n, &r, err, sizeof err) != AFV_OK) {
+  if (afv_points_read(path, &n, &r, err, sizeof err) != AFV_OK) {
     REQUIRE(strncmp(err, path, strlen(path)) == 0 && !strchr(err, '\n'));
     REQUIRE(r == NULL && n == 0);
     return 0;

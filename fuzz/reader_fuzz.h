@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "require.h"   /* REQUIRE(cond) */
+#include "afv_tool.h"  /* afv_lines, AFV_CELLS_MAX, checkpoints */
 
 static char fuzz_dir[64];
 

@@ -289,12 +289,12 @@ int test_pair_sim(afv_sim *s, double x, double y, double KA, double dt,
 }
 
 /* ---- golden files ------------------------------------------------------- */
-/* A two-column CSV/space file read with afv_read_points (NULL if it cannot
+/* A two-column CSV/space file read with afv_points_read (NULL if it cannot
 ** be read): the golden data of ../shared/golden/. */
 double *test_read_pairs(const char *path, int *n)
 {
   double *r = NULL;
   char err[256];
-  if (afv_read_points(path, n, &r, err, sizeof err) != AFV_OK) return NULL;
+  if (afv_points_read(path, n, &r, err, sizeof err) != AFV_OK) return NULL;
   return r;
 }

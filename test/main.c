@@ -68,6 +68,7 @@ int main(void)
   suite_integrator();
   suite_paper();
   suite_relax_fire();
+  suite_invariants();
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;
 }

@@ -100,5 +100,6 @@ void suite_api(void);
 void suite_paper(void);
 void suite_integrator(void);
 void suite_relax_fire(void);
+void suite_invariants(void);
 
 #endif

@@ -124,6 +124,37 @@ static void test_afv_h_hides_internals(void)
   }
 }
 
+/* What only the program uses is in afv_tool.h, not in the installed
+** afv.h (issue 29, two headers): each program compiles against the
+** tree's afv_tool.h (control) and fails against afv.h alone. */
+static void test_afv_h_leaves_the_program_out(void)
+{
+  static const char *const use[] = {
+    "int main(void) { afv_lines L; return (int)sizeof L; }\n",
+    "int main(void) { char t[64];\n"
+    "  return afv_atomic_open(\"x\", t, 64) != 0; }\n",
+    "int main(void) { afv_checkpoint c = {0}; return c.n; }\n",
+    "int main(void) { return AFV_CKPT_BYTES_LINE + AFV_CELLS_MAX; }\n",
+    "int main(void) { return afv_svg_plot(0, 0, 0, 0); }\n",
+    "int main(void) { double x; return afv_curve_cross(0, 0, 0, 0, &x); }\n",
+    "int main(void) { return (int)afv_angle(1, 1); }\n",
+    "int main(void) { return (int)afv_rng_normal(1, 0, 0, AFV_RNG_NOISE); }\n",
+  };
+  char text[512];
+  size_t k;
+  if (!have_cc) { SKIP("cc not found"); return; }
+  for (k = 0; k < sizeof use / sizeof use[0]; k++) {
+    snprintf(text, sizeof text, "#include <afv_tool.h>\n%s", use[k]);
+    CHECK(write_file("tool.c", text), "cannot write tool.c");
+    CHECK(syntax_check("tool.c", ".") == 0, "the control (the tree's "
+          "afv_tool.h) does not compile: %s", use[k]);
+    snprintf(text, sizeof text, "#include <afv.h>\n%s", use[k]);
+    CHECK(write_file("tool.c", text), "cannot write tool.c");
+    CHECK(syntax_check("tool.c", "tmp") != 0, "compiles against afv.h "
+          "alone, which should leave it to afv_tool.h: %s", use[k]);
+  }
+}
+
 /* afv_clusters keeps its results public and its work space opaque: a
 ** program reading a result compiles against afv.h alone, one reaching
 ** the union-find's work space (a capacity, the parents) does not. */
@@ -416,6 +447,7 @@ void suite_api(void)
   RUN(test_readme_example_needs_only_afv_h);
   RUN(test_readme_quench_needs_only_afv_h);
   RUN(test_afv_h_hides_internals);
+  RUN(test_afv_h_leaves_the_program_out);
   RUN(test_clusters_work_space_hidden);
   RUN(test_accessors_hand_out_the_fields);
   RUN(test_bindings_by_name);

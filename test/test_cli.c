@@ -155,7 +155,7 @@ static void test_cli_eval_format(void)
   CHECK(err[0] == 0, "afv eval wrote to stderr: %s", err);
   /* the reference: the library on the same points */
   afv_params_default(&prm);
-  CHECK(afv_read_points(path_in(p, sizeof p, "good.xy"), &n, &r, NULL, 0)
+  CHECK(afv_points_read(path_in(p, sizeof p, "good.xy"), &n, &r, NULL, 0)
         == AFV_OK && n == 4, "reading good.xy");
   CHECK(r && afv_compute(&g, n, r, &prm, &b, f) == AFV_OK, "compute");
   E = g.energy;

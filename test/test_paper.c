@@ -32,7 +32,7 @@ static void powerlaw_recovers_exponent(void)
   double csd[NCELLS + 1];
   afv_powerlaw f;
   power_csd(csd, NCELLS, -1.5);
-  CHECK(afv_csd_powerlaw(csd, NCELLS, NCELLS / 4, &f) == AFV_OK, "fit");
+  CHECK(afv_powerlaw_fit(csd, NCELLS, NCELLS / 4, &f) == AFV_OK, "fit");
   /* Bins 2-3, ..., 32-63: after the densest (s = 1), before 64-127 (which
   ** ends above 100). */
   CHECK(f.nbins == 5 && f.lo == 2 && f.hi == 63, "bins %d, %d..%d",
@@ -41,7 +41,7 @@ static void powerlaw_recovers_exponent(void)
   CHECK_CLOSE(f.exponent, -1.5, 0, 0.05, "exponent");
   CHECK(f.se < 0.05, "se %g", f.se);
   power_csd(csd, NCELLS, -2.5);
-  afv_csd_powerlaw(csd, NCELLS, NCELLS / 4, &f);
+  afv_powerlaw_fit(csd, NCELLS, NCELLS / 4, &f);
   CHECK_CLOSE(f.exponent, -2.5, 0, 0.08, "exponent -2.5");
 }
 
@@ -56,16 +56,16 @@ static void powerlaw_window(void)
     sum += csd[s] = s < 8 ? s : 8 * pow(s / 8.0, -1.25);
   for (s = 1; s <= NCELLS; s++) csd[s] /= sum;
   csd[280] += 0.3;   /* a giant cluster of 0.7 N */
-  CHECK(afv_csd_powerlaw(csd, NCELLS, NCELLS / 4, &f) == AFV_OK, "fit");
+  CHECK(afv_powerlaw_fit(csd, NCELLS, NCELLS / 4, &f) == AFV_OK, "fit");
   CHECK(f.lo >= 8 && f.hi == 63, "window %d..%d", f.lo, f.hi);
   CHECK_CLOSE(f.exponent, -1.25, 0, 0.1, "decay exponent");
   /* With the giant cluster inside the window the slope is not the decay's:
   ** the window matters (and the test would see a window that ignored it). */
-  afv_csd_powerlaw(csd, NCELLS, NCELLS, &g);
+  afv_powerlaw_fit(csd, NCELLS, NCELLS, &g);
   CHECK(fabs(g.exponent + 1.25) > 0.2, "giant cluster included: %g",
         g.exponent);
   /* Too few bins: refused. */
-  CHECK(afv_csd_powerlaw(csd, NCELLS, 1, &f) == AFV_EINVAL, "one bin");
+  CHECK(afv_powerlaw_fit(csd, NCELLS, 1, &f) == AFV_EINVAL, "one bin");
 }
 
 static void two_curves_cross(void)
@@ -102,14 +102,14 @@ static void common_crossing_of_lines(void)
   for (c = 0; c < NC; c++)
     for (k = 0; k < NX; k++)
       y[c * NX + k] = 0.7 - (0.6 - 0.1 * c) * (x[k] - 1.85);
-  CHECK(afv_common_crossing(NC, NX, x, y, &f) == AFV_OK, "fit");
+  CHECK(afv_curves_cross_common(NC, NX, x, y, &f) == AFV_OK, "fit");
   CHECK(f.pairs == NC * (NC - 1) / 2, "pairs %d", f.pairs);
   CHECK_CLOSE(f.x, 1.85, 0, 1e-9, "common crossing");
   CHECK_CLOSE(f.se, 0, 0, 1e-9, "jackknife error of exact lines");
   /* Curve 0 moved: its crossings with the others move, so does the mean
   ** and its jackknife error is no longer 0. */
   for (k = 0; k < NX; k++) y[k] = 0.7 - 0.6 * (x[k] - 2.05);
-  afv_common_crossing(NC, NX, x, y, &f);
+  afv_curves_cross_common(NC, NX, x, y, &f);
   CHECK(f.x > 1.86 && f.se > 0.01, "moved curve: x %g se %g", f.x, f.se);
 }
 

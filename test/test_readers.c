@@ -111,7 +111,7 @@ static int read_points(const char *name, int *n)
   double *r = NULL;
   int st;
   msg[0] = 0;
-  st = afv_read_points(at(name), n, &r, msg, sizeof msg);
+  st = afv_points_read(at(name), n, &r, msg, sizeof msg);
   free(r);
   return st;
 }
@@ -157,7 +157,7 @@ static void test_points_directory_and_pipe_refused(void)
 static int read_cells(const char *name, afv_cells *c)
 {
   msg[0] = 0;
-  return afv_read_cells(at(name), c, msg, sizeof msg);
+  return afv_cells_read(at(name), c, msg, sizeof msg);
 }
 
 /* One row longer than the old 4096-byte buffer: it used to become two

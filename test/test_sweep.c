@@ -606,9 +606,9 @@ static void crossing_interpolates(void)
   const double x[5] = {0.5, 1, 1.5, 2, 2.5}, y[5] = {1, 1, NAN, 0.97, 0.5};
   const double up[3] = {0.5, 0.995, 1};
   double xc = 0;
-  CHECK(afv_crossing(5, x, y, 0.99, &xc) == 1, "no crossing found");
+  CHECK(afv_curve_cross(5, x, y, 0.99, &xc) == 1, "no crossing found");
   CHECK_CLOSE(xc, 1 + 1 * 0.01 / 0.03, 1e-12, 0, "crossing");
-  CHECK(afv_crossing(3, x, up, 0.99, &xc) == 0, "a rise taken for a fall");
+  CHECK(afv_curve_cross(3, x, up, 0.99, &xc) == 0, "a rise taken for a fall");
 }
 
 /* ---- what afv analyze computes for collect ------------------------------------- */

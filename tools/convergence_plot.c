@@ -12,6 +12,7 @@
 ** dotted lines mean +- sem.  Exit status 2 on a malformed file.
 */
 #include "afv.h"
+#include "afv_tool.h"   /* afv_svg_plot */
 
 #include <stdio.h>
 #include <stdlib.h>
