@@ -86,6 +86,7 @@ printf '%-6s %-5s %-5s %-6s %-8s %-10s %-9s %-10s %-10s %-9s %s\n' run P0 v0 rel
        steps_us/cs steps_s analysis_s job_cpu_s wall_s "(log.txt)"
 for run in "$SWEEP"/runs/*/; do
   run=${run%/}; id=${run##*/}
+  [ -d "$run" ] || continue           # no runs yet: the pattern itself
   total=$((total + 1))
   [ -f "$run/analysis/summary.txt" ] && [ -f "$run/checkpoint.txt" ] || continue
   grep -q "steps 0\.\." "$run/log.txt" 2>/dev/null || continue
