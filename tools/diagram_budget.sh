@@ -88,7 +88,9 @@ for run in "$SWEEP"/runs/*/; do
   run=${run%/}; id=${run##*/}
   [ -d "$run" ] || continue           # no runs yet: the pattern itself
   total=$((total + 1))
-  [ -f "$run/analysis/summary.txt" ] && [ -f "$run/checkpoint.txt" ] || continue
+  if [ ! -f "$run/analysis/summary.txt" ] || [ ! -f "$run/checkpoint.txt" ]; then
+    continue                         # not finished
+  fi
   grep -q "steps 0\.\." "$run/log.txt" 2>/dev/null || continue
   finished=$((finished + 1))
   p="$run/params.txt"
@@ -96,9 +98,11 @@ for run in "$SWEEP"/runs/*/; do
   relax_steps=$(sed -n 's/^relaxation at v0.*: \([0-9]*\) steps.*/\1/p' "$run/log.txt" | tail -n 1)
   wall=$(sed -n 's/.* steps 0\.\.[0-9]* (t = [^)]*) in \([0-9.e+]*\) s .*/\1/p' "$run/log.txt" | tail -n 1)
   rm -rf "$TMP/r"
+  # shellcheck disable=SC2086  # $OFF: several options
   relax=$(cpu "$AFV" run --config "$p" --steps 0 $OFF --out "$TMP/r")
   rm -rf "$TMP/r"
   cells_from_checkpoint "$run/checkpoint.txt" "$TMP/cells.txt"
+  # shellcheck disable=SC2086
   steps=$(cpu "$AFV" run --config "$p" --init file --cells "$TMP/cells.txt" \
           --relax_max_steps 0 --steps "$STEPS_SAMPLE" $OFF --out "$TMP/r")
   if [ -z "$out_per_step" ]; then
@@ -109,7 +113,9 @@ for run in "$SWEEP"/runs/*/; do
     se=$(key "$p" sample_every); fe=$(key "$p" frame_every); ce=$(key "$p" checkpoint_every)
     on_args="--sample_every $(div "$se") --frame_every $(div "$fe") --checkpoint_every $(div "$ce") --svg_every 0 --quiet"
     out_on=; out_off=
-    for rep in $(seq "$REPEATS"); do
+    rep=0
+    while [ "$rep" -lt "$REPEATS" ]; do
+      rep=$((rep + 1))
       for mode in on off; do
         rm -rf "$TMP/o"
         if [ $mode = on ]; then args=$on_args; else args=$OFF; fi
