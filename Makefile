@@ -10,6 +10,9 @@
 #   make plain      reference/afv_plain: the model in one plain file, to read
 #   make twins      the library against the plain file (test/twins.c)
 #   make protocol-check  the paper's protocol at N = 400 (~1 hour, 2 cores)
+#   make relax-cost  relaxation of the authors' start: CPU and memory against N
+#   make diagram-budget  a 20-job sample of the full diagram, its projected
+#                   CPU hours (doc/performance.md)
 #   make shared     the shared library libafv.so (for Python's ctypes, ...)
 #   make install    bin/afv, lib/libafv.a, lib/libafv.so.VERSION (and its
 #                   links libafv.so.MAJOR, libafv.so), include/afv.h,
@@ -51,7 +54,8 @@ TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
 .PHONY: all test run bench bench-quick bench-compare fuzz twins plain \
         protocol-check shared python-test install uninstall clean FORCE \
-        paper paper-sweeps paper-grid paper-fss convergence
+        paper paper-sweeps paper-grid paper-fss convergence \
+        relax-cost diagram-budget diagram-budget-sweep diagram-budget-project
 
 all: afv libafv.a
 
@@ -272,6 +276,44 @@ tools/convergence_plot: tools/convergence_plot.c libafv.a afv.h afv_tool.h \
 
 convergence: afv tools/convergence_plot
 	sh tools/convergence.sh $(CONV_OUT)
+
+# Cost of relaxing the authors' start against N (doc/performance.md,
+# "Relaxation: cost against N"): tools/relax_cost.sh prints CPU time per
+# cell and step and peak memory at N = RELAX_NS, P0 = 4 and 8, one run at
+# a time, each capped at RELAX_LIMIT s (about 25 min at the defaults on an
+# idle machine; RELAX_NS="400 1600" takes a minute).
+RELAX_NS    ?= 400 1600 6400
+RELAX_LIMIT ?= 600
+
+relax-cost: afv
+	sh tools/relax_cost.sh ./afv "$(RELAX_NS)" "4 8" $(RELAX_LIMIT)
+
+# The full diagram's budget (doc/performance.md): make diagram-budget
+# writes a 20-job sample of the full grid into BUDGET_OUT (afv sweep: P0
+# 4, 5.2, 6.4, 7.6, 8.8 x v0 0, 0.9, 1.8, 2.7, 1 seed, the paper's 10^6
+# steps and analysis, as tools/paper_sweeps.sh's full scale), runs it
+# (resumable: make it again after a kill; about 1 CPU-hour, so run it
+# in the background: nohup make -j2 diagram-budget > budget.log 2>&1 &),
+# then tools/diagram_budget.sh projects the 1400-job diagram's CPU hours
+# from its runs.  make diagram-budget-project BUDGET_OUT=SWEEP projects
+# from the finished runs of any sweep, and runs nothing new.
+BUDGET_OUT ?= budget
+
+diagram-budget-sweep: afv
+	@if [ ! -d "$(BUDGET_OUT)" ]; then \
+	  ./afv sweep --out "$(BUDGET_OUT)" --P0 4,5.2,6.4,7.6,8.8 \
+	    --v0 0,0.9,1.8,2.7 --seeds 1 --N 400 --steps 1000000 \
+	    --frame_every 1000 --checkpoint_every 100000 --integrator euler \
+	    --dt 0.01 --cap 0 --sample_every 100 --svg_every 0 --quiet 1 \
+	    --steady-from 1000 --lag 5000; \
+	else echo "$(BUDGET_OUT): kept (its runs resume)"; fi
+
+diagram-budget: diagram-budget-sweep
+	+$(MAKE) -C $(BUDGET_OUT)
+	sh tools/diagram_budget.sh $(BUDGET_OUT) ./afv
+
+diagram-budget-project: afv
+	sh tools/diagram_budget.sh $(BUDGET_OUT) ./afv
 
 # Evidence for the paper's protocol (test/protocol_check.c): the authors'
 # random start relaxed and run at every P0 and v0 of the paper's range.
