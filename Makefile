@@ -40,7 +40,7 @@ endif
 # The library, one file per idea (doc/reference.md has the reading order);
 # afv_internal.h, fastmath.h and rng.h are shared by its files only (not
 # part of the API, afv.h).
-LIB_SRC  = neighbours.c geom.c fastmath.c afv.c dynamics.c substeps.c rng.c \
+LIB_SRC  = neighbours.c geom.c fastmath.c afv.c dynamics.c rng.c \
            analysis.c svg.c io.c phase.c api.c fits.c relax_fire.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)

@@ -37,8 +37,8 @@ typedef struct run_cfg {
   double phi;             /* packing fraction N pi l^2 / L^2 */
   char box[16];           /* "periodic" or "open" */
   double l, KA, KP, A0, P0, Lambda, cap;       /* model (afv_params) */
-  char integrator[16];    /* "euler" or "substeps" (afv_dyn.integrator) */
-  double mu, v0, Dr, dt, max_move;             /* dynamics (afv_dyn) */
+  char integrator[16];    /* "euler", the one integrator (REMOVED KEYS) */
+  double mu, v0, Dr, dt;                       /* dynamics (afv_dyn) */
   long long steps;        /* active steps in the whole run */
   unsigned long long seed;/* noise and random starts */
   char init[16];          /* "cluster", "lattice", "random" or "file" */
@@ -91,31 +91,22 @@ static const run_key run_keys[] = {
      "PyAFV's default is 0.45); 0 = exact -grad E; must be >= 0"),
   RK("mu", K_REAL, mu, "1", "l/(time force)", "mobility; must be > 0"),
   RK("v0", K_REAL, v0, "0.5", "l/time", "self-propulsion speed (main "
-     "knob); any finite number (with integrator substeps a run with |v0| "
-     "dt > " AFV_STR(AFV_MAX_STEP_DISP) " l is refused, with euler one "
-     "whose |v0| dt exceeds the box side L)"),
+     "knob); any finite number (a run whose |v0| dt exceeds the box side L "
+     "is refused)"),
   RK("Dr", K_REAL, Dr, "0.1", "1/time", "rotational diffusion of the "
      "polarity; must be >= 0"),
   RK("dt", K_REAL, dt, "0.01", "time", "time step (Euler-Maruyama); must be "
      "> 0"),
-  RK("integrator", K_WORD, integrator, "euler", "euler|substeps", "how "
-     "Eq. (4) is integrated: euler = the paper's Euler step, every cell "
-     "moves dt (mu F + v0 n) with the exact force however far (only a "
-     "force or position that is not finite stops the run; steps that move "
-     "a cell more than " AFV_STR(AFV_MAX_STEP_DISP) " l are counted in "
-     "log.txt): near a breaking contact the force diverges and a finite "
-     "step carries the pair over the barrier, so results depend on dt "
-     "(doc/reproduction/convergence.md); substeps = a cell the force would "
-     "move farther than max_move l moves in pieces, and a step that would "
-     "move a cell more than " AFV_STR(AFV_MAX_STEP_DISP) " l is taken in "
-     "halves: the continuous-time limit as max_move -> 0, where a touching "
-     "pair never separates; the relaxation uses the same integrator"),
-  RK("max_move", K_REAL, max_move, "0.05", "l", "integrator substeps "
-     "only: a cell that the force would move farther in a step moves in "
-     "pieces of at most this length (at most " AFV_STR(AFV_MAX_SUBSTEPS)
-     " pieces); a step that would still move a cell more than "
-     AFV_STR(AFV_MAX_STEP_DISP) " l is taken in halves (down to dt/2^"
-     AFV_STR(AFV_MAX_HALVINGS) "); must be > 0"),
+  RK("integrator", K_WORD, integrator, "euler", "euler", "how Eq. (4) "
+     "is integrated, in the run and in its relaxation: euler = the paper's "
+     "Euler step, every cell moves dt (mu F + v0 n) with the exact force "
+     "however far (only a force or position that is not finite stops the "
+     "run; steps that move a cell more than " AFV_STR(AFV_MAX_STEP_DISP)
+     " l are counted in log.txt): near a breaking contact the force "
+     "diverges and a finite step carries the pair over the barrier, so "
+     "results depend on dt (doc/reproduction/convergence.md); integrator "
+     "substeps and its max_move were removed in afv 0.3.0 (a run that "
+     "uses them is finished with afv 0.2.0)"),
   RK("steps", K_INT, steps, "10000", "steps", "active steps of the whole "
      "run (main knob); must be >= 0"),
   RK("seed", K_SEED, seed, "1", "-", "random seed: noise, random start, "
@@ -162,6 +153,29 @@ static const run_key *find_key(const char *name)
   for (k = 0; k < N_RUN_KEYS; k++)
     if (strcmp(run_keys[k].name, name) == 0) return &run_keys[k];
   return NULL;
+}
+
+/* REMOVED KEYS.  integrator substeps and its key max_move (afv 0.1.0 and
+** 0.2.0) were removed in afv 0.3.0 (doc/design.md, "Integrators"): a
+** config, a --KEY or a params.txt that names them is refused with what to
+** do, not as an unknown key or value.  1 (and the message in err) if KEY
+** VALUE is one of them; value may be NULL. */
+static int removed_key(const char *key, const char *value, char *err,
+                       size_t errlen)
+{
+  if (strcmp(key, "max_move") == 0)
+    afv_errorf(err, errlen, "max_move: the sub-step length of integrator "
+               "substeps, removed in afv 0.3.0: a run that uses it must be "
+               "finished with afv 0.2.0 (a run of integrator euler: drop "
+               "the key)");
+  else if (strcmp(key, "integrator") == 0 && value
+           && strcmp(value, "substeps") == 0)
+    afv_errorf(err, errlen, "integrator: substeps was removed in afv "
+               "0.3.0 (euler is the one integrator): a run that uses it "
+               "must be finished with afv 0.2.0");
+  else
+    return 0;
+  return 1;
 }
 
 /* Joins a relative path to the directory of the file that named it; 0 if
@@ -275,7 +289,10 @@ static int read_config(const char *path, run_cfg *cfg, int *set, char *err,
     val = strtok(NULL, " \t\r");
     extra = val ? strtok(NULL, " \t\r") : NULL;
     K = find_key(key);
-    if (!K) {
+    if (removed_key(key, val, msg, sizeof msg)) {
+      afv_errorf(err, errlen, "%s:%lld: %s", path, L.lineno, msg);
+      ok = 0;
+    } else if (!K) {
       afv_errorf(err, errlen, "%s:%lld: unknown key '%.32s' (see afv run "
                  "--help)", path, L.lineno, key);
       ok = 0;
@@ -374,22 +391,17 @@ static int targets_positive(const run_cfg *c, const afv_cells *cl,
   return 1;
 }
 
-/* Every active step moves a cell by v0 dt of self-propulsion alone.  With
-** the sub-steps a step that moves a cell more than AFV_MAX_STEP_DISP l is
-** refused (dynamics.c, too_fast), so with |v0| dt beyond that the very
-** first step would stop the run; with Euler steps a self-propulsion that
-** carries a cell across the whole box (side L) in one step makes the
-** step meaningless.  Either is refused before anything is made. */
+/* Every active step moves a cell by v0 dt of self-propulsion alone: a
+** self-propulsion that carries a cell across the whole box (side L) in
+** one step makes the step meaningless, and is refused before anything is
+** made. */
 static int steps_meaningful(const run_cfg *c, const int *set,
                             const afv_cells *cl, char *err, size_t errlen)
 {
   int n = cl->n > 0 ? cl->n : 1, i;
   int dt_named = set[find_key("dt") - run_keys] && !cl->has[AFV_COL_V0]
                  && !set[find_key("v0") - run_keys];
-  int euler = strcmp(c->integrator, "substeps") != 0;
-  double limit = euler ? box_side(c) : AFV_MAX_STEP_DISP * c->l;
-  const char *what = euler ? "the box side L" : "the most a step of the "
-                     "sub-steps may move a cell";
+  double limit = box_side(c);
   if (c->steps == 0) return 1;   /* a run of no step moves nothing */
   for (i = 0; i < n; i++) {
     char label[64];
@@ -398,12 +410,13 @@ static int steps_meaningful(const run_cfg *c, const int *set,
     if (!(fabs(v0) * c->dt > limit)) continue;
     if (dt_named)   /* the key the user gave */
       afv_errorf(err, errlen, "dt: %g: a step's self-propulsion |v0| dt = "
-                 "%g l (v0 = %g) exceeds %g l, %s: lower dt", c->dt,
-                 fabs(v0) * c->dt / c->l, v0, limit / c->l, what);
+                 "%g l (v0 = %g) exceeds %g l, the box side L: lower dt",
+                 c->dt, fabs(v0) * c->dt / c->l, v0, limit / c->l);
     else
       afv_errorf(err, errlen, "%s: %g: a step's self-propulsion |v0| dt = "
-                 "%g l (dt = %g) exceeds %g l, %s: lower v0 or dt", label,
-                 v0, fabs(v0) * c->dt / c->l, c->dt, limit / c->l, what);
+                 "%g l (dt = %g) exceeds %g l, the box side L: lower v0 or "
+                 "dt", label, v0, fabs(v0) * c->dt / c->l, c->dt,
+                 limit / c->l);
     return 0;
   }
   return 1;
@@ -444,7 +457,6 @@ static int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
   if (c->mu <= 0) BAD("mu: must be > 0 (got %g)", c->mu);
   if (c->Dr < 0) BAD("Dr: must be >= 0 (got %g)", c->Dr);
   if (c->dt <= 0) BAD("dt: must be > 0 (got %g)", c->dt);
-  if (!(c->max_move > 0)) BAD("max_move: must be > 0 (got %g)", c->max_move);
   if (c->steps < 0) BAD("steps: must be >= 0 (got %lld)", c->steps);
   if (c->spacing <= 0) BAD("spacing: must be > 0 (got %g)", c->spacing);
   if (c->relax_tol <= 0) BAD("relax_tol: must be > 0 (got %g)", c->relax_tol);
@@ -627,9 +639,6 @@ static void cfg_model(const run_cfg *c, const afv_cells *cl, afv_params *p,
   b->Lx = b->Ly = box_side(c);
   afv_dyn_default(d);
   d->mu = c->mu; d->v0 = c->v0; d->Dr = c->Dr; d->dt = c->dt;
-  d->integrator = strcmp(c->integrator, "substeps") == 0 ? AFV_SUBSTEPS
-                                                          : AFV_EULER;
-  d->max_move = c->max_move;
   d->seed = c->seed;
   d->v0_i = cl->col[AFV_COL_V0];
   d->Dr_i = cl->col[AFV_COL_DR];
@@ -696,8 +705,7 @@ static int run_start(run_state *R, char *err, size_t errlen)
 
 /* ---- what a run can compute --------------------------------------------- */
 /* The run later multiplies the energy and the squared force norm checked
-** here by modest factors (the relaxation's energy window, sums over a
-** step's pieces and halves): a value within
+** here by modest factors (the relaxation's energy window): a value within
 ** COMPUTE_HEADROOM of the largest double is refused, so those products stay
 ** finite: |F|^2 summed over the cells above 1.8e302, or an energy bound
 ** above 1.8e302 (at the paper's values, KA = KP = 1 and N = 400, the
@@ -865,8 +873,8 @@ static int forces_computable(const afv_sim *s, char *err, size_t errlen)
 
 /* 1 if the clock, the step's factors and the angle noise stay finite for
 ** the whole run: t = step dt up to steps; mu dt and v0 dt (a step moves a
-** cell by mu dt F + v0 dt n, refused beyond l/2, so an overflow there
-** would blame a finite force); sqrt(2 Dr dt) (as the step computes it;
+** cell by mu dt F + v0 dt n, so an overflow there would blame a finite
+** force); sqrt(2 Dr dt) (as the step computes it;
 ** then |theta| grows by at most 8.57 sqrt(2 Dr dt) a step, which cannot
 ** reach the largest double within 2^63 steps). */
 static int dynamics_computable(const afv_sim *s, long long steps, char *err,
@@ -976,6 +984,7 @@ int run_key_check(const char *name, const char *text, char *err,
 {
   run_cfg cfg;
   const run_key *K = find_key(name);
+  if (removed_key(name, text, err, errlen)) return 0;
   if (!K) {
     afv_errorf(err, errlen, "unknown key '%s' (see afv run --help)", name);
     return 0;
@@ -1555,18 +1564,11 @@ static void log_relax(run_state *R, const afv_relax_report *rep)
             "goes on");
     return;
   }
-  if (R->sim.dyn.integrator == AFV_EULER)
-    run_log(R, "relaxation at v0 = 0 (Euler steps of dt = %g): %ld steps "
-            "(t = %.6g; %lld moved a cell more than %g l), energy %.10g -> "
-            "%.10g, max |F| %.3e\n", R->sim.dyn.dt, rep->iterations,
-            rep->time, rep->jumps, AFV_MAX_STEP_DISP, rep->energy0,
-            rep->energy, rep->max_force);
-  else
-    run_log(R, "relaxation at v0 = 0 (overdamped steps of dt = %g): %ld "
-            "steps (t = %.6g, %lld extra sub-steps, %lld halved), energy "
-            "%.10g -> %.10g, max |F| %.3e\n", R->sim.dyn.dt,
-            rep->iterations, rep->time, rep->substeps, rep->halvings,
-            rep->energy0, rep->energy, rep->max_force);
+  run_log(R, "relaxation at v0 = 0 (Euler steps of dt = %g): %ld steps "
+          "(t = %.6g; %lld moved a cell more than %g l), energy %.10g -> "
+          "%.10g, max |F| %.3e\n", R->sim.dyn.dt, rep->iterations,
+          rep->time, rep->jumps, AFV_MAX_STEP_DISP, rep->energy0,
+          rep->energy, rep->max_force);
   if (R->cfg.cap > 0)
     run_log(R, "relaxation: with cap %g the force is regularised near "
             "detachment (PyAFV's contact truncation), so it is not -grad E: "
@@ -1585,11 +1587,12 @@ static void log_relax(run_state *R, const afv_relax_report *rep)
             rep->max_force, AFV_RELAX_KINK_FORCE, R->cfg.relax_tol);
   else if (rep->refused)
     run_log(R, "relaxation: stopped at step %ld, which it cannot take: cell "
-            "%d would move %g l (> %g l) even in a time %g (forces too large "
-            "for mu = %g, dt = %g: check mu, KA, KP, Lambda); relax_tol %g "
-            "NOT reached, the run goes on from here\n", rep->iterations + 1,
-            R->sim.bad_cell, R->sim.bad_disp, AFV_MAX_STEP_DISP,
-            R->sim.bad_time, R->sim.dyn.mu, R->sim.dyn.dt, R->cfg.relax_tol);
+            "%d would move %g l (> %g l, a runaway) in one step (forces far "
+            "too large for mu = %g, dt = %g: check mu, KA, KP, Lambda); "
+            "relax_tol %g NOT reached, the run goes on from here\n",
+            rep->iterations + 1, R->sim.bad_cell, R->sim.bad_disp,
+            AFV_RUNAWAY_MOVE, R->sim.dyn.mu, R->sim.dyn.dt,
+            R->cfg.relax_tol);
   else
     run_log(R, "relaxation: NOT reached within relax_max_steps %lld: max "
             "|F| %.3e > relax_tol %g, no kink shown (last window: mean "
@@ -1663,15 +1666,8 @@ static int report_nonfinite(run_state *R)
 static const char *unstable_reason(const afv_sim *s)
 {
   if (!isfinite(s->bad_disp)) return "its force or position is not finite";
-  if (s->dyn.integrator == AFV_EULER)
-    return "a runaway (farther than " AFV_STR(AFV_RUNAWAY_MOVE) " l in one "
-           "step): the parameters are far too stiff for dt (check KA, KP, "
-           "Lambda, mu)";
-  if (s->bad_time < s->dyn.dt)
-    return "the moves mu dt F are too large for any time step, even in "
-           "the smallest half of dt (check mu, then KA, KP, Lambda, P0)";
-  return "self-propulsion alone, v0 dt, exceeds that: the time step is too "
-         "large";
+  return "a runaway: the forces are far too large for the time step "
+         "(check mu, then KA, KP, Lambda)";
 }
 
 /* Integrates to cfg.steps.  Returns an exit status. */
@@ -1692,7 +1688,7 @@ static int run_loop(run_state *R)
     fprintf(stderr, "%safv run: step %lld (t = %g): cell %d would move %g l "
             "(> %g l) in a time %g: %s; %s\n",
             R->progress ? "\n" : "", s->step + 1, s->t, i, s->bad_disp,
-            AFV_MAX_STEP_DISP, s->bad_time,
+            AFV_RUNAWAY_MOVE, s->dyn.dt,
             unstable_reason(s), resume_point(R, where, sizeof where));
     if (R->log) fprintf(R->log, "stopped: unstable step %lld, cell %d\n",
                         s->step + 1, i);
@@ -1722,21 +1718,14 @@ static int run_loop(run_state *R)
   {
     double w = wall_seconds() - R->wall0;
     long long k = s->step - R->start_step;
-    if (s->dyn.integrator == AFV_EULER)
-      run_log(R, "%d cells, steps %lld..%lld (t = %.6g) in %.3g s (%.0f "
-              "steps/s; Euler steps that moved a cell more than %g l: "
-              "%lld, since this process started, relaxation included; "
-              "largest move of a cell in one step %.3g l); outputs in %s/: "
-              "observables.csv, trajectory.dat, snapshots snap_*.svg and "
-              "final.svg\n", s->n, R->start_step, s->step, s->t, w,
-              w > 0 ? (double)k / w : 0.0, AFV_MAX_STEP_DISP, s->jumps,
-              s->largest_move, R->dir);
-    else
-      run_log(R, "%d cells, steps %lld..%lld (t = %.6g) in %.3g s (%.0f "
-              "steps/s, %lld extra sub-steps); outputs in %s/: "
-              "observables.csv, trajectory.dat, snapshots snap_*.svg and "
-              "final.svg\n", s->n, R->start_step, s->step, s->t, w,
-              w > 0 ? (double)k / w : 0.0, s->substeps, R->dir);
+    run_log(R, "%d cells, steps %lld..%lld (t = %.6g) in %.3g s (%.0f "
+            "steps/s; Euler steps that moved a cell more than %g l: "
+            "%lld, since this process started, relaxation included; "
+            "largest move of a cell in one step %.3g l); outputs in %s/: "
+            "observables.csv, trajectory.dat, snapshots snap_*.svg and "
+            "final.svg\n", s->n, R->start_step, s->step, s->t, w,
+            w > 0 ? (double)k / w : 0.0, AFV_MAX_STEP_DISP, s->jumps,
+            s->largest_move, R->dir);
   }
   return 0;
 }
@@ -1749,8 +1738,8 @@ static const char *run_usage =
   "Simulates the active finite Voronoi model (paper protocol): the start\n"
   "(init; default: the authors' random cluster) relaxed at v0 = 0 until\n"
   "max |F| <= relax_tol or a kink of E, then dr/dt = mu F + v0 n,\n"
-  "dth = sqrt(2 Dr dt) xi (Euler-Maruyama; steps with large forces are\n"
-  "taken in pieces and halves, never refused for their size).\n"
+  "dth = sqrt(2 Dr dt) xi (Euler-Maruyama, the paper's steps of dt with\n"
+  "the exact force, never refused for their size).\n"
   "FILE holds 'KEY VALUE' lines ('#' comments); --KEY VALUE overrides it.\n"
   "Relative paths in FILE are relative to FILE's directory.  DIR gets\n"
   "params.txt (every key; --config DIR/params.txt repeats the run),\n"
@@ -1777,8 +1766,8 @@ static const char *run_usage =
   "naming the key.  Missing parent folders\n"
   "of DIR are created.\n"
   "Exit status: 0 done, 2 bad input or an I/O error, 3 unstable step (a\n"
-  "force not finite, v0 dt > l/2, or forces too large even for dt/256) or\n"
-  "a state that is not finite (never written).\n"
+  "force or position not finite, or a runaway move beyond 1e8 l) or a\n"
+  "state that is not finite (never written).\n"
   "\n"
   "keys (default, unit, meaning):\n";
 
@@ -1824,6 +1813,7 @@ typedef struct run_args {
 ** every other option is --KEY VALUE with a known KEY. */
 static int scan_args(int argc, char **argv, run_args *a)
 {
+  char msg[512];
   int k;
   memset(a, 0, sizeof *a);
   for (k = 1; k < argc; k++) {
@@ -1841,6 +1831,10 @@ static int scan_args(int argc, char **argv, run_args *a)
       a->cont = 1;
       continue;
     }
+    if (strncmp(o, "--", 2) == 0
+        && removed_key(o + 2, k + 1 < argc ? argv[k + 1] : NULL, msg,
+                       sizeof msg))
+      return !bad_input(msg);
     if (strncmp(o, "--", 2) != 0
         || (!find_key(o + 2) && strcmp(o, "--out") && strcmp(o, "--resume")
             && strcmp(o, "--config"))) {
@@ -2232,6 +2226,35 @@ static int parse_more_steps(const char *text, long long *more)
   return 0;
 }
 
+/* 1 if the KEY VALUE file at path has a line for key, 0 if not, -1 if it
+** cannot be read. */
+static int has_key(const char *path, const char *key)
+{
+  afv_lines L;
+  int found = 0;
+  if (afv_lines_open(&L, path, NULL, 0) != AFV_OK) return -1;
+  while (!found && afv_lines_next(&L, NULL, 0) > 0) {
+    char *k = strtok(L.line, " \t\r");
+    found = k && strcmp(k, key) == 0;
+  }
+  afv_lines_close(&L);
+  return found;
+}
+
+/* The params.txt of a run to go on with (--resume, --continue): one
+** without the integrator key was written by afv 0.1.0, whose runs used the
+** sub-steps (REMOVED KEYS), and is refused, naming the version that goes
+** on with it.  0 if it has the key (or cannot be read: read_config then
+** says why), else an exit status with the message printed. */
+static int written_after_0_1_0(const char *params)
+{
+  if (has_key(params, "integrator") != 0) return 0;
+  fprintf(stderr, "afv run: %s: no integrator key: a run of afv 0.1.0, "
+          "whose sub-steps (integrator substeps) were removed in afv 0.3.0; "
+          "finish it with afv 0.1.0\n", params);
+  return EXIT_BAD_INPUT;
+}
+
 /* Resume: params.txt (and the cells file it names) into R->cfg; set[k]
 ** records the line of key k.  0, or an exit status with the message
 ** printed. */
@@ -2239,12 +2262,10 @@ static int resume_params(run_state *R, const run_args *a, int *set,
                          const char *params)
 {
   char err[2 * RUN_PATH_MAX];
+  int st;
+  if ((st = written_after_0_1_0(params)) != 0) return st;
   if (!read_config(params, &R->cfg, set, err, sizeof err))
     return bad_input(err);
-  /* a params.txt without the key predates it (0.1.0): that run used the
-  ** sub-steps, and goes on with them */
-  if (!set[find_key("integrator") - run_keys])
-    snprintf(R->cfg.integrator, sizeof R->cfg.integrator, "substeps");
   if (a->quiet) R->cfg.quiet = a->quiet > 0;
   if (!cfg_validate(&R->cfg, set, &R->cells, err, sizeof err)) {
     locate_error(err, sizeof err, set, params);
@@ -2451,14 +2472,13 @@ static int same_run_asked(const run_args *a, int argc, char **argv)
   cfg_defaults(&asked);
   cfg_defaults(&run);
   snprintf(path, sizeof path, "%s/params.txt", a->out);
-  if ((st = requested_cfg(&asked, &asked_cells, a, argc, argv, set_asked)))
+  if ((st = requested_cfg(&asked, &asked_cells, a, argc, argv, set_asked))
+      || (st = written_after_0_1_0(path)))
     goto done;
   if (!read_config(path, &run, set_run, err, sizeof err)) {
     st = bad_input(err);
     goto done;
   }
-  if (!set_run[find_key("integrator") - run_keys])   /* as resume_params */
-    snprintf(run.integrator, sizeof run.integrator, "substeps");
   if (!cfg_validate(&run, set_run, &run_cells, err, sizeof err)) {
     locate_error(err, sizeof err, set_run, path);
     st = bad_input(err);

@@ -123,40 +123,6 @@ static void test_protocol_reduced(void)
   }
 }
 
-/* Two cells 0.05 l apart, KA = 100: the force (about 300) pushes them
-** apart by about 1 l within one step of dt = 0.01, a move the old code
-** refused (more than l/2).  The step is taken in halves, the energy falls,
-** and the separation agrees with a fine plain-Euler integration of the
-** same time (4096 steps of dt/4096). */
-static void near_pair(afv_sim *s, double dt, double max_move)
-{
-  CHECK(test_pair_sim(s, 0.05, 0.01, 100, dt, max_move) == AFV_OK, "init");
-}
-
-static void test_halves_follow_a_large_force(void)
-{
-  afv_sim s, fine;
-  double E0, d, d_fine;
-  int k;
-  near_pair(&s, 0.01, 0.05);
-  E0 = s.geom.energy;
-  CHECK(afv_sim_step(&s) == AFV_OK, "step refused: cell %d move %g l",
-        s.bad_cell, s.bad_disp);
-  d = hypot(s.r[2] - s.r[0], s.r[3] - s.r[1]);
-  near_pair(&fine, 0.01 / 4096, 0);
-  for (k = 0; k < 4096; k++)
-    CHECK(afv_sim_step(&fine) == AFV_OK, "fine step %d refused", k);
-  d_fine = hypot(fine.r[2] - fine.r[0], fine.r[3] - fine.r[1]);
-  printf("  separation 0.051 -> %.4f l (%lld halvings, %lld pieces), fine "
-         "Euler %.4f l\n", d, s.halvings, s.substeps, d_fine);
-  CHECK(s.halvings > 0, "no halving: the test does not test them");
-  CHECK(d - 0.051 > AFV_MAX_STEP_DISP, "the pair moved only %g l", d);
-  CHECK(s.geom.energy < E0, "energy rose: %g -> %g", E0, s.geom.energy);
-  CHECK(fabs(d - d_fine) < 0.05, "halves %g l, fine Euler %g l", d, d_fine);
-  afv_sim_free(&s);
-  afv_sim_free(&fine);
-}
-
 /* ---- afv run: the starts and the relaxation's report ------------------- */
 static char tmp[64];
 
@@ -273,7 +239,6 @@ void suite_protocol(void)
 {
   char cmd[128];
   RUN(test_protocol_reduced);
-  RUN(test_halves_follow_a_large_force);
   snprintf(tmp, sizeof tmp, "/tmp/afv_test_protocol.XXXXXX");
   if (!mkdtemp(tmp)) {
     printf("  cannot make a temporary directory\n");
