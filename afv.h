@@ -365,7 +365,8 @@ void     afv_sim_delete(afv_sim *s);
 int        afv_sim_n(const afv_sim *s);         /* number of cells */
 long long  afv_sim_steps(const afv_sim *s);     /* steps taken since the
                                                 ** start of the active run */
-void       afv_sim_set_steps(afv_sim *s, long long step);
+void       afv_sim_set_steps(afv_sim *s, long long step);  /* and the
+                                                ** time to step * dt */
 double     afv_sim_time(const afv_sim *s);      /* step * dt after a step */
 /* The 2n centres, UNWRAPPED (minimum image inside), interleaved; writable
 ** (then afv_sim_refresh). */
@@ -478,6 +479,37 @@ void afv_init_square(int n, unsigned long long seed, const afv_box *b,
                      double side, double *r);
 /* Uniform random angles in [0, 2 pi) from the streams of seed. */
 void afv_init_angles(int n, unsigned long long seed, double *theta);
+
+/* ---- the paper's protocol (dynamics.c, PROTOCOL) ----------------------- */
+/* From a start to the active run, as the paper does it: the start, its
+** relaxation at v0 = 0, then v0 switched on.  The authors' start is
+** AFV_START_SQUARE with side AFV_AUTHORS_SQUARE L (L the periodic box
+** side) and AFV_RELAX_FLOW. */
+#define AFV_AUTHORS_SQUARE 0.3
+enum { AFV_START_SQUARE,    /* afv_init_square(seed, side) */
+       AFV_START_LATTICE,   /* afv_init_cluster(spacing) */
+       AFV_START_RANDOM,    /* afv_init_random(seed, side) */
+       AFV_START_GIVEN };   /* the positions r */
+enum { AFV_RELAX_FLOW,      /* afv_relax: the paper's overdamped flow */
+       AFV_RELAX_FIRE };    /* afv_relax_fire */
+typedef struct afv_protocol {
+  int start;             /* AFV_START_* */
+  double side;           /* SQUARE, RANDOM (open space): the square's side */
+  double spacing;        /* LATTICE: the spacing (reduced to fit the box) */
+  const double *r;       /* GIVEN: 2n positions */
+  const double *theta;   /* n angles, or NULL: afv_init_angles(d->seed) */
+  int relax;             /* AFV_RELAX_FLOW or AFV_RELAX_FIRE */
+  double relax_tol;      /* max |F| to relax to (afv_relax's tol) */
+  long relax_max_steps;  /* 0: no relaxation (the start as built) */
+} afv_protocol;
+/* Initialises s (afv_sim_new'd) at the start of pr for n cells with p, b,
+** d, relaxes it at v0 = 0 as pr says (rep: its report; mon, ctx as for
+** afv_relax), and leaves it at step 0 with d's v0 on, ready for
+** afv_sim_step.  Status as afv_sim_init (the start), then as afv_relax. */
+int afv_protocol_start(afv_sim *s, int n, const afv_params *p,
+                       const afv_box *b, const afv_dyn *d,
+                       const afv_protocol *pr, afv_relax_report *rep,
+                       afv_relax_monitor mon, void *ctx);
 
 /* The counter-clockwise angle from +x to the vector (x, y), in [0, 2 pi]
 ** (2 pi only by rounding, for y a hair below 0): atan2(y, x) + (2 pi if

@@ -70,7 +70,11 @@ void afv_sim_delete(afv_sim *s)
 
 int        afv_sim_n(const afv_sim *s)        { return s->n; }
 long long  afv_sim_steps(const afv_sim *s)    { return s->step; }
-void       afv_sim_set_steps(afv_sim *s, long long step) { s->step = step; }
+void       afv_sim_set_steps(afv_sim *s, long long step)
+{
+  s->step = step;
+  s->t = (double)step * s->dyn.dt;      /* as afv_sim_step sets it */
+}
 double     afv_sim_time(const afv_sim *s)     { return s->t; }
 double    *afv_sim_positions(afv_sim *s)      { return s->r; }
 double    *afv_sim_angles(afv_sim *s)         { return s->theta; }

@@ -1,6 +1,7 @@
 /*
 ** dynamics.c -- the equations of motion: active Brownian dynamics, then
-** relaxation and initial states.
+** relaxation, initial states and the paper's protocol (PROTOCOL: start,
+** relaxation at v0 = 0, v0 on).
 **
 ** Equation of motion (paper, Eq. (4)) and polarity noise (Eq. (5),
 ** eq:abp: d th_i = eta_i dt, <eta_i(t) eta_j(t')> = 2 Dr delta_ij
@@ -609,4 +610,76 @@ void afv_init_angles(int n, unsigned long long seed, double *theta)
     rng_uniform2(seed, (uint32_t)i, 0, AFV_RNG_INIT_ANGLE, u);
     theta[i] = TWO_PI * (1 - u[0]);
   }
+}
+
+/* ---- the paper's protocol ---------------------------------------------- */
+/* PROTOCOL.  The paper (Sec. Model) starts from one large connected
+** cluster (the authors' code: centres uniform at random in a square of
+** side 0.3 L, AFV_START_SQUARE), relaxes it "at zero temperature" (the
+** flow at v0 = 0, afv_relax), then switches self-propulsion on.
+** afv_protocol_start is that order in one place: afv run calls it, with
+** the other starts (lattice, random, given) and FIRE as options.  v0 is
+** the active run's from the first call on: the relaxation sets it to 0
+** only for its own steps, so it is on again when the function returns. */
+
+/* The start's 2n positions into r. */
+static int start_positions(int n, const afv_box *b, const afv_dyn *d,
+                           const afv_protocol *pr, double *r)
+{
+  switch (pr->start) {
+  case AFV_START_SQUARE:
+    afv_init_square(n, d->seed, b, pr->side, r);
+    return AFV_OK;
+  case AFV_START_LATTICE:
+    return afv_init_cluster(n, pr->spacing, b, r);
+  case AFV_START_RANDOM:
+    afv_init_random(n, d->seed, b, pr->side, r);
+    return AFV_OK;
+  case AFV_START_GIVEN:
+    if (!pr->r) return AFV_EINVAL;
+    memcpy(r, pr->r, (size_t)(2 * n) * sizeof(double));
+    return AFV_OK;
+  default:
+    return AFV_EINVAL;
+  }
+}
+
+/* The report of a start left unrelaxed: its energy and force. */
+static void unrelaxed(const afv_sim *s, double tol, afv_relax_report *rep)
+{
+  memset(rep, 0, sizeof *rep);
+  rep->energy0 = rep->energy = s->geom.energy;
+  rep->max_force = afv_sim_max_force(s);
+  rep->drift = rep->drop = NAN;
+  rep->converged = rep->max_force <= tol;
+}
+
+int afv_protocol_start(afv_sim *s, int n, const afv_params *p,
+                       const afv_box *b, const afv_dyn *d,
+                       const afv_protocol *pr, afv_relax_report *rep,
+                       afv_relax_monitor mon, void *ctx)
+{
+  double *r, *theta;
+  afv_relax_report none;
+  int st;
+  if (!rep) rep = &none;
+  memset(rep, 0, sizeof *rep);
+  if (n < 0) return AFV_EINVAL;
+  r = malloc((size_t)(2 * n + 1) * sizeof(double));
+  theta = malloc((size_t)(n + 1) * sizeof(double));
+  st = r && theta ? start_positions(n, b, d, pr, r) : AFV_ENOMEM;
+  if (st == AFV_OK) {
+    if (pr->theta) memcpy(theta, pr->theta, (size_t)n * sizeof(double));
+    else afv_init_angles(n, d->seed, theta);
+    st = afv_sim_init(s, n, r, theta, p, b, d);
+  }
+  free(r);
+  free(theta);
+  if (st != AFV_OK) return st;
+  if (pr->relax_max_steps <= 0) {
+    unrelaxed(s, pr->relax_tol, rep);
+    return AFV_OK;
+  }
+  return (pr->relax == AFV_RELAX_FIRE ? afv_relax_fire : afv_relax)
+         (s, pr->relax_tol, pr->relax_max_steps, rep, mon, ctx);
 }
