@@ -47,7 +47,7 @@ endif
 # afv_internal.h, fastmath.h and rng.h are shared by its files only, and
 # afv_tool.h holds what only the program uses (line readers, checkpoints,
 # plots, fits): none of them is installed, afv.h is the API.
-LIB_SRC  = neighbours.c geom.c fastmath.c afv.c dynamics.c substeps.c rng.c \
+LIB_SRC  = neighbours.c geom.c fastmath.c afv.c dynamics.c rng.c \
            analysis.c svg.c io.c phase.c api.c fits.c relax_fire.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)

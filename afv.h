@@ -26,6 +26,7 @@
 **   simulation                         afv_dyn, afv_sim, afv_sim_step,
 **                                      afv_relax, afv_relax_fire
 **   initial configurations             afv_init_cluster, afv_init_square, ..
+**   the paper's protocol               afv_protocol, afv_protocol_start
 **   files a user reads or writes       POINTS, trajectories, CELLS
 **   order parameters and analysis      afv_clusters, afv_t1, afv_msd,
 **                                      afv_analysis, afv_meanfield_p0
@@ -61,8 +62,8 @@
 #define AFV_ECOINCIDENT  5  /* two centres coincide (d = 0): afv_geom_bad_pair */
 #define AFV_EIO          6  /* reading or writing a file failed */
 #define AFV_EFORMAT      7  /* a file is not in the documented format */
-#define AFV_EUNSTABLE    8  /* NaN/Inf force, v0 dt > l/2, or a move > l/2 even
-                            ** in dt / 2^AFV_MAX_HALVINGS: afv_sim_bad_cell */
+#define AFV_EUNSTABLE    8  /* a force or position not finite, or a runaway
+                            ** move (AFV_RUNAWAY_MOVE): afv_sim_bad_cell */
 
 const char *afv_strerror(int status);   /* one-line description of a status */
 
@@ -227,36 +228,17 @@ int afv_force_check(int n, const double *r, const afv_params *p,
 ** generator (Philox4x32-10) keyed by the seed, so a run depends only on
 ** (seed, parameters), whatever the order cells are visited in. */
 
-/* A step that moves a cell farther than AFV_MAX_STEP_DISP * l is refused
-** (AFV_EUNSTABLE): the forces change on the scale l, so such a step is
-** outside the range where Euler's method follows the dynamics at all. */
+/* afv_sim_step is the paper's Euler step, r_i += dt (mu F_i + v0_i n_i)
+** with the exact force, for every cell, however far it moves.  Near a
+** contact that breaks (Lambda > 0) the force diverges like
+** (2l - d)^(-1/2), and a finite step is what carries a pair over that
+** barrier: the results depend on dt (doc/reproduction/convergence.md).
+** A step in which some cell moves farther than AFV_MAX_STEP_DISP * l (the
+** forces change on the scale l, so Euler's method no longer follows the
+** continuous dynamics there) is a jump, counted (afv_sim_jumps), not
+** refused. */
 #define AFV_MAX_STEP_DISP 0.5
-/* At most this many pieces per step (substeps.c, SUB-STEPS): each piece
-** but the last moves the fastest cell by max_move l, so 64 pieces cover
-** 3 l of force-driven motion, more than the l/2 a step may move at all. */
-#define AFV_MAX_SUBSTEPS 64
-/* A step (dt) whose moves would still carry a cell farther than
-** AFV_MAX_STEP_DISP l is taken again in halves, and those in halves, down
-** to dt / 2^AFV_MAX_HALVINGS (dynamics.c, HALVES; with max_move > 0). */
-#define AFV_MAX_HALVINGS 8
-
-/* How afv_sim_step integrates Eq. (4) (afv_dyn.integrator):
-**   AFV_EULER: the paper's Euler step, r_i += dt (mu F_i + v0_i n_i) with
-**     the exact force, for every cell, however far it moves.  Near a
-**     contact that breaks (Lambda > 0) the force diverges like
-**     (2l - d)^(-1/2), and a finite step is what carries a pair over that
-**     barrier: the results depend on dt (doc/reproduction/convergence.md).
-**     Only a force or position that is not finite is an error; the steps
-**     in which some cell moved more than AFV_MAX_STEP_DISP l are counted
-**     (afv_sim_jumps).
-**   AFV_SUBSTEPS: a cell that the force would move farther than max_move l
-**     moves in pieces (substeps.c), and a step that would move a cell more
-**     than AFV_MAX_STEP_DISP l is taken in halves: as max_move -> 0 this
-**     approaches the continuous-time dynamics, in which a touching pair
-**     never separates. */
-#define AFV_EULER    0
-#define AFV_SUBSTEPS 1
-/* AFV_EULER refuses a step only if a force or position is not finite, or
+/* afv_sim_step refuses a step only if a force or position is not finite, or
 ** if it would move a cell farther than AFV_RUNAWAY_MOVE l: no force of
 ** the model does that at sane parameters (the divergence at detachment
 ** is cut off by the spacing of doubles near 2l: |F| < 1e7 at the paper's
@@ -265,22 +247,16 @@ int afv_force_check(int n, const double *r, const afv_params *p,
 #define AFV_RUNAWAY_MOVE 1e8
 
 typedef struct afv_dyn {
-  int integrator;     /* AFV_EULER (default) or AFV_SUBSTEPS */
   double mu;          /* mobility (inverse friction), > 0 */
   double v0;          /* self-propulsion speed, in l per unit time */
   double Dr;          /* rotational diffusion constant, 1/time, >= 0 */
   double dt;          /* time step, > 0 */
-  double max_move;    /* AFV_SUBSTEPS only: sub-step threshold, in l
-                      ** (> 0): a step in which the force would move some
-                      ** cell farther is integrated in pieces that move it
-                      ** at most this far (substeps.c, SUB-STEPS) */
   const double *v0_i; /* optional per-cell v0 (length n), NULL = scalar v0 */
   const double *Dr_i; /* optional per-cell Dr (length n), NULL = scalar Dr */
   unsigned long long seed; /* key of the random streams */
 } afv_dyn;
 
-/* Paper defaults: AFV_EULER, mu 1, v0 0, Dr 0.1, dt 0.01, seed 1;
-** max_move 0.05 (used by AFV_SUBSTEPS only). */
+/* Paper defaults: mu 1, v0 0, Dr 0.1, dt 0.01, seed 1. */
 void afv_dyn_default(afv_dyn *d);
 
 
@@ -294,7 +270,7 @@ void afv_dyn_default(afv_dyn *d);
 ** simulation started from that state with the new values would
 ** (test/test_docs.c):
 **   - no call needed (afv_sim_step reads them afresh every step): through
-**     afv_sim_dyn, v0, Dr, mu, max_move, seed; the angles (afv_sim_angles);
+**     afv_sim_dyn, v0, Dr, mu, seed; the angles (afv_sim_angles);
 **     the step count (afv_sim_set_steps: the noise of a step is drawn for
 **     (seed, cell, step)); dt too, but the time is recomputed as step * dt,
 **     so keep your own clock across a change of dt; v0_i and Dr_i may be
@@ -316,7 +292,8 @@ void     afv_sim_delete(afv_sim *s);
 int        afv_sim_n(const afv_sim *s);         /* number of cells */
 long long  afv_sim_steps(const afv_sim *s);     /* steps taken since the
                                                 ** start of the active run */
-void       afv_sim_set_steps(afv_sim *s, long long step);
+void       afv_sim_set_steps(afv_sim *s, long long step);  /* and the
+                                                ** time to step * dt */
 double     afv_sim_time(const afv_sim *s);      /* step * dt after a step */
 /* The 2n centres, UNWRAPPED (minimum image inside), interleaved; writable
 ** (then afv_sim_refresh). */
@@ -330,38 +307,24 @@ const afv_geom *afv_sim_geom(const afv_sim *s);    /* geometry at the
 afv_params *afv_sim_params(afv_sim *s);
 afv_box    *afv_sim_box(afv_sim *s);
 afv_dyn    *afv_sim_dyn(afv_sim *s);
-/* Extra sub-step pieces so far, summed over the groups of fast cells
-** (= extra force evaluations of their regions; substeps.c, GROUPS). */
-long long  afv_sim_substeps(const afv_sim *s);
-/* Steps (or parts of steps) taken again in two halves so far (dynamics.c,
-** HALVES). */
-long long  afv_sim_halvings(const afv_sim *s);
-/* AFV_EULER: the steps so far (active and relaxation) in which some cell
+/* The steps so far (active and relaxation) in which some cell
 ** moved more than AFV_MAX_STEP_DISP l, and the largest move of a cell in
 ** one step so far, in l (0 before a step; NaN never: such a step is refused). */
 long long  afv_sim_jumps(const afv_sim *s);
 double     afv_sim_largest_move(const afv_sim *s);
-/* After AFV_EUNSTABLE: the offending cell (else -1), its step length / l
-** (NaN or inf if the force was not finite), and the time over which it
-** would have moved so far (dt, or the smallest half). */
+/* After AFV_EUNSTABLE: the offending cell (else -1) and its step length
+** / l in dt (NaN or inf if the force was not finite). */
 int        afv_sim_bad_cell(const afv_sim *s);
 double     afv_sim_bad_disp(const afv_sim *s);
-double     afv_sim_bad_time(const afv_sim *s);
 
 /* Copies r (2n), theta (n; NULL = all 0), the parameters and their per-cell
 ** arrays, and computes the forces.  Status as afv_compute, or AFV_EINVAL. */
 int  afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
                   const afv_params *p, const afv_box *b, const afv_dyn *d);
 /* One Euler-Maruyama step: r += dt (mu F + v0 n); th += sqrt(2 Dr dt) xi;
-** then the forces at the new r.  If the force would move some cell more
-** than max_move l, the position update is done in pieces (sub-steps).
-** Allocation-free once its buffers have grown (the geometry's, and those
-** of the sub-steps, which grow with the largest groups and regions met
-** so far).  A step in which some cell's whole move would exceed
-** AFV_MAX_STEP_DISP l is taken in halves (max_move > 0; dynamics.c,
-** HALVES).  AFV_EUNSTABLE (state unchanged) if a force is not finite, if
-** v0 dt alone exceeds AFV_MAX_STEP_DISP l, or if some cell's move exceeds
-** it even in dt / 2^AFV_MAX_HALVINGS (or in dt, with max_move = 0). */
+** then the forces at the new r.  Allocation-free once the geometry's
+** buffers have grown.  AFV_EUNSTABLE (state unchanged) if a force or a
+** position is not finite, or a move exceeds AFV_RUNAWAY_MOVE l. */
 int  afv_sim_step(afv_sim *s);
 /* Recomputes the geometry, energy and forces at r with par and box: call
 ** it after changing any of them between steps (see afv_sim).  AFV_EINVAL
@@ -373,8 +336,8 @@ int  afv_sim_refresh(afv_sim *s);
 double afv_sim_max_force(const afv_sim *s);
 
 /* Relaxation at zero activity (paper: "relax ... at zero temperature"):
-** the overdamped flow dr_i/dt = mu F_i (v0 = 0, angles unchanged) by steps
-** of dyn.dt, with afv_sim_step's sub-steps and halves.  Stops when
+** the overdamped flow dr_i/dt = mu F_i (v0 = 0, angles unchanged) by
+** afv_sim_step's Euler steps of dyn.dt.  Stops when
 ** max_i |F_i| <= tol (converged), at a kink of E shown by the criterion
 ** below (at_kink), at a step it cannot take (refused), or after max_iter
 ** steps (none of these flags: not reached).  Status AFV_OK in all these
@@ -401,16 +364,14 @@ typedef struct afv_relax_report {
   double drift;        /* at the last full window (NaN before the second):
                        ** max_i |displacement_i| / (window time mu) */
   double drop;         /* and its drop of the mean energy / sum_i |e_i| */
-  long long substeps;  /* extra sub-step pieces taken */
-  long long halvings;  /* steps taken again in halves */
-  long long jumps;     /* AFV_EULER: steps that moved a cell more than
+  long long jumps;     /* steps that moved a cell more than
                        ** AFV_MAX_STEP_DISP l (afv_sim_jumps) */
   int    converged;    /* 1 if max_force <= tol */
   int    at_kink;      /* 1 if stopped at a kink by the criterion above */
   int    refused;      /* 1 if stopped because a step of dt would move a
-                       ** cell more than l/2 even in dt / 2^AFV_MAX_HALVINGS
-                       ** (afv_sim's bad_cell, bad_disp, bad_time say
-                       ** which; forces too large for dt) */
+                       ** cell farther than AFV_RUNAWAY_MOVE l (afv_sim's
+                       ** bad_cell, bad_disp say which; forces far too
+                       ** large for dt) */
 } afv_relax_report;
 /* Optional observer, called after every step (may be NULL). */
 typedef void (*afv_relax_monitor)(void *ctx, long iter, double energy,
@@ -422,7 +383,7 @@ int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
 /* The same job by FIRE 2.0 (relax_fire.c): a minimiser, much faster to a
 ** minimum of E than the flow but not the paper's protocol.  Each cell moves
 ** at most 0.1 l a step; the same four stops (iterations: FIRE steps, time:
-** the sum of their time steps, drift and drop NaN, no sub-steps); unless
+** the sum of their time steps, drift and drop NaN, jumps 0); unless
 ** converged it ends in the lowest-energy state it saw. */
 int afv_relax_fire(afv_sim *s, double tol, long max_iter,
                    afv_relax_report *rep, afv_relax_monitor mon, void *ctx);
@@ -445,6 +406,37 @@ void afv_init_square(int n, unsigned long long seed, const afv_box *b,
                      double side, double *r);
 /* Uniform random angles in [0, 2 pi) from the streams of seed. */
 void afv_init_angles(int n, unsigned long long seed, double *theta);
+
+/* ---- the paper's protocol (dynamics.c, PROTOCOL) ----------------------- */
+/* From a start to the active run, as the paper does it: the start, its
+** relaxation at v0 = 0, then v0 switched on.  The authors' start is
+** AFV_START_SQUARE with side AFV_AUTHORS_SQUARE L (L the periodic box
+** side) and AFV_RELAX_FLOW. */
+#define AFV_AUTHORS_SQUARE 0.3
+enum { AFV_START_SQUARE,    /* afv_init_square(seed, side) */
+       AFV_START_LATTICE,   /* afv_init_cluster(spacing) */
+       AFV_START_RANDOM,    /* afv_init_random(seed, side) */
+       AFV_START_GIVEN };   /* the positions r */
+enum { AFV_RELAX_FLOW,      /* afv_relax: the paper's overdamped flow */
+       AFV_RELAX_FIRE };    /* afv_relax_fire */
+typedef struct afv_protocol {
+  int start;             /* AFV_START_* */
+  double side;           /* SQUARE, RANDOM (open space): the square's side */
+  double spacing;        /* LATTICE: the spacing (reduced to fit the box) */
+  const double *r;       /* GIVEN: 2n positions */
+  const double *theta;   /* n angles, or NULL: afv_init_angles(d->seed) */
+  int relax;             /* AFV_RELAX_FLOW or AFV_RELAX_FIRE */
+  double relax_tol;      /* max |F| to relax to (afv_relax's tol) */
+  long relax_max_steps;  /* 0: no relaxation (the start as built) */
+} afv_protocol;
+/* Initialises s (afv_sim_new'd) at the start of pr for n cells with p, b,
+** d, relaxes it at v0 = 0 as pr says (rep: its report; mon, ctx as for
+** afv_relax), and leaves it at step 0 with d's v0 on, ready for
+** afv_sim_step.  Status as afv_sim_init (the start), then as afv_relax. */
+int afv_protocol_start(afv_sim *s, int n, const afv_params *p,
+                       const afv_box *b, const afv_dyn *d,
+                       const afv_protocol *pr, afv_relax_report *rep,
+                       afv_relax_monitor mon, void *ctx);
 
 /* ---- files a user reads or writes (io.c) ------------------------------- */
 /* Reads a POINTS file: one cell "x y" per line, separated by spaces, tabs
@@ -700,9 +692,8 @@ size_t afv_struct_size(const char *name);
 /* A new afv_dyn with afv_dyn_default's values (NULL if out of memory). */
 afv_dyn *afv_dyn_new(void);
 void     afv_dyn_delete(afv_dyn *d);      /* NULL is allowed */
-/* The scalar fields: "mu", "v0", "Dr", "dt", "max_move", "seed" (an
-** integer in [0, 2^64) as a double; others AFV_EINVAL), "integrator"
-** (AFV_EULER or AFV_SUBSTEPS, as a double). */
+/* The scalar fields: "mu", "v0", "Dr", "dt", "seed" (an integer in
+** [0, 2^64) as a double; others AFV_EINVAL). */
 int afv_dyn_set(afv_dyn *d, const char *name, double value);
 int afv_dyn_get(const afv_dyn *d, const char *name, double *value);
 /* Points v0_i ("v0") or Dr_i ("Dr") at n values the caller keeps (NULL:
@@ -710,8 +701,8 @@ int afv_dyn_get(const afv_dyn *d, const char *name, double *value);
 int afv_dyn_set_cells(afv_dyn *d, const char *name, const double *values);
 
 /* A zeroed report for afv_relax; its fields by name ("iterations", "time",
-** "max_force", "energy0", "energy", "drift", "drop", "substeps",
-** "halvings", "converged", "at_kink", "refused"), integers as doubles. */
+** "max_force", "energy0", "energy", "drift", "drop", "jumps",
+** "converged", "at_kink", "refused"), integers as doubles. */
 afv_relax_report *afv_relax_report_new(void);
 void afv_relax_report_delete(afv_relax_report *rep);
 int  afv_relax_report_get(const afv_relax_report *rep, const char *name,

@@ -107,15 +107,9 @@
 #define AFV_PARALLEL_REDUCE(size, clauses) \
   AFV_PRAGMA(omp parallel for schedule(static) \
              if ((size) >= AFV_PARALLEL_MIN) clauses)
-/* A loop over independent tasks of unequal cost (the small groups of fast
-** cells, substeps.c, which uses it only for two tasks or more): each
-** thread takes the next task when it is free. */
-#define AFV_PARALLEL_TASKS \
-  AFV_PRAGMA(omp parallel for schedule(dynamic, 1))
 #else
 #define AFV_PARALLEL_FOR(size)
 #define AFV_PARALLEL_REDUCE(size, clauses)
-#define AFV_PARALLEL_TASKS
 #endif
 
 /* Private: the grid of a cell list (neighbours.c). */
@@ -221,27 +215,7 @@ void afv_cell_shape(afv_geom *g, int i, double l);
 void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
                              double wA, double wP, double wL, double *grad);
 
-/* ---- the simulation (dynamics.c, substeps.c) --------------------------- */
-/* Private (substeps.c, GROUPS): a group of fast cells in a step.  Its
-** region, the cells within REGION_RADIUS of its fast cells, is
-** group_cells[start .. start + nr - 1] (increasing); its fast cells are
-** the nf entries after that (increasing). */
-typedef struct afv_group {
-  int       start, nr, nf;
-  int       status;    /* how its pieces ended: AFV_OK or an error */
-  int       bad_cell;  /* on AFV_EUNSTABLE: the cell, and its move */
-  double    bad_len;   /*   length (for afv_unstable) */
-  long long pieces;    /* the extra pieces it took */
-} afv_group;
-
-/* Private: what one thread needs to move a group in pieces. */
-typedef struct afv_group_work {
-  afv_geom  geom;      /* the region's geometry */
-  double   *sub;       /* the region's positions, forces and per-cell
-                       ** parameters (8 per cell) */
-  int       cap_sub;   /* cells sub has room for */
-} afv_group_work;
-
+/* ---- the simulation (dynamics.c) ---------------------------------------- */
 /* The simulation (afv.h, afv_sim; what a caller may change between steps
 ** is listed there).  Zero-initialise, then afv_sim_init; release its
 ** buffers with afv_sim_free.  Invariant between calls: f and geom hold the
@@ -258,39 +232,16 @@ struct afv_sim {
   afv_box    box;      /* boundary */
   afv_dyn    dyn;      /* dynamics; per-cell arrays point into own[] */
   afv_geom   geom;     /* geometry at r (energy, areas, contacts, ...) */
-  long long  substeps;  /* extra sub-step pieces so far, summed over the
-                       ** groups of fast cells (= extra force evaluations
-                       ** of their regions; substeps.c, GROUPS) */
-  long long  halvings; /* steps (or parts of steps) taken again in two
-                       ** halves so far (dynamics.c, HALVES) */
-  long long  jumps;    /* AFV_EULER: steps in which some cell moved more
-                       ** than AFV_MAX_STEP_DISP l (dynamics.c, euler_step) */
-  double     largest_move; /* AFV_EULER: the largest move of a cell in one
-                       ** step so far, in l */
+  long long  jumps;    /* steps in which some cell moved more than
+                       ** AFV_MAX_STEP_DISP l (dynamics.c, euler_step) */
+  double     largest_move; /* the largest move of a cell in one step so
+                       ** far, in l */
   int        bad_cell; /* on AFV_EUNSTABLE: the offending cell, else -1 */
   double     bad_disp; /* on AFV_EUNSTABLE: its step length / l (NaN or
                        ** inf if the force was not finite) */
-  double     bad_time; /* on AFV_EUNSTABLE: the time over which it would
-                       ** have moved so far (dt, or the smallest half) */
-  double    *r_start;  /* private: r at the start of the step, or of its
-                       ** part being taken (2n) */
-  double    *r_step;   /* private: r at the start of a step taken in
-                       ** halves (2n) */
+  double    *r_start;  /* private: r at the start of the step (2n) */
   double    *move_len; /* private: per-cell squared move lengths (n) */
   double    *pol;      /* private: v0_i n_i during a step (2n) */
-  int       *fast;     /* private, sub-steps: the fast cells (n) */
-  int       *region;   /* private, sub-steps: a region being listed (n) */
-  int       *in_region; /* private, sub-steps: marks while listing (n) */
-  int       *around;   /* private, sub-steps: cells around a fast one,
-                       ** then a group's fast cells (n) */
-  afv_group *groups;   /* private, sub-steps: the last step's groups
-                       ** (n_groups: 0 if it had no fast cell) */
-  int        n_groups, cap_groups;
-  int       *group_cells; /* private: their regions and fast cells */
-  int        cap_group_cells;
-  afv_group_work *work; /* private: one work space per thread */
-  int        n_work;
-  int       *iown;     /* private: one block holding the int arrays */
   double    *own;      /* private: one block holding r, theta, f and the
                        ** copies of the per-cell parameter arrays */
 };
@@ -307,8 +258,7 @@ void afv_sim_free(afv_sim *s);
 #endif
 
 /* Makes room for `need` elements of `elem` bytes in *ptr, whose capacity
-** *cap grows by doubling (neighbours.c; geom.c, dynamics.c and substeps.c
-** use it too).
+** *cap grows by doubling (neighbours.c; geom.c uses it too).
 ** AFV_OK or AFV_ENOMEM (then *ptr and *cap are unchanged). */
 int afv_grow(void **ptr, int *cap, int need, size_t elem);
 
@@ -323,30 +273,15 @@ int afv_grow(void **ptr, int *cap, int need, size_t elem);
 ** depend on the order (max, min, | and sums of integers), so again any
 ** thread count gives the same bits.
 ** `size` is the loop's length in cells (in bins for the bin loop): below
-** AFV_PARALLEL_MIN the loop runs on the calling thread: the
-** sub-steps' regions (substeps.c) are tens of cells, each of their force
-** evaluations runs about eight such loops, and starting a team of threads
-** for each cost more than the loop.  Without OpenMP the macros are empty
-** and the files are plain C99. */
+** AFV_PARALLEL_MIN the loop runs on the calling thread: for a small
+** tissue, starting a team of threads costs more than the loop.  Without
+** OpenMP the macros are empty and the files are plain C99. */
 
 /* 0 for a direction in [0, pi) counter-clockwise from +x, 1 in [pi, 2 pi). */
 static inline int lower_half(double dx, double dy)
 {
   return dy < 0 || (dy == 0 && dx < 0);
 }
-
-/* ---- the step (dynamics.c) and its sub-steps (substeps.c) -------------- */
-/* dynamics.c: moves the m cells of list by h (Eq. (4): h (mu F_i + v0 n_i),
-** with this step's polarity); records a refused step's cell and move and
-** returns AFV_EUNSTABLE. */
-void afv_move_cells(afv_sim *s, const int *list, int m, double h);
-int  afv_unstable(afv_sim *s, int cell, double len);
-/* substeps.c: lists the step's fast cells (force move over dt above
-** split, from euler_all's move_len) into *nf and moves them over dt in
-** pieces, group by group (moved: how far the other cells may have moved
-** since the last force evaluation).  AFV_OK or an error (AFV_EUNSTABLE via
-** afv_unstable). */
-int  afv_substeps(afv_sim *s, double split, double moved, double dt, int *nf);
 
 /* afv analyze's memory for frames held (analysis.c, STREAMING). */
 #define AFV_ANALYSIS_RING_BYTES (16L << 20)

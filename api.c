@@ -70,7 +70,11 @@ void afv_sim_delete(afv_sim *s)
 
 int        afv_sim_n(const afv_sim *s)        { return s->n; }
 long long  afv_sim_steps(const afv_sim *s)    { return s->step; }
-void       afv_sim_set_steps(afv_sim *s, long long step) { s->step = step; }
+void       afv_sim_set_steps(afv_sim *s, long long step)
+{
+  s->step = step;
+  s->t = (double)step * s->dyn.dt;      /* as afv_sim_step sets it */
+}
 double     afv_sim_time(const afv_sim *s)     { return s->t; }
 double    *afv_sim_positions(afv_sim *s)      { return s->r; }
 double    *afv_sim_angles(afv_sim *s)         { return s->theta; }
@@ -79,13 +83,10 @@ const afv_geom *afv_sim_geom(const afv_sim *s)   { return &s->geom; }
 afv_params *afv_sim_params(afv_sim *s)        { return &s->par; }
 afv_box    *afv_sim_box(afv_sim *s)           { return &s->box; }
 afv_dyn    *afv_sim_dyn(afv_sim *s)           { return &s->dyn; }
-long long  afv_sim_substeps(const afv_sim *s) { return s->substeps; }
-long long  afv_sim_halvings(const afv_sim *s) { return s->halvings; }
 long long  afv_sim_jumps(const afv_sim *s) { return s->jumps; }
 double     afv_sim_largest_move(const afv_sim *s) { return s->largest_move; }
 int        afv_sim_bad_cell(const afv_sim *s) { return s->bad_cell; }
 double     afv_sim_bad_disp(const afv_sim *s) { return s->bad_disp; }
-double     afv_sim_bad_time(const afv_sim *s) { return s->bad_time; }
 
 /* ---- for bindings (api.c, afv.h "bindings") ---------------------------- */
 const char *afv_version(void) { return AFV_VERSION; }
@@ -100,8 +101,7 @@ size_t afv_struct_size(const char *name)
 /* The scalar fields of afv_dyn that afv_dyn_set/afv_dyn_get know, by name. */
 static const struct { const char *name; size_t offset; } dyn_fields[] = {
   {"mu", offsetof(afv_dyn, mu)}, {"v0", offsetof(afv_dyn, v0)},
-  {"Dr", offsetof(afv_dyn, Dr)}, {"dt", offsetof(afv_dyn, dt)},
-  {"max_move", offsetof(afv_dyn, max_move)}
+  {"Dr", offsetof(afv_dyn, Dr)}, {"dt", offsetof(afv_dyn, dt)}
 };
 #define N_DYN_FIELDS (sizeof dyn_fields / sizeof dyn_fields[0])
 
@@ -129,11 +129,6 @@ void afv_dyn_delete(afv_dyn *d) { free(d); }
 int afv_dyn_set(afv_dyn *d, const char *name, double value)
 {
   double *field;
-  if (!strcmp(name, "integrator")) {
-    if (value != AFV_EULER && value != AFV_SUBSTEPS) return AFV_EINVAL;
-    d->integrator = (int)value;
-    return AFV_OK;
-  }
   if (!strcmp(name, "seed")) {
     if (!(value >= 0 && value < SEED_LIMIT) || value != floor(value))
       return AFV_EINVAL;
@@ -148,10 +143,6 @@ int afv_dyn_set(afv_dyn *d, const char *name, double value)
 int afv_dyn_get(const afv_dyn *d, const char *name, double *value)
 {
   double *field;
-  if (!strcmp(name, "integrator")) {
-    *value = d->integrator;
-    return AFV_OK;
-  }
   if (!strcmp(name, "seed")) {
     *value = (double)d->seed;
     return AFV_OK;
@@ -186,8 +177,7 @@ int afv_relax_report_get(const afv_relax_report *rep, const char *name,
   else if (!strcmp(name, "energy"))     *value = rep->energy;
   else if (!strcmp(name, "drift"))      *value = rep->drift;
   else if (!strcmp(name, "drop"))       *value = rep->drop;
-  else if (!strcmp(name, "substeps"))   *value = (double)rep->substeps;
-  else if (!strcmp(name, "halvings"))   *value = (double)rep->halvings;
+  else if (!strcmp(name, "jumps"))      *value = (double)rep->jumps;
   else if (!strcmp(name, "converged"))  *value = rep->converged;
   else if (!strcmp(name, "at_kink"))    *value = rep->at_kink;
   else if (!strcmp(name, "refused"))    *value = rep->refused;

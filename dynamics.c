@@ -1,6 +1,7 @@
 /*
 ** dynamics.c -- the equations of motion: active Brownian dynamics, then
-** relaxation and initial states.
+** relaxation, initial states and the paper's protocol (PROTOCOL: start,
+** relaxation at v0 = 0, v0 on).
 **
 ** Equation of motion (paper, Eq. (4)) and polarity noise (Eq. (5),
 ** eq:abp: d th_i = eta_i dt, <eta_i(t) eta_j(t')> = 2 Dr delta_ij
@@ -16,9 +17,8 @@
 ** cells), the step as the paper writes it; then euler_all (the same move
 ** for every cell, in one pass that also keeps what the step needs),
 ** euler_step and afv_sim_step; reference/afv_plain.c has the same step in
-** its plainest form.  A cell the force would move
-** more than max_move l takes the rest of its step in pieces: substeps.c.
-** The random numbers (Philox4x32-10, Box-Muller): rng.h.
+** its plainest form.  The random numbers (Philox4x32-10, Box-Muller):
+** rng.h.
 **
 ** Invariant of afv_sim between calls: f, geom and geom.energy describe r.
 ** afv_init_cluster's disk of radius sqrt(n sqrt(3) / (2 pi)) + 2 holds
@@ -56,27 +56,23 @@ static void move_of(const afv_sim *s, int i, double h, double *dx, double *dy)
 /* The step's one pass over every cell (each cell's data read once):
 **   r_start_i = r_i;
 **   pol_i = v0_i n_i = v0_i (cos theta_i, sin theta_i), fixed during the
-**     step (sub-steps included), so computed once here, not in each move_of;
+**     step, so computed once here, not in move_of;
 **   move_len_i = |dt mu F_i|^2, the square of the force-driven move;
-**   the paper's Euler step of dt, for every cell whose force-driven move
-**     is at most `split` (every cell if split <= 0); the others are the
-**     fast cells (substeps.c).
+**   the paper's Euler step of dt.
 ** Returns the largest move_len_i: NaN if a force is NaN (the cells have
 ** then moved, and the refused step restores r_start).  Squares order the
-** cells as the lengths do, and save a hypot per cell (a square that
-** overflows to inf still counts as fast). */
-static double euler_all(afv_sim *s, double split, double dt)
+** cells as the lengths do, and save a hypot per cell. */
+static double euler_all(afv_sim *s, double dt)
 {
   /* locals, not s->...: the stores through r could alias the struct */
   double *r = s->r, *r_start = s->r_start, *pol = s->pol, *m = s->move_len;
   const double *f = s->f, *theta = s->theta, *v0_i = s->dyn.v0_i;
-  double split2 = split > 0 ? split * split : INFINITY, most = 0;
-  double hmu = dt * s->dyn.mu, v0 = s->dyn.v0;
+  double most = 0, hmu = dt * s->dyn.mu, v0 = s->dyn.v0;
   int i, n = s->n, nan = 0;
   AFV_PARALLEL_REDUCE(n, reduction(max: most) reduction(|: nan))
   for (i = 0; i < n; i++) {
     double fx = f[2*i], fy = f[2*i+1], x = r[2*i], y = r[2*i+1];
-    double v = v0_i ? v0_i[i] : v0, c, sn, px, py, mx, my, move2;
+    double v = v0_i ? v0_i[i] : v0, c, sn, px, py, mx, my, move2, dx, dy;
     afv_sincos_inline(theta[i], &sn, &c);
     px = v * c;
     py = v * sn;
@@ -90,28 +86,11 @@ static double euler_all(afv_sim *s, double split, double dt)
     m[i] = move2;
     if (isnan(move2)) nan = 1;
     else if (move2 > most) most = move2;
-    if (!(move2 > split2)) {
-      double dx, dy;
-      move_of(s, i, dt, &dx, &dy);
-      r[2*i] = x + dx;
-      r[2*i+1] = y + dy;
-    }
+    move_of(s, i, dt, &dx, &dy);
+    r[2*i] = x + dx;
+    r[2*i+1] = y + dy;
   }
   return nan ? NAN : most;
-}
-
-/* Moves the m cells of list by h (the sub-steps' pieces, substeps.c). */
-void afv_move_cells(afv_sim *s, const int *list, int m, double h)
-{
-  int k;
-  AFV_PARALLEL_FOR(m)
-  for (k = 0; k < m; k++) {
-    int i = list[k];
-    double dx, dy;
-    move_of(s, i, h, &dx, &dy);
-    s->r[2*i] += dx;
-    s->r[2*i+1] += dy;
-  }
 }
 
 /* The rotational noise of cells 2 p and 2 p + 1 (if it exists) for the
@@ -170,35 +149,11 @@ static double farthest_from_start(afv_sim *s)
 }
 
 /* Records the cell of a refused step and its move (in l). */
-int afv_unstable(afv_sim *s, int cell, double len)
+static int unstable(afv_sim *s, int cell, double len)
 {
   s->bad_cell = cell;
   s->bad_disp = len / s->par.l;
   return AFV_EUNSTABLE;
-}
-
-/* The moves of a time dt (the step's, or a part of it: HALVES), v0_max =
-** max |v0_i| (from too_fast). */
-static int advance(afv_sim *s, double v0_max, double dt)
-{
-  double split = s->dyn.max_move * s->par.l, most = euler_all(s, split, dt);
-  double limit = AFV_MAX_STEP_DISP * s->par.l;
-  int nf = 0, st;
-  s->n_groups = 0;
-  if (isnan(most))
-    return afv_unstable(s, first_at(s->move_len, s->n, most), most);
-  if (split > 0 && most > split * split
-      && (st = afv_substeps(s, split, split + v0_max * dt, dt, &nf))
-         != AFV_OK)
-    return st;
-  /* Without fast cells every move is at most split + |v0_i| dt: when that
-  ** cannot exceed the limit, the scan of all the moves is skipped. */
-  if (nf > 0 || !(split > 0 && split + v0_max * dt <= limit)) {
-    double far2 = farthest_from_start(s), far = sqrt(far2);
-    if (!(far <= limit))
-      return afv_unstable(s, first_at(s->move_len, s->n, far2), far);
-  }
-  return afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
 }
 
 /* Puts every cell back at r0 and recomputes the forces there. */
@@ -209,60 +164,6 @@ static void back_to(afv_sim *s, const double *r0)
     memcpy(s->r, r0, bytes);
     afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
   }
-}
-
-/* HALVES.  A time dt whose moves carry some cell farther than
-** AFV_MAX_STEP_DISP l (sub-steps included) is not refused when sub-steps
-** are on (max_move > 0): it is taken again from its start as two halves,
-** each of which may be halved in turn, down to dt / 2^AFV_MAX_HALVINGS.
-** Such a move is physics, not a fault: a cell pushed by a force of 50 or
-** more for a whole step (two centres that start nearly on top of each
-** other in a random start, or a cell leaving a kink of E while its
-** neighbours rearrange) travels that far in dt = 0.01, and the halves
-** follow it, where a single step left the range in which Euler's method
-** and the sub-steps' regions (REGION_RADIUS) are valid.  Each half keeps
-** the rule (no cell moves more than l/2 in it), so everything the
-** sub-steps rely on holds inside it.  The polarity and the noise are
-** unchanged: the noise is drawn once, after the whole step.  The bound
-** keeps a step's cost finite: at most 2^AFV_MAX_HALVINGS parts, each with
-** at most AFV_MAX_SUBSTEPS pieces.  A force that moves a cell l/2 in
-** dt / 2^AFV_MAX_HALVINGS (|F| above 0.5 * 256 / 0.01 = 12800 for a whole
-** part, at the paper's dt) is refused: it means a parameter far too stiff
-** for dt (KA = 1e5, say), not a contact about to break (whose pieces pull
-** it back within max_move l).  Without sub-steps (max_move = 0, plain
-** Euler) the step is refused as before.  The first refused part saves the
-** step's start in r_step (r_start then moves on with the parts), so a
-** refused step still leaves the state as it was. */
-static int advance_in_halves(afv_sim *s, double v0_max, double dt, int depth)
-{
-  int st = advance(s, v0_max, dt);
-  s->bad_time = dt;
-  if (st != AFV_EUNSTABLE || !isfinite(s->bad_disp)
-      || s->dyn.max_move <= 0 || depth >= AFV_MAX_HALVINGS)
-    return st;
-  if (depth == 0)
-    memcpy(s->r_step, s->r_start, (size_t)(2 * s->n) * sizeof(double));
-  back_to(s, s->r_start);
-  s->halvings++;
-  if ((st = advance_in_halves(s, v0_max, dt / 2, depth + 1)) != AFV_OK)
-    return st;
-  return advance_in_halves(s, v0_max, dt / 2, depth + 1);
-}
-
-/* Self-propulsion alone moves cell i by v0_i dt in a step, sub-steps or
-** not: a step where that exceeds AFV_MAX_STEP_DISP l is refused.  Sets
-** *v0_max = max |v0_i|. */
-static int too_fast(afv_sim *s, double *v0_max)
-{
-  int i, n = s->dyn.v0_i ? s->n : 1;
-  *v0_max = 0;
-  for (i = 0; i < n; i++) {
-    double v0 = s->dyn.v0_i ? fabs(s->dyn.v0_i[i]) : fabs(s->dyn.v0);
-    if (v0 * s->dyn.dt > AFV_MAX_STEP_DISP * s->par.l)
-      return afv_unstable(s, i, v0 * s->dyn.dt);
-    if (v0 > *v0_max) *v0_max = v0;
-  }
-  return AFV_OK;
 }
 
 /* max_i |v0_i|. */
@@ -277,7 +178,7 @@ static double largest_v0(const afv_sim *s)
   return most;
 }
 
-/* EULER (AFV_EULER): the paper's step, Eq. (4), as it is written: every
+/* EULER: the paper's step, Eq. (4), as it is written: every
 ** cell moves dt (mu F_i + v0_i n_i) with the exact force, however far;
 ** then the forces at the new positions.  Nothing is refused but a move or
 ** a force that is not finite (the state is then restored).  A step in
@@ -286,14 +187,17 @@ static double largest_v0(const afv_sim *s)
 ** (2l - d)^(-1/2), and such a jump is how a discrete step carries a pair
 ** over the barrier that holds it in continuous time.  The whole moves are
 ** measured only when the force moves and v0 dt could add up to a jump
-** (every cell's move is at most max |dt mu F| + max |v0| dt). */
-static int euler_step(afv_sim *s, double v0_max, double dt)
+** (every cell's move is at most max |dt mu F| + max |v0| dt).  v0 as it
+** is in s->dyn (the relaxation sets it to 0); a refused step leaves the
+** state as it was. */
+static int euler_step(afv_sim *s)
 {
-  double most = euler_all(s, 0, dt), far, limit = AFV_MAX_STEP_DISP;
+  double dt = s->dyn.dt, v0_max = largest_v0(s);
+  double most = euler_all(s, dt), far, limit = AFV_MAX_STEP_DISP;
   int st;
   if (!isfinite(most)) {                  /* NaN or inf force: refused */
     back_to(s, s->r_start);
-    return afv_unstable(s, first_at(s->move_len, s->n, most), most);
+    return unstable(s, first_at(s->move_len, s->n, most), most);
   }
   far = sqrt(most) + v0_max * dt;         /* a bound on every move */
   if (far > limit * s->par.l || far > s->largest_move * s->par.l) {
@@ -302,7 +206,7 @@ static int euler_step(afv_sim *s, double v0_max, double dt)
     if (far > AFV_RUNAWAY_MOVE) {         /* as good as not finite */
       int cell = first_at(s->move_len, s->n, far2);
       back_to(s, s->r_start);
-      return afv_unstable(s, cell, far * s->par.l);
+      return unstable(s, cell, far * s->par.l);
     }
     if (far > limit) s->jumps++;
     if (far > s->largest_move) s->largest_move = far;
@@ -310,36 +214,16 @@ static int euler_step(afv_sim *s, double v0_max, double dt)
   st = afv_compute(&s->geom, s->n, s->r, &s->par, &s->box, s->f);
   if (st != AFV_OK) {                     /* a position not finite */
     back_to(s, s->r_start);
-    return st == AFV_ENONFINITE ? afv_unstable(s, 0, INFINITY) : st;
+    return st == AFV_ENONFINITE ? unstable(s, 0, INFINITY) : st;
   }
   return AFV_OK;
-}
-
-/* One time dt of the positions by the chosen integrator (afv_dyn), with
-** v0 as it is in s->dyn; a refused step leaves the state as it was. */
-static int move_all(afv_sim *s, double dt)
-{
-  long long substeps = s->substeps, halvings = s->halvings;
-  double v0_max;
-  int st;
-  s->bad_time = dt;
-  if (s->dyn.integrator == AFV_EULER)
-    return euler_step(s, largest_v0(s), dt);
-  if ((st = too_fast(s, &v0_max)) != AFV_OK) return st;
-  if ((st = advance_in_halves(s, v0_max, dt, 0)) != AFV_OK) {
-    /* a refused step leaves the state as it was, sub-steps included */
-    back_to(s, s->halvings > halvings ? s->r_step : s->r_start);
-    s->substeps = substeps;
-    s->halvings = halvings;
-  }
-  return st;
 }
 
 int afv_sim_step(afv_sim *s)
 {
   unsigned long long seed = s->dyn.seed, step = (unsigned long long)s->step;
   int i, pairs, st;
-  if ((st = move_all(s, s->dyn.dt)) != AFV_OK) return st;
+  if ((st = euler_step(s)) != AFV_OK) return st;
   pairs = (s->n + 1) / 2;          /* cells 2p and 2p + 1 share one draw */
   AFV_PARALLEL_FOR(s->n)
   for (i = 0; i < pairs; i += NOISE_BLOCK)
@@ -358,17 +242,12 @@ void afv_dyn_default(afv_dyn *d)
   d->v0 = 0;
   d->Dr = 0.1;
   d->dt = 0.01;
-  d->integrator = AFV_EULER;
-  d->max_move = 0.05;
   d->seed = 1;
 }
 
 static int dyn_check(const afv_dyn *d, int n)
 {
   int i;
-  if (d->integrator != AFV_EULER && d->integrator != AFV_SUBSTEPS)
-    return AFV_EINVAL;
-  if (!(isfinite(d->max_move) && d->max_move >= 0)) return AFV_EINVAL;
   if (!(isfinite(d->mu) && d->mu > 0 && isfinite(d->dt) && d->dt > 0
         && isfinite(d->v0) && isfinite(d->Dr) && d->Dr >= 0))
     return AFV_EINVAL;
@@ -392,17 +271,8 @@ static const double *own_copy(const double *src, int n, double **next)
 
 void afv_sim_free(afv_sim *s)
 {
-  int w;
   afv_geom_free(&s->geom);
-  for (w = 0; w < s->n_work; w++) {
-    afv_geom_free(&s->work[w].geom);
-    free(s->work[w].sub);
-  }
-  free(s->work);
-  free(s->groups);
-  free(s->group_cells);
   free(s->own);
-  free(s->iown);
   memset(s, 0, sizeof *s);
 }
 
@@ -414,18 +284,9 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   afv_sim_free(s);
   if (n < 0 || dyn_check(d, n) != AFV_OK) return AFV_EINVAL;
   /* r, f, r_start, pol (2n each), theta, move_len (n each), six optional
-  ** per-cell arrays (n each), r_step (2n) */
-  s->own = malloc((size_t)(18 * n + 1) * sizeof(double));
-  /* fast cells, region, in_region, around (n each) */
-  s->iown = calloc((size_t)(4 * n + 1), sizeof(int));
-  if (!s->own || !s->iown) {
-    afv_sim_free(s);
-    return AFV_ENOMEM;
-  }
-  s->fast = s->iown;
-  s->region = s->iown + n;
-  s->in_region = s->iown + 2 * n;
-  s->around = s->iown + 3 * n;
+  ** per-cell arrays (n each) */
+  s->own = malloc((size_t)(16 * n + 1) * sizeof(double));
+  if (!s->own) return AFV_ENOMEM;
   s->n = n;
   s->r = s->own;
   s->f = s->own + 2 * n;
@@ -433,7 +294,6 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   s->r_start = s->own + 5 * n;
   s->move_len = s->own + 7 * n;
   s->pol = s->own + 8 * n;
-  s->r_step = s->own + 16 * n;
   next = s->own + 10 * n;
   memcpy(s->r, r, (size_t)(2 * n) * sizeof(double));
   if (theta) memcpy(s->theta, theta, (size_t)n * sizeof(double));
@@ -449,11 +309,8 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
   s->box = b ? *b : s->box;
   s->step = 0;
   s->t = 0;
-  s->substeps = 0;
-  s->halvings = 0;
   s->jumps = 0;
   s->largest_move = 0;
-  s->bad_time = 0;
   s->bad_cell = -1;
   s->bad_disp = 0;
   st = afv_compute(&s->geom, n, s->r, &s->par, &s->box, s->f);
@@ -490,8 +347,8 @@ double afv_sim_max_force(const afv_sim *s)
 /* RELAXATION.  The paper relaxes its start "at zero temperature" before it
 ** switches v0 on: the equation of motion with v0 = 0, dr_i/dt = mu F_i,
 ** by Euler steps of dt (the authors' code: 30 time units of them).  That
-** is what afv_relax does, step after step, with the sub-steps and halves
-** of afv_sim_step (the same code, polarity and noise off), until
+** is what afv_relax does, step after step, with the Euler step of
+** afv_sim_step (the same code, polarity and noise off), until
 **   max_i |F_i| <= tol                                   (converged), or
 **   a kink of E is reached (at_kink, below), or max_iter steps.
 ** Why this and not a global minimiser: every cell moves by its own force,
@@ -603,7 +460,7 @@ int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
               afv_relax_monitor mon, void *ctx)
 {
   afv_dyn saved = s->dyn;
-  long long substeps = s->substeps, halvings = s->halvings, jumps = s->jumps;
+  long long jumps = s->jumps;
   window W;
   int st = AFV_OK;
   memset(rep, 0, sizeof *rep);
@@ -617,10 +474,10 @@ int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
   s->dyn.v0 = 0;                   /* zero temperature: no self-propulsion */
   s->dyn.v0_i = NULL;
   while (!(rep->max_force <= tol) && rep->iterations < max_iter) {
-    /* one step of the flow (v0 = 0 above): afv_sim_step's moves, by the
-    ** same integrator, without the noise */
-    if ((st = move_all(s, s->dyn.dt)) != AFV_OK) {
-      /* a finite move beyond l/2 even in the smallest half: forces too
+    /* one step of the flow (v0 = 0 above): afv_sim_step's Euler step,
+    ** without the noise */
+    if ((st = euler_step(s)) != AFV_OK) {
+      /* a finite runaway move (beyond AFV_RUNAWAY_MOVE l): forces too
       ** large for dt, which no relaxation by steps of dt can follow; the
       ** caller hears it (refused, afv_sim's bad_*) and goes on, as when
       ** max_iter is reached.  A force that is not finite is an error. */
@@ -646,8 +503,6 @@ int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
   rep->energy = s->geom.energy;
   rep->converged = rep->max_force <= tol;
   rep->time = (double)rep->iterations * s->dyn.dt;
-  rep->substeps = s->substeps - substeps;
-  rep->halvings = s->halvings - halvings;
   rep->jumps = s->jumps - jumps;
   free(W.r_sum < W.r_sum_prev ? W.r_sum : W.r_sum_prev);
   return st;
@@ -759,4 +614,76 @@ void afv_init_angles(int n, unsigned long long seed, double *theta)
     rng_uniform2(seed, (uint32_t)i, 0, AFV_RNG_INIT_ANGLE, u);
     theta[i] = TWO_PI * (1 - u[0]);
   }
+}
+
+/* ---- the paper's protocol ---------------------------------------------- */
+/* PROTOCOL.  The paper (Sec. Model) starts from one large connected
+** cluster (the authors' code: centres uniform at random in a square of
+** side 0.3 L, AFV_START_SQUARE), relaxes it "at zero temperature" (the
+** flow at v0 = 0, afv_relax), then switches self-propulsion on.
+** afv_protocol_start is that order in one place: afv run calls it, with
+** the other starts (lattice, random, given) and FIRE as options.  v0 is
+** the active run's from the first call on: the relaxation sets it to 0
+** only for its own steps, so it is on again when the function returns. */
+
+/* The start's 2n positions into r. */
+static int start_positions(int n, const afv_box *b, const afv_dyn *d,
+                           const afv_protocol *pr, double *r)
+{
+  switch (pr->start) {
+  case AFV_START_SQUARE:
+    afv_init_square(n, d->seed, b, pr->side, r);
+    return AFV_OK;
+  case AFV_START_LATTICE:
+    return afv_init_cluster(n, pr->spacing, b, r);
+  case AFV_START_RANDOM:
+    afv_init_random(n, d->seed, b, pr->side, r);
+    return AFV_OK;
+  case AFV_START_GIVEN:
+    if (!pr->r) return AFV_EINVAL;
+    memcpy(r, pr->r, (size_t)(2 * n) * sizeof(double));
+    return AFV_OK;
+  default:
+    return AFV_EINVAL;
+  }
+}
+
+/* The report of a start left unrelaxed: its energy and force. */
+static void unrelaxed(const afv_sim *s, double tol, afv_relax_report *rep)
+{
+  memset(rep, 0, sizeof *rep);
+  rep->energy0 = rep->energy = s->geom.energy;
+  rep->max_force = afv_sim_max_force(s);
+  rep->drift = rep->drop = NAN;
+  rep->converged = rep->max_force <= tol;
+}
+
+int afv_protocol_start(afv_sim *s, int n, const afv_params *p,
+                       const afv_box *b, const afv_dyn *d,
+                       const afv_protocol *pr, afv_relax_report *rep,
+                       afv_relax_monitor mon, void *ctx)
+{
+  double *r, *theta;
+  afv_relax_report none;
+  int st;
+  if (!rep) rep = &none;
+  memset(rep, 0, sizeof *rep);
+  if (n < 0) return AFV_EINVAL;
+  r = malloc((size_t)(2 * n + 1) * sizeof(double));
+  theta = malloc((size_t)(n + 1) * sizeof(double));
+  st = r && theta ? start_positions(n, b, d, pr, r) : AFV_ENOMEM;
+  if (st == AFV_OK) {
+    if (pr->theta) memcpy(theta, pr->theta, (size_t)n * sizeof(double));
+    else afv_init_angles(n, d->seed, theta);
+    st = afv_sim_init(s, n, r, theta, p, b, d);
+  }
+  free(r);
+  free(theta);
+  if (st != AFV_OK) return st;
+  if (pr->relax_max_steps <= 0) {
+    unrelaxed(s, pr->relax_tol, rep);
+    return AFV_OK;
+  }
+  return (pr->relax == AFV_RELAX_FIRE ? afv_relax_fire : afv_relax)
+         (s, pr->relax_tol, pr->relax_max_steps, rep, mon, ctx);
 }

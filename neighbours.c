@@ -27,8 +27,7 @@
 ** in order of distance, with Voro++'s radius test as the stop (DENSE,
 ** dense_candidates); long lists are merge-sorted and reverse slots found
 ** by binary search.
-** afv_cells_around reads the cell list for the sub-steps (substeps.c) and
-** afv_force_check; afv_spatial_order numbers cells in its order.  The
+** afv_cells_around reads the cell list for afv_force_check; afv_spatial_order numbers cells in its order.  The
 ** buffers of an afv_geom are grown here too (afv_grow, grow_cells).
 ** Every per-cell loop may run on OpenMP threads with the same result bits
 ** (afv_internal.h).
@@ -563,7 +562,7 @@ int afv_cells_around(const afv_geom *g, double x, double y, double R,
 }
 
 /* MOVERS.  A cell that has moved more than SKIN l / 2 since the rebuild
-** (a "mover": typically a fast cell taking sub-steps) does not by itself
+** (a "mover": typically a cell thrown far by a breaking contact) does not by itself
 ** invalidate the candidates; a pair closer than 2l that is not a candidate
 ** pair does.  A pair of two other cells is a candidate pair (each moved at
 ** most SKIN l / 2, so it approached by at most SKIN l), so while the

@@ -29,7 +29,7 @@
 #define EXIT_RUN_UNFINISHED 1 /* afv analyze: the run has not finished and
                               ** --partial was not given */
 
-/* The text of a macro's value: AFV_STR(AFV_MAX_SUBSTEPS) is "64".  Help
+/* The text of a macro's value: AFV_STR(AFV_MAX_STEP_DISP) is "0.5".  Help
 ** texts quote the code's constants through it, so they cannot drift. */
 #define AFV_STR_(x) #x
 #define AFV_STR(x)  AFV_STR_(x)

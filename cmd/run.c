@@ -3,10 +3,9 @@
 */
 #define _POSIX_C_SOURCE 200809L  /* mkdir, truncate, isatty, clock_gettime */
 #include "cli.h"
-/* Internal: the job holds its afv_sim by value and reads its fields (r,
-** theta, f, geom, step, t, dyn, ...) at every output, checkpoint and
-** error message; afv.h's accessors would do, at about 100 call sites. */
-#include "afv_internal.h"
+/* afv.h alone: the job builds its start by afv_protocol_start and reads
+** its afv_sim (opaque) through the accessors. */
+#include "afv.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -25,20 +24,21 @@
 #include <unistd.h>
 
 /* ---- afv run: the simulation job --------------------------------------- */
-/* The job (paper, Sec. Model): build the start (init), relax it at v0 = 0
-** (afv_relax: to max |F| <= relax_tol, a kink of E, or relax_max_steps,
-** reported with its figures), then integrate the active dynamics for
-** `steps` steps, writing samples, frames, snapshots and checkpoints.  Every
-** parameter lives in one table (run_keys), which gives the defaults, the
-** config-file and command-line parsing, --help and params.txt. */
+/* The job (paper, Sec. Model): the protocol (afv_protocol_start: build
+** the start (init), relax it at v0 = 0 to max |F| <= relax_tol, a kink of
+** E, or relax_max_steps, reported with its figures), then integrate the
+** active dynamics for `steps` steps, writing samples, frames, snapshots
+** and checkpoints.  Every parameter lives in one table (run_keys), which
+** gives the defaults, the config-file and command-line parsing, --help
+** and params.txt. */
 
 typedef struct run_cfg {
   long long N;            /* cells */
   double phi;             /* packing fraction N pi l^2 / L^2 */
   char box[16];           /* "periodic" or "open" */
   double l, KA, KP, A0, P0, Lambda, cap;       /* model (afv_params) */
-  char integrator[16];    /* "euler" or "substeps" (afv_dyn.integrator) */
-  double mu, v0, Dr, dt, max_move;             /* dynamics (afv_dyn) */
+  char integrator[16];    /* "euler", the one integrator (REMOVED KEYS) */
+  double mu, v0, Dr, dt;                       /* dynamics (afv_dyn) */
   long long steps;        /* active steps in the whole run */
   unsigned long long seed;/* noise and random starts */
   char init[16];          /* "cluster", "lattice", "random" or "file" */
@@ -91,31 +91,22 @@ static const run_key run_keys[] = {
      "PyAFV's default is 0.45); 0 = exact -grad E; must be >= 0"),
   RK("mu", K_REAL, mu, "1", "l/(time force)", "mobility; must be > 0"),
   RK("v0", K_REAL, v0, "0.5", "l/time", "self-propulsion speed (main "
-     "knob); any finite number (with integrator substeps a run with |v0| "
-     "dt > " AFV_STR(AFV_MAX_STEP_DISP) " l is refused, with euler one "
-     "whose |v0| dt exceeds the box side L)"),
+     "knob); any finite number (a run whose |v0| dt exceeds the box side L "
+     "is refused)"),
   RK("Dr", K_REAL, Dr, "0.1", "1/time", "rotational diffusion of the "
      "polarity; must be >= 0"),
   RK("dt", K_REAL, dt, "0.01", "time", "time step (Euler-Maruyama); must be "
      "> 0"),
-  RK("integrator", K_WORD, integrator, "euler", "euler|substeps", "how "
-     "Eq. (4) is integrated: euler = the paper's Euler step, every cell "
-     "moves dt (mu F + v0 n) with the exact force however far (only a "
-     "force or position that is not finite stops the run; steps that move "
-     "a cell more than " AFV_STR(AFV_MAX_STEP_DISP) " l are counted in "
-     "log.txt): near a breaking contact the force diverges and a finite "
-     "step carries the pair over the barrier, so results depend on dt "
-     "(doc/reproduction/convergence.md); substeps = a cell the force would "
-     "move farther than max_move l moves in pieces, and a step that would "
-     "move a cell more than " AFV_STR(AFV_MAX_STEP_DISP) " l is taken in "
-     "halves: the continuous-time limit as max_move -> 0, where a touching "
-     "pair never separates; the relaxation uses the same integrator"),
-  RK("max_move", K_REAL, max_move, "0.05", "l", "integrator substeps "
-     "only: a cell that the force would move farther in a step moves in "
-     "pieces of at most this length (at most " AFV_STR(AFV_MAX_SUBSTEPS)
-     " pieces); a step that would still move a cell more than "
-     AFV_STR(AFV_MAX_STEP_DISP) " l is taken in halves (down to dt/2^"
-     AFV_STR(AFV_MAX_HALVINGS) "); must be > 0"),
+  RK("integrator", K_WORD, integrator, "euler", "euler", "how Eq. (4) "
+     "is integrated, in the run and in its relaxation: euler = the paper's "
+     "Euler step, every cell moves dt (mu F + v0 n) with the exact force "
+     "however far (only a force or position that is not finite stops the "
+     "run; steps that move a cell more than " AFV_STR(AFV_MAX_STEP_DISP)
+     " l are counted in log.txt): near a breaking contact the force "
+     "diverges and a finite step carries the pair over the barrier, so "
+     "results depend on dt (doc/reproduction/convergence.md); integrator "
+     "substeps and its max_move were removed in afv 0.3.0 (a run that "
+     "uses them is finished with afv 0.2.0)"),
   RK("steps", K_INT, steps, "10000", "steps", "active steps of the whole "
      "run (main knob); must be >= 0"),
   RK("seed", K_SEED, seed, "1", "-", "random seed: noise, random start, "
@@ -162,6 +153,29 @@ static const run_key *find_key(const char *name)
   for (k = 0; k < N_RUN_KEYS; k++)
     if (strcmp(run_keys[k].name, name) == 0) return &run_keys[k];
   return NULL;
+}
+
+/* REMOVED KEYS.  integrator substeps and its key max_move (afv 0.1.0 and
+** 0.2.0) were removed in afv 0.3.0 (doc/design.md, "Integrators"): a
+** config, a --KEY or a params.txt that names them is refused with what to
+** do, not as an unknown key or value.  1 (and the message in err) if KEY
+** VALUE is one of them; value may be NULL. */
+static int removed_key(const char *key, const char *value, char *err,
+                       size_t errlen)
+{
+  if (strcmp(key, "max_move") == 0)
+    afv_errorf(err, errlen, "max_move: the sub-step length of integrator "
+               "substeps, removed in afv 0.3.0: a run that uses it must be "
+               "finished with afv 0.2.0 (a run of integrator euler: drop "
+               "the key)");
+  else if (strcmp(key, "integrator") == 0 && value
+           && strcmp(value, "substeps") == 0)
+    afv_errorf(err, errlen, "integrator: substeps was removed in afv "
+               "0.3.0 (euler is the one integrator): a run that uses it "
+               "must be finished with afv 0.2.0");
+  else
+    return 0;
+  return 1;
 }
 
 /* Joins a relative path to the directory of the file that named it; 0 if
@@ -275,7 +289,10 @@ static int read_config(const char *path, run_cfg *cfg, int *set, char *err,
     val = strtok(NULL, " \t\r");
     extra = val ? strtok(NULL, " \t\r") : NULL;
     K = find_key(key);
-    if (!K) {
+    if (removed_key(key, val, msg, sizeof msg)) {
+      afv_errorf(err, errlen, "%s:%lld: %s", path, L.lineno, msg);
+      ok = 0;
+    } else if (!K) {
       afv_errorf(err, errlen, "%s:%lld: unknown key '%.32s' (see afv run "
                  "--help)", path, L.lineno, key);
       ok = 0;
@@ -374,22 +391,17 @@ static int targets_positive(const run_cfg *c, const afv_cells *cl,
   return 1;
 }
 
-/* Every active step moves a cell by v0 dt of self-propulsion alone.  With
-** the sub-steps a step that moves a cell more than AFV_MAX_STEP_DISP l is
-** refused (dynamics.c, too_fast), so with |v0| dt beyond that the very
-** first step would stop the run; with Euler steps a self-propulsion that
-** carries a cell across the whole box (side L) in one step makes the
-** step meaningless.  Either is refused before anything is made. */
+/* Every active step moves a cell by v0 dt of self-propulsion alone: a
+** self-propulsion that carries a cell across the whole box (side L) in
+** one step makes the step meaningless, and is refused before anything is
+** made. */
 static int steps_meaningful(const run_cfg *c, const int *set,
                             const afv_cells *cl, char *err, size_t errlen)
 {
   int n = cl->n > 0 ? cl->n : 1, i;
   int dt_named = set[find_key("dt") - run_keys] && !cl->has[AFV_COL_V0]
                  && !set[find_key("v0") - run_keys];
-  int euler = strcmp(c->integrator, "substeps") != 0;
-  double limit = euler ? box_side(c) : AFV_MAX_STEP_DISP * c->l;
-  const char *what = euler ? "the box side L" : "the most a step of the "
-                     "sub-steps may move a cell";
+  double limit = box_side(c);
   if (c->steps == 0) return 1;   /* a run of no step moves nothing */
   for (i = 0; i < n; i++) {
     char label[64];
@@ -398,12 +410,13 @@ static int steps_meaningful(const run_cfg *c, const int *set,
     if (!(fabs(v0) * c->dt > limit)) continue;
     if (dt_named)   /* the key the user gave */
       afv_errorf(err, errlen, "dt: %g: a step's self-propulsion |v0| dt = "
-                 "%g l (v0 = %g) exceeds %g l, %s: lower dt", c->dt,
-                 fabs(v0) * c->dt / c->l, v0, limit / c->l, what);
+                 "%g l (v0 = %g) exceeds %g l, the box side L: lower dt",
+                 c->dt, fabs(v0) * c->dt / c->l, v0, limit / c->l);
     else
       afv_errorf(err, errlen, "%s: %g: a step's self-propulsion |v0| dt = "
-                 "%g l (dt = %g) exceeds %g l, %s: lower v0 or dt", label,
-                 v0, fabs(v0) * c->dt / c->l, c->dt, limit / c->l, what);
+                 "%g l (dt = %g) exceeds %g l, the box side L: lower v0 or "
+                 "dt", label, v0, fabs(v0) * c->dt / c->l, c->dt,
+                 limit / c->l);
     return 0;
   }
   return 1;
@@ -444,7 +457,6 @@ static int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
   if (c->mu <= 0) BAD("mu: must be > 0 (got %g)", c->mu);
   if (c->Dr < 0) BAD("Dr: must be >= 0 (got %g)", c->Dr);
   if (c->dt <= 0) BAD("dt: must be > 0 (got %g)", c->dt);
-  if (!(c->max_move > 0)) BAD("max_move: must be > 0 (got %g)", c->max_move);
   if (c->steps < 0) BAD("steps: must be >= 0 (got %lld)", c->steps);
   if (c->spacing <= 0) BAD("spacing: must be > 0 (got %g)", c->spacing);
   if (c->relax_tol <= 0) BAD("relax_tol: must be > 0 (got %g)", c->relax_tol);
@@ -535,17 +547,19 @@ typedef struct obs_analysis {
 
 /* Fresh run (resume = 0): C(0) from the current state, written to the
 ** file; resume = 1: read back.  Prints a message and returns 0 on failure. */
-static int obs_t1_reference(obs_analysis *an, const afv_sim *s,
+static int obs_t1_reference(obs_analysis *an, afv_sim *s,
                             const char *dir, int resume)
 {
   char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 256];
   int st;
   snprintf(path, sizeof path, "%s/t1_reference.txt", dir);
   if (resume)
-    return afv_t1_reference_read(path, s->n, &an->t1, err, sizeof err)
+    return afv_t1_reference_read(path, afv_sim_n(s), &an->t1, err, sizeof err)
            == AFV_OK || !bad_input(err);
-  if ((st = afv_clusters_compute(&an->c, &s->geom, s->r, s->par.l, &s->box))
-      == AFV_OK && (st = afv_t1_start(&an->t1, &an->c)) == AFV_OK)
+  if ((st = afv_clusters_compute(&an->c, afv_sim_geom(s),
+                                 afv_sim_positions(s), afv_sim_params(s)->l,
+                                 afv_sim_box(s))) == AFV_OK
+      && (st = afv_t1_start(&an->t1, &an->c)) == AFV_OK)
     st = afv_t1_reference_write(path, &an->t1);
   if (st != AFV_OK)   /* an I/O error says the system's reason */
     fprintf(stderr, "afv run: %s: cannot write (C(0) of the t1 column): "
@@ -558,7 +572,7 @@ static int obs_t1_reference(obs_analysis *an, const afv_sim *s,
 typedef struct run_state {
   run_cfg cfg;             /* parameters in force */
   afv_cells cells;         /* per-cell columns (n = 0 if none) */
-  afv_sim sim;             /* the simulation */
+  afv_sim *sim;            /* the simulation (afv_sim_new) */
   char dir[RUN_PATH_MAX];  /* output directory */
   FILE *out[AFV_CKPT_FILES];  /* append-only files (NULL if not written) */
   FILE *log;               /* log.txt */
@@ -627,9 +641,6 @@ static void cfg_model(const run_cfg *c, const afv_cells *cl, afv_params *p,
   b->Lx = b->Ly = box_side(c);
   afv_dyn_default(d);
   d->mu = c->mu; d->v0 = c->v0; d->Dr = c->Dr; d->dt = c->dt;
-  d->integrator = strcmp(c->integrator, "substeps") == 0 ? AFV_SUBSTEPS
-                                                          : AFV_EULER;
-  d->max_move = c->max_move;
   d->seed = c->seed;
   d->v0_i = cl->col[AFV_COL_V0];
   d->Dr_i = cl->col[AFV_COL_DR];
@@ -649,55 +660,81 @@ static double nearest_to_first(int n, const double *r, const afv_box *b)
   return best;
 }
 
-/* The authors' start (their published code; paper, Sec. Model: "one large
-** connected cluster"): the centres uniform at random in a square of side
-** AUTHORS_SQUARE L centred in the box, L = sqrt(N pi l^2 / phi). */
-#define AUTHORS_SQUARE 0.3
+/* The paper's protocol as the run's keys ask for it (init, spacing, the
+** cells file's x y theta; relax, relax_tol and, unless relax_steps is 0,
+** relax_max_steps) into pr; r has room for the 2N positions of init file.
+** The authors' start (init cluster) is the square of side
+** AFV_AUTHORS_SQUARE L, L = sqrt(N pi l^2 / phi). */
+static void cfg_protocol(const run_cfg *c, const afv_cells *cl,
+                         long relax_steps, double *r, afv_protocol *pr)
+{
+  int i;
+  memset(pr, 0, sizeof *pr);
+  if (strcmp(c->init, "cluster") == 0) {
+    pr->start = AFV_START_SQUARE;
+    pr->side = AFV_AUTHORS_SQUARE * box_side(c);
+  } else if (strcmp(c->init, "lattice") == 0) {
+    pr->start = AFV_START_LATTICE;
+    pr->spacing = c->spacing * c->l;
+  } else if (strcmp(c->init, "random") == 0) {
+    pr->start = AFV_START_RANDOM;
+    pr->side = box_side(c);
+  } else {
+    pr->start = AFV_START_GIVEN;
+    for (i = 0; i < cl->n; i++) {
+      r[2*i] = cl->col[AFV_COL_X][i];
+      r[2*i+1] = cl->col[AFV_COL_Y][i];
+    }
+    pr->r = r;
+  }
+  pr->theta = cl->has[AFV_COL_THETA] ? cl->col[AFV_COL_THETA] : NULL;
+  pr->relax = strcmp(c->relax, "fire") == 0 ? AFV_RELAX_FIRE : AFV_RELAX_FLOW;
+  pr->relax_tol = c->relax_tol;
+  pr->relax_max_steps = relax_steps;
+}
 
-/* Builds the start (positions and angles) and the simulation at it. */
-static int run_start(run_state *R, char *err, size_t errlen)
+/* R->sim through the protocol (afv_protocol_start): relax_steps 0 gives
+** the start alone, as the run checks it before it writes anything;
+** relax_steps = relax_max_steps builds that start again (the same
+** numbers) and relaxes it, v0 on at the end (rep, mon as afv_relax). */
+static int run_protocol(run_state *R, long relax_steps, afv_relax_report *rep,
+                        afv_relax_monitor mon)
 {
   const run_cfg *c = &R->cfg;
-  int n = (int)c->N, st = AFV_OK, i;
-  double *r = malloc((size_t)(2 * n) * sizeof(double));
-  double *th = malloc((size_t)n * sizeof(double));
+  int n = (int)c->N, st;
+  double *r = malloc((size_t)(2 * n + 1) * sizeof(double));
   afv_params p;
   afv_box b;
   afv_dyn d;
+  afv_protocol pr;
+  if (!r) return AFV_ENOMEM;
   cfg_model(c, &R->cells, &p, &b, &d);
-  if (!r || !th) st = AFV_ENOMEM;
-  else if (strcmp(c->init, "cluster") == 0)
-    afv_init_square(n, c->seed, &b, AUTHORS_SQUARE * box_side(c), r);
-  else if (strcmp(c->init, "lattice") == 0) {
-    st = afv_init_cluster(n, c->spacing * c->l, &b, r);
-    R->start_spacing = n > 1 ? nearest_to_first(n, r, &b) / c->l : 0;
-  }
-  else if (strcmp(c->init, "random") == 0)
-    afv_init_random(n, c->seed, &b, box_side(c), r);
-  else
-    for (i = 0; i < n; i++) {
-      r[2*i] = R->cells.col[AFV_COL_X][i];
-      r[2*i+1] = R->cells.col[AFV_COL_Y][i];
-    }
-  if (st == AFV_OK && R->cells.has[AFV_COL_THETA])
-    memcpy(th, R->cells.col[AFV_COL_THETA], (size_t)n * sizeof(double));
-  else if (st == AFV_OK)
-    afv_init_angles(n, c->seed, th);
-  if (st == AFV_OK) st = afv_sim_init(&R->sim, n, r, th, &p, &b, &d);
-  if (st == AFV_ECOINCIDENT)
-    afv_errorf(err, errlen, "cells %d and %d of the start have the same "
-               "centre", R->sim.geom.bad_i, R->sim.geom.bad_j);
-  else if (st != AFV_OK)
-    afv_errorf(err, errlen, "start: %s", afv_strerror(st));
+  cfg_protocol(c, &R->cells, relax_steps, r, &pr);
+  st = afv_protocol_start(R->sim, n, &p, &b, &d, &pr, rep, mon, R);
   free(r);
-  free(th);
+  return st;
+}
+
+/* The start (positions and angles) and the simulation at it, unrelaxed;
+** for init lattice, the spacing it got (start_spacing). */
+static int run_start(run_state *R, char *err, size_t errlen)
+{
+  int st = run_protocol(R, 0, NULL, NULL), i, j;
+  if (st == AFV_ECOINCIDENT) {
+    afv_geom_bad_pair(afv_sim_geom(R->sim), &i, &j);
+    afv_errorf(err, errlen, "cells %d and %d of the start have the same "
+               "centre", i, j);
+  } else if (st != AFV_OK)
+    afv_errorf(err, errlen, "start: %s", afv_strerror(st));
+  else if (strcmp(R->cfg.init, "lattice") == 0)
+    R->start_spacing = R->cfg.N > 1 ? nearest_to_first((int)R->cfg.N,
+      afv_sim_positions(R->sim), afv_sim_box(R->sim)) / R->cfg.l : 0;
   return st;
 }
 
 /* ---- what a run can compute --------------------------------------------- */
 /* The run later multiplies the energy and the squared force norm checked
-** here by modest factors (the relaxation's energy window, sums over a
-** step's pieces and halves): a value within
+** here by modest factors (the relaxation's energy window): a value within
 ** COMPUTE_HEADROOM of the largest double is refused, so those products stay
 ** finite: |F|^2 summed over the cells above 1.8e302, or an energy bound
 ** above 1.8e302 (at the paper's values, KA = KP = 1 and N = 400, the
@@ -775,22 +812,22 @@ static int huge(double x)
 /* 1 if no state can overflow the energy: each term's bound, summed over
 ** the cells, and their total are within the headroom.  Else names the key
 ** (the target A0 or P0 when the deviation alone overflows). */
-static int energy_computable(const afv_sim *s, char *err, size_t errlen)
+static int energy_computable(afv_sim *s, char *err, size_t errlen)
 {
   double sum[N_TERMS] = {0, 0, 0};
   int i, k, worst_cell[N_TERMS] = {0, 0, 0}, worst_k = 0;
   for (k = 0; k < N_TERMS; k++) {
     double worst = -1;
-    for (i = 0; i < s->n; i++) {
-      double dev2, b = term_bound(&s->par, i, k, &dev2);
+    for (i = 0; i < afv_sim_n(s); i++) {
+      double dev2, b = term_bound(afv_sim_params(s), i, k, &dev2);
       if (huge(dev2)) {   /* A0 or P0 far out, or the cell's size */
         char label[96];
         double target;
-        term_modulus(&s->par, i, k, &target);
+        term_modulus(afv_sim_params(s), i, k, &target);
         if (huge(target * target))
-          term_label(label, sizeof label, &s->par, k, i, 1);
+          term_label(label, sizeof label, afv_sim_params(s), k, i, 1);
         else
-          snprintf(label, sizeof label, "l: %g", s->par.l);
+          snprintf(label, sizeof label, "l: %g", afv_sim_params(s)->l);
         afv_errorf(err, errlen, "%s: the %s cannot be computed: its squared "
                    "deviation reaches %g", label, term_name[k], dev2);
         return 0;
@@ -809,29 +846,31 @@ static int energy_computable(const afv_sim *s, char *err, size_t errlen)
   if (k == N_TERMS) k = worst_k;
   {
     char label[96];
-    term_label(label, sizeof label, &s->par, k, worst_cell[k], 0);
+    term_label(label, sizeof label, afv_sim_params(s), k, worst_cell[k], 0);
     afv_errorf(err, errlen, "%s: the %s can reach %g summed over the %d "
                "cells, beyond %g (the largest double over a margin of %g "
                "for the sums the run forms)", label, term_name[k], sum[k],
-               s->n, DBL_MAX / COMPUTE_HEADROOM, COMPUTE_HEADROOM);
+               afv_sim_n(s), DBL_MAX / COMPUTE_HEADROOM, COMPUTE_HEADROOM);
   }
   return 0;
 }
 
 /* The term of the largest energy in the current state (its key names
 ** what makes the forces large). */
-static int largest_term(const afv_sim *s)
+static int largest_term(afv_sim *s)
 {
+  const afv_geom *g = afv_sim_geom(s);
+  const double *A = afv_geom_area(g), *P = afv_geom_perim(g);
+  const double *L = afv_geom_arc(g);
   double sum[N_TERMS] = {0, 0, 0};
   int i, k, best = 0;
-  for (i = 0; i < s->n; i++) {
-    const double *A = s->geom.area, *P = s->geom.perim, *L = s->geom.arc;
+  for (i = 0; i < afv_sim_n(s); i++) {
     double target, m;
-    m = term_modulus(&s->par, i, TERM_AREA, &target);
+    m = term_modulus(afv_sim_params(s), i, TERM_AREA, &target);
     sum[TERM_AREA] += fabs(m * (A[i] - target) * (A[i] - target));
-    m = term_modulus(&s->par, i, TERM_PERIM, &target);
+    m = term_modulus(afv_sim_params(s), i, TERM_PERIM, &target);
     sum[TERM_PERIM] += fabs(m * (P[i] - target) * (P[i] - target));
-    sum[TERM_ARC] += fabs(s->par.Lambda * L[i]);
+    sum[TERM_ARC] += fabs(afv_sim_params(s)->Lambda * L[i]);
   }
   for (k = 1; k < N_TERMS; k++)
     if (sum[k] > sum[best]) best = k;
@@ -840,13 +879,14 @@ static int largest_term(const afv_sim *s)
 
 /* 1 if the forces of the current state can be computed with: |F|^2 summed
 ** over the cells (what the relaxation forms) within the headroom. */
-static int forces_computable(const afv_sim *s, char *err, size_t errlen)
+static int forces_computable(afv_sim *s, char *err, size_t errlen)
 {
   char label[96];
+  const double *f = afv_sim_forces(s);
   double f2 = 0, fmax = -1;
   int i, k, worst = 0;
-  for (i = 0; i < s->n; i++) {
-    double q = s->f[2*i] * s->f[2*i] + s->f[2*i+1] * s->f[2*i+1];
+  for (i = 0; i < afv_sim_n(s); i++) {
+    double q = f[2*i] * f[2*i] + f[2*i+1] * f[2*i+1];
     if (!(q <= fmax)) {
       fmax = q;
       worst = i;
@@ -855,7 +895,7 @@ static int forces_computable(const afv_sim *s, char *err, size_t errlen)
   }
   if (!huge(f2)) return 1;
   k = largest_term(s);
-  term_label(label, sizeof label, &s->par, k, worst, 0);
+  term_label(label, sizeof label, afv_sim_params(s), k, worst, 0);
   afv_errorf(err, errlen, "%s: the forces of the state overflow (|F|^2 "
              "summed over the cells is %g, beyond %g; largest at cell %d), "
              "and the %s dominates its energy", label, f2,
@@ -865,14 +905,14 @@ static int forces_computable(const afv_sim *s, char *err, size_t errlen)
 
 /* 1 if the clock, the step's factors and the angle noise stay finite for
 ** the whole run: t = step dt up to steps; mu dt and v0 dt (a step moves a
-** cell by mu dt F + v0 dt n, refused beyond l/2, so an overflow there
-** would blame a finite force); sqrt(2 Dr dt) (as the step computes it;
+** cell by mu dt F + v0 dt n, so an overflow there would blame a finite
+** force); sqrt(2 Dr dt) (as the step computes it;
 ** then |theta| grows by at most 8.57 sqrt(2 Dr dt) a step, which cannot
 ** reach the largest double within 2^63 steps). */
-static int dynamics_computable(const afv_sim *s, long long steps, char *err,
+static int dynamics_computable(afv_sim *s, long long steps, char *err,
                                size_t errlen)
 {
-  const afv_dyn *d = &s->dyn;
+  const afv_dyn *d = afv_sim_dyn(s);
   int i;
   if (huge((double)steps * d->dt)) {
     afv_errorf(err, errlen, "dt: %g: the time of the last step, steps x dt "
@@ -884,8 +924,9 @@ static int dynamics_computable(const afv_sim *s, long long steps, char *err,
                "= %g)", d->mu, d->dt);
     return 0;
   }
-  for (i = 0; i < s->n; i++) {
-    double v0 = d->v0_i ? d->v0_i[i] : d->v0, Dr = d->Dr_i ? d->Dr_i[i] : d->Dr;
+  for (i = 0; i < afv_sim_n(s); i++) {
+    double v0 = d->v0_i ? d->v0_i[i] : d->v0;
+    double Dr = d->Dr_i ? d->Dr_i[i] : d->Dr;
     char label[96];
     if (huge(v0 * d->dt)) {
       value_label(label, sizeof label, "v0", d->v0_i, i, v0);
@@ -905,35 +946,36 @@ static int dynamics_computable(const afv_sim *s, long long steps, char *err,
 
 /* ---- a state the outputs can record ------------------------------------ */
 /* What of cell i is not finite, with its value, into buf ("" if none). */
-static void cell_nonfinite(const afv_sim *s, int i, char *buf, size_t len)
+static void cell_nonfinite(afv_sim *s, int i, char *buf, size_t len)
 {
-  const afv_geom *g = &s->geom;
-  const double *r = s->r + 2 * i, *f = s->f + 2 * i;
+  const afv_geom *g = afv_sim_geom(s);
+  const double *r = afv_sim_positions(s) + 2 * i;
+  const double *f = afv_sim_forces(s) + 2 * i, th = afv_sim_angles(s)[i];
+  const double A = afv_geom_area(g)[i], P = afv_geom_perim(g)[i];
+  const double L = afv_geom_arc(g)[i];
   buf[0] = 0;
   if (!isfinite(r[0]) || !isfinite(r[1]))
     snprintf(buf, len, "position (%g, %g)", r[0], r[1]);
-  else if (!isfinite(s->theta[i]))
-    snprintf(buf, len, "polarity angle %g", s->theta[i]);
+  else if (!isfinite(th))
+    snprintf(buf, len, "polarity angle %g", th);
   else if (!isfinite(f[0]) || !isfinite(f[1]))
     snprintf(buf, len, "force (%g, %g)", f[0], f[1]);
-  else if (!isfinite(g->area[i]) || !isfinite(g->perim[i])
-           || !isfinite(g->arc[i]))
-    snprintf(buf, len, "shape (area %g, perimeter %g, arc length %g)",
-             g->area[i], g->perim[i], g->arc[i]);
-  else if (!isfinite(afv_cell_energy(&s->par, i, g->area[i], g->perim[i],
-                                     g->arc[i])))
+  else if (!isfinite(A) || !isfinite(P) || !isfinite(L))
+    snprintf(buf, len, "shape (area %g, perimeter %g, arc length %g)", A, P,
+             L);
+  else if (!isfinite(afv_cell_energy(afv_sim_params(s), i, A, P, L)))
     snprintf(buf, len, "energy");
 }
 
 /* 1 if everything the outputs record of the state is finite; else msg
 ** says what is not: the first three such cells and their values, or the
 ** total energy or the time. */
-static int state_finite(const afv_sim *s, char *msg, size_t len)
+static int state_finite(afv_sim *s, char *msg, size_t len)
 {
   char what[192];
   int i, named = 0;
   msg[0] = 0;
-  for (i = 0; i < s->n; i++) {
+  for (i = 0; i < afv_sim_n(s); i++) {
     cell_nonfinite(s, i, what, sizeof what);
     if (!what[0]) continue;
     if (named < 3)
@@ -944,11 +986,11 @@ static int state_finite(const afv_sim *s, char *msg, size_t len)
   if (named > 3)
     afv_errorf(msg + strlen(msg), len - strlen(msg), " (and %d more cells)",
                named - 3);
-  else if (!named && !isfinite(s->geom.energy))
+  else if (!named && !isfinite(afv_geom_energy(afv_sim_geom(s))))
     afv_errorf(msg, len, "not finite: the total energy (%g), each cell's "
-               "being finite", s->geom.energy);
-  else if (!named && !isfinite(s->t))
-    afv_errorf(msg, len, "not finite: the time t = %g", s->t);
+               "being finite", afv_geom_energy(afv_sim_geom(s)));
+  else if (!named && !isfinite(afv_sim_time(s)))
+    afv_errorf(msg, len, "not finite: the time t = %g", afv_sim_time(s));
   return msg[0] == 0;
 }
 
@@ -960,14 +1002,14 @@ static int run_computable(const run_state *R, const char *where, char *err,
                           size_t errlen)
 {
   char what[512];
-  if (!energy_computable(&R->sim, err, errlen)
-      || !dynamics_computable(&R->sim, R->cfg.steps, err, errlen))
+  if (!energy_computable(R->sim, err, errlen)
+      || !dynamics_computable(R->sim, R->cfg.steps, err, errlen))
     return 0;
-  if (!state_finite(&R->sim, what, sizeof what)) {
+  if (!state_finite(R->sim, what, sizeof what)) {
     afv_errorf(err, errlen, "%s: %s", where, what);
     return 0;
   }
-  return forces_computable(&R->sim, err, errlen);
+  return forces_computable(R->sim, err, errlen);
 }
 
 /* ---- the keys seen from afv sweep (cli.h) -------------------------------- */
@@ -976,6 +1018,7 @@ int run_key_check(const char *name, const char *text, char *err,
 {
   run_cfg cfg;
   const run_key *K = find_key(name);
+  if (removed_key(name, text, err, errlen)) return 0;
   if (!K) {
     afv_errorf(err, errlen, "unknown key '%s' (see afv run --help)", name);
     return 0;
@@ -998,9 +1041,10 @@ static int start_computable(const run_cfg *cfg, const afv_cells *cl,
   R->cfg = *cfg;
   R->cells = *cl;
   R->lock_fd = -1;
-  ok = run_start(R, err, errlen) == AFV_OK
+  ok = (R->sim = afv_sim_new()) != NULL && run_start(R, err, errlen) == AFV_OK
        && run_computable(R, "the start", err, errlen);
-  afv_sim_free(&R->sim);
+  if (!R->sim) afv_errorf(err, errlen, "out of memory");
+  afv_sim_delete(R->sim);
   free(R);
   return ok;
 }
@@ -1055,40 +1099,47 @@ static void obs_write_header(FILE *fp)
         "mean_contacts,max_force,ngc_frac,n_clusters,omega,t1\n", fp);
 }
 
-static int obs_write_row(FILE *fp, const afv_sim *s, obs_analysis *an)
+static int obs_write_row(FILE *fp, afv_sim *s, obs_analysis *an)
 {
-  const afv_geom *g = &s->geom;
+  const afv_geom *g = afv_sim_geom(s);
+  const double *area = afv_geom_area(g), *perim = afv_geom_perim(g);
+  const double *arc = afv_geom_arc(g);
+  const int *contacts = afv_geom_contacts(g);
   double A = 0, P = 0, L = 0, C = 0;
-  int i, n = s->n;
-  int st = afv_clusters_compute(&an->c, g, s->r, s->par.l, &s->box);
+  int i, n = afv_sim_n(s);
+  int st = afv_clusters_compute(&an->c, g, afv_sim_positions(s),
+                                afv_sim_params(s)->l, afv_sim_box(s));
   if (st != AFV_OK) return st;   /* no row rather than a row of NaN */
   for (i = 0; i < n; i++) {
-    A += g->area[i];
-    P += g->perim[i];
-    L += g->arc[i];
-    C += g->contacts[i];
+    A += area[i];
+    P += perim[i];
+    L += arc[i];
+    C += contacts[i];
   }
-  fprintf(fp, "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,", s->step,
-          s->t, g->energy, A / n, P / n, L / n, C / n, afv_sim_max_force(s));
+  fprintf(fp, "%lld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,",
+          afv_sim_steps(s), afv_sim_time(s), afv_geom_energy(g), A / n,
+          P / n, L / n, C / n, afv_sim_max_force(s));
   fprintf(fp, "%.17g,%d,%.17g,%.17g\n", (double)an->c.giant / n,
           an->c.count, an->c.omega, afv_t1_count(&an->t1, &an->c));
   return AFV_OK;
 }
 
 /* Extended XYZ (OVITO): wrapped positions, z = 0, polarity as a column. */
-static void xyz_write_frame(FILE *fp, const afv_sim *s)
+static void xyz_write_frame(FILE *fp, afv_sim *s)
 {
-  int i;
-  fprintf(fp, "%d\n", s->n);
-  if (s->box.periodic)
+  const afv_box *b = afv_sim_box(s);
+  const double *r = afv_sim_positions(s), *theta = afv_sim_angles(s);
+  int i, n = afv_sim_n(s);
+  fprintf(fp, "%d\n", n);
+  if (b->periodic)
     fprintf(fp, "Lattice=\"%.17g 0 0 0 %.17g 0 0 0 1\" pbc=\"T T F\" ",
-            s->box.Lx, s->box.Ly);
+            b->Lx, b->Ly);
   fprintf(fp, "Properties=species:S:1:pos:R:3:theta:R:1 Time=%.17g "
-          "Step=%lld\n", s->t, s->step);
-  for (i = 0; i < s->n; i++) {
-    double x = s->r[2*i], y = s->r[2*i+1];
-    afv_wrap(&s->box, &x, &y);
-    fprintf(fp, "C %.17g %.17g 0 %.17g\n", x, y, s->theta[i]);
+          "Step=%lld\n", afv_sim_time(s), afv_sim_steps(s));
+  for (i = 0; i < n; i++) {
+    double x = r[2*i], y = r[2*i+1];
+    afv_wrap(b, &x, &y);
+    fprintf(fp, "C %.17g %.17g 0 %.17g\n", x, y, theta[i]);
   }
 }
 
@@ -1096,12 +1147,13 @@ static void xyz_write_frame(FILE *fp, const afv_sim *s)
 static int write_svg(run_state *R, const char *name)
 {
   char path[RUN_PATH_MAX + 64], tmp[RUN_PATH_MAX + 96];
-  afv_sim *s = &R->sim;
+  afv_sim *s = R->sim;
   FILE *fp;
   snprintf(path, sizeof path, "%s/%s", R->dir, name);
   if (!(fp = afv_atomic_open(path, tmp, sizeof tmp)))
     return io_failed(R, tmp);
-  if (afv_svg_write(fp, &s->geom, s->n, s->r, s->theta, &s->par, &s->box)
+  if (afv_svg_write(fp, afv_sim_geom(s), afv_sim_n(s), afv_sim_positions(s),
+                    afv_sim_angles(s), afv_sim_params(s), afv_sim_box(s))
       != AFV_OK) {
     io_failed(R, tmp);
     fclose(fp);
@@ -1127,15 +1179,15 @@ static int write_checkpoint(run_state *R)
         return io_failed(R, path);
       }
     }
-  c.n = R->sim.n;
-  c.step = R->sim.step;
-  c.t = R->sim.t;
-  c.seed = R->sim.dyn.seed;
-  c.r = R->sim.r;
-  c.theta = R->sim.theta;
+  c.n = afv_sim_n(R->sim);
+  c.step = afv_sim_steps(R->sim);
+  c.t = afv_sim_time(R->sim);
+  c.seed = afv_sim_dyn(R->sim)->seed;
+  c.r = afv_sim_positions(R->sim);
+  c.theta = afv_sim_angles(R->sim);
   snprintf(path, sizeof path, "%s/checkpoint.txt", R->dir);
   if (afv_checkpoint_write(path, &c) != AFV_OK) return io_failed(R, path);
-  R->ckpt_step = R->sim.step;
+  R->ckpt_step = afv_sim_steps(R->sim);
   return AFV_OK;
 }
 
@@ -1148,7 +1200,7 @@ static int due(long long step, long long every)
 static int outputs_due(const run_state *R)
 {
   const run_cfg *c = &R->cfg;
-  long long step = R->sim.step;
+  long long step = afv_sim_steps(R->sim);
   return due(step, c->sample_every) || due(step, c->frame_every)
          || due(step, c->svg_every) || due(step, c->checkpoint_every);
 }
@@ -1159,17 +1211,18 @@ static int outputs_due(const run_state *R)
 static int run_outputs(run_state *R)
 {
   const run_cfg *c = &R->cfg;
-  afv_sim *s = &R->sim;
+  afv_sim *s = R->sim;
   char name[64], what[512];
   int st, k;
   if (!outputs_due(R)) return AFV_OK;
   if (!state_finite(s, what, sizeof what)) return AFV_ENONFINITE;
-  if (due(s->step, c->sample_every)
+  if (due(afv_sim_steps(s), c->sample_every)
       && (st = obs_write_row(R->out[OUT_OBS], s, &R->an)) != AFV_OK)
     return st;
-  if (due(s->step, c->frame_every)) {
-    afv_traj_write_frame(R->out[OUT_TRAJ], s->step, s->t, s->n, s->r,
-                         s->theta);
+  if (due(afv_sim_steps(s), c->frame_every)) {
+    afv_traj_write_frame(R->out[OUT_TRAJ], afv_sim_steps(s),
+                         afv_sim_time(s), afv_sim_n(s),
+                         afv_sim_positions(s), afv_sim_angles(s));
     if (R->out[OUT_XYZ]) xyz_write_frame(R->out[OUT_XYZ], s);
   }
   for (k = 0; k < AFV_CKPT_FILES; k++)
@@ -1178,11 +1231,11 @@ static int run_outputs(run_state *R)
       snprintf(path, sizeof path, "%s/%s", R->dir, afv_checkpoint_files[k]);
       return io_failed(R, path);
     }
-  if (due(s->step, c->svg_every)) {
-    snprintf(name, sizeof name, "snap_%09lld.svg", s->step);
+  if (due(afv_sim_steps(s), c->svg_every)) {
+    snprintf(name, sizeof name, "snap_%09lld.svg", afv_sim_steps(s));
     if (write_svg(R, name) != AFV_OK) return AFV_EIO;
   }
-  if (due(s->step, c->checkpoint_every)) return write_checkpoint(R);
+  if (due(afv_sim_steps(s), c->checkpoint_every)) return write_checkpoint(R);
   return AFV_OK;
 }
 
@@ -1458,7 +1511,8 @@ static int open_outputs(run_state *R, const afv_checkpoint *ck, char *err,
     }
   }
   if (!ck) {
-    afv_traj_write_header(R->out[OUT_TRAJ], R->sim.n, &R->sim.box);
+    afv_traj_write_header(R->out[OUT_TRAJ], afv_sim_n(R->sim),
+                          afv_sim_box(R->sim));
     obs_write_header(R->out[OUT_OBS]);
   }
   snprintf(path, sizeof path, "%s/log.txt", R->dir);
@@ -1485,14 +1539,15 @@ static void close_outputs(run_state *R)
 ** and the estimated time left. */
 static void log_progress(run_state *R, double now)
 {
-  double done = (double)(R->sim.step - R->start_step), rate;
+  long long step = afv_sim_steps(R->sim);
+  double done = (double)(step - R->start_step), rate;
   if (R->cfg.quiet || now - R->last_progress < PROGRESS_LOG_SECONDS) return;
   R->last_progress = now;
   rate = done / (now - R->wall0 > 1e-9 ? now - R->wall0 : 1e-9);
   fprintf(stderr, "afv run: step %lld of %lld (%.1f%%), %.0f s elapsed, "
-          "about %.0f s left\n", R->sim.step, R->cfg.steps,
-          100.0 * (double)R->sim.step / (double)R->cfg.steps, now - R->wall0,
-          rate > 0 ? (double)(R->cfg.steps - R->sim.step) / rate : 0);
+          "about %.0f s left\n", step, R->cfg.steps,
+          100.0 * (double)step / (double)R->cfg.steps, now - R->wall0,
+          rate > 0 ? (double)(R->cfg.steps - step) / rate : 0);
   fflush(stderr);
 }
 
@@ -1502,11 +1557,12 @@ static void show_progress(run_state *R, int final)
   if (!R->progress && !final) log_progress(R, now);
   if (!R->progress || (!final && now - R->last_progress < 0.5)) return;
   R->last_progress = now;
-  done = (double)(R->sim.step - R->start_step);
+  done = (double)(afv_sim_steps(R->sim) - R->start_step);
   rate = done / (now - R->wall0 > 1e-9 ? now - R->wall0 : 1e-9);
-  left = rate > 0 ? (double)(R->cfg.steps - R->sim.step) / rate : 0;
+  left = rate > 0 ? (double)(R->cfg.steps - afv_sim_steps(R->sim)) / rate : 0;
   fprintf(stderr, "\rstep %lld/%lld  t %.6g  %.0f steps/s  %.0f s left   %s",
-          R->sim.step, R->cfg.steps, R->sim.t, rate, left, final ? "\n" : "");
+          afv_sim_steps(R->sim), R->cfg.steps, afv_sim_time(R->sim), rate,
+          left, final ? "\n" : "");
   fflush(stderr);
 }
 
@@ -1555,18 +1611,11 @@ static void log_relax(run_state *R, const afv_relax_report *rep)
             "goes on");
     return;
   }
-  if (R->sim.dyn.integrator == AFV_EULER)
-    run_log(R, "relaxation at v0 = 0 (Euler steps of dt = %g): %ld steps "
-            "(t = %.6g; %lld moved a cell more than %g l), energy %.10g -> "
-            "%.10g, max |F| %.3e\n", R->sim.dyn.dt, rep->iterations,
-            rep->time, rep->jumps, AFV_MAX_STEP_DISP, rep->energy0,
-            rep->energy, rep->max_force);
-  else
-    run_log(R, "relaxation at v0 = 0 (overdamped steps of dt = %g): %ld "
-            "steps (t = %.6g, %lld extra sub-steps, %lld halved), energy "
-            "%.10g -> %.10g, max |F| %.3e\n", R->sim.dyn.dt,
-            rep->iterations, rep->time, rep->substeps, rep->halvings,
-            rep->energy0, rep->energy, rep->max_force);
+  run_log(R, "relaxation at v0 = 0 (Euler steps of dt = %g): %ld steps "
+          "(t = %.6g; %lld moved a cell more than %g l), energy %.10g -> "
+          "%.10g, max |F| %.3e\n", afv_sim_dyn(R->sim)->dt, rep->iterations,
+          rep->time, rep->jumps, AFV_MAX_STEP_DISP, rep->energy0,
+          rep->energy, rep->max_force);
   if (R->cfg.cap > 0)
     run_log(R, "relaxation: with cap %g the force is regularised near "
             "detachment (PyAFV's contact truncation), so it is not -grad E: "
@@ -1585,11 +1634,12 @@ static void log_relax(run_state *R, const afv_relax_report *rep)
             rep->max_force, AFV_RELAX_KINK_FORCE, R->cfg.relax_tol);
   else if (rep->refused)
     run_log(R, "relaxation: stopped at step %ld, which it cannot take: cell "
-            "%d would move %g l (> %g l) even in a time %g (forces too large "
-            "for mu = %g, dt = %g: check mu, KA, KP, Lambda); relax_tol %g "
-            "NOT reached, the run goes on from here\n", rep->iterations + 1,
-            R->sim.bad_cell, R->sim.bad_disp, AFV_MAX_STEP_DISP,
-            R->sim.bad_time, R->sim.dyn.mu, R->sim.dyn.dt, R->cfg.relax_tol);
+            "%d would move %g l (> %g l, a runaway) in one step (forces far "
+            "too large for mu = %g, dt = %g: check mu, KA, KP, Lambda); "
+            "relax_tol %g NOT reached, the run goes on from here\n",
+            rep->iterations + 1, afv_sim_bad_cell(R->sim),
+            afv_sim_bad_disp(R->sim), AFV_RUNAWAY_MOVE, R->cfg.mu, R->cfg.dt,
+            R->cfg.relax_tol);
   else
     run_log(R, "relaxation: NOT reached within relax_max_steps %lld: max "
             "|F| %.3e > relax_tol %g, no kink shown (last window: mean "
@@ -1605,13 +1655,11 @@ static int relax_start(run_state *R)
   int st;
   if (R->cfg.relax_max_steps == 0) {
     run_log(R, "relaxation skipped (relax_max_steps 0); max |F| %.6e\n",
-            afv_sim_max_force(&R->sim));
+            afv_sim_max_force(R->sim));
     return AFV_OK;
   }
   R->last_progress = wall_seconds();
-  st = (strcmp(R->cfg.relax, "fire") == 0 ? afv_relax_fire : afv_relax)
-       (&R->sim, R->cfg.relax_tol, (long)R->cfg.relax_max_steps, &rep,
-        monitor_relax, R);
+  st = run_protocol(R, (long)R->cfg.relax_max_steps, &rep, monitor_relax);
   if (R->progress) fprintf(stderr, "\r%70s\r", "");
   if (st != AFV_OK) return st;
   log_relax(R, &rep);
@@ -1646,97 +1694,87 @@ static const char *resume_point(const run_state *R, char *buf, size_t len)
 ** Exit status 3, like an unstable step: the last checkpoint resumes. */
 static int report_nonfinite(run_state *R)
 {
-  const afv_sim *s = &R->sim;
+  afv_sim *s = R->sim;
   char what[512];
   if (state_finite(s, what, sizeof what))
     snprintf(what, sizeof what, "a step made a position NaN or infinite "
              "(and was undone)");
   char where[RUN_PATH_MAX + 256];
   fprintf(stderr, "%safv run: step %lld (t = %g): %s; not written, the run "
-          "stops; %s\n", R->progress ? "\n" : "", s->step, s->t, what,
-          resume_point(R, where, sizeof where));
-  if (R->log) fprintf(R->log, "stopped at step %lld: %s\n", s->step, what);
+          "stops; %s\n", R->progress ? "\n" : "", afv_sim_steps(s),
+          afv_sim_time(s), what, resume_point(R, where, sizeof where));
+  if (R->log)
+    fprintf(R->log, "stopped at step %lld: %s\n", afv_sim_steps(s), what);
   return EXIT_UNSTABLE;
 }
 
 /* What a refused step means (afv_sim_step, AFV_EUNSTABLE). */
-static const char *unstable_reason(const afv_sim *s)
+static const char *unstable_reason(afv_sim *s)
 {
-  if (!isfinite(s->bad_disp)) return "its force or position is not finite";
-  if (s->dyn.integrator == AFV_EULER)
-    return "a runaway (farther than " AFV_STR(AFV_RUNAWAY_MOVE) " l in one "
-           "step): the parameters are far too stiff for dt (check KA, KP, "
-           "Lambda, mu)";
-  if (s->bad_time < s->dyn.dt)
-    return "the moves mu dt F are too large for any time step, even in "
-           "the smallest half of dt (check mu, then KA, KP, Lambda, P0)";
-  return "self-propulsion alone, v0 dt, exceeds that: the time step is too "
-         "large";
+  if (!isfinite(afv_sim_bad_disp(s)))
+    return "its force or position is not finite";
+  return "a runaway: the forces are far too large for the time step "
+         "(check mu, then KA, KP, Lambda)";
 }
 
 /* Integrates to cfg.steps.  Returns an exit status. */
 static int run_loop(run_state *R)
 {
-  afv_sim *s = &R->sim;
+  afv_sim *s = R->sim;
   char what[512], where[RUN_PATH_MAX + 256];
   int st = AFV_OK;
-  R->start_step = s->step;
+  R->start_step = afv_sim_steps(s);
   R->wall0 = R->last_progress = wall_seconds();
-  while (s->step < R->cfg.steps) {
+  while (afv_sim_steps(s) < R->cfg.steps) {
     if ((st = afv_sim_step(s)) != AFV_OK) break;
     if ((st = run_outputs(R)) != AFV_OK) break;
     show_progress(R, 0);
   }
   if (st == AFV_EUNSTABLE) {
-    int i = s->bad_cell;
+    int i = afv_sim_bad_cell(s);
     fprintf(stderr, "%safv run: step %lld (t = %g): cell %d would move %g l "
             "(> %g l) in a time %g: %s; %s\n",
-            R->progress ? "\n" : "", s->step + 1, s->t, i, s->bad_disp,
-            AFV_MAX_STEP_DISP, s->bad_time,
+            R->progress ? "\n" : "", afv_sim_steps(s) + 1, afv_sim_time(s),
+            i, afv_sim_bad_disp(s), AFV_RUNAWAY_MOVE, afv_sim_dyn(s)->dt,
             unstable_reason(s), resume_point(R, where, sizeof where));
     if (R->log) fprintf(R->log, "stopped: unstable step %lld, cell %d\n",
-                        s->step + 1, i);
+                        afv_sim_steps(s) + 1, i);
     return EXIT_UNSTABLE;
   }
-  if (st == AFV_OK && R->ckpt_step != s->step && !state_finite(s, what,
-                                                                sizeof what))
+  if (st == AFV_OK && R->ckpt_step != afv_sim_steps(s)
+      && !state_finite(s, what, sizeof what))
     st = AFV_ENONFINITE;   /* the final checkpoint would record it */
   if (st == AFV_ECOINCIDENT) {   /* after a step */
+    int i, j;
+    afv_geom_bad_pair(afv_sim_geom(s), &i, &j);
     fprintf(stderr, "%safv run: step %lld: %s (cells %d and %d): the time "
             "step dt = %g is probably too large; %s\n",
-            R->progress ? "\n" : "", s->step, afv_strerror(st),
-            s->geom.bad_i, s->geom.bad_j, s->dyn.dt,
-            resume_point(R, where, sizeof where));
+            R->progress ? "\n" : "", afv_sim_steps(s), afv_strerror(st),
+            i, j, afv_sim_dyn(s)->dt, resume_point(R, where, sizeof where));
     return EXIT_UNSTABLE;
   }
   if (st == AFV_ENONFINITE) return report_nonfinite(R);
   if (st == AFV_EIO) return report_io(R);
   if (st != AFV_OK) {
-    fprintf(stderr, "afv run: step %lld: %s\n", s->step, afv_strerror(st));
+    fprintf(stderr, "afv run: step %lld: %s\n", afv_sim_steps(s),
+            afv_strerror(st));
     return EXIT_BAD_INPUT;
   }
-  if ((R->ckpt_step != s->step && write_checkpoint(R) != AFV_OK)
+  if ((R->ckpt_step != afv_sim_steps(s) && write_checkpoint(R) != AFV_OK)
       || write_svg(R, "final.svg") != AFV_OK)
     return report_io(R);
   show_progress(R, 1);
   {
     double w = wall_seconds() - R->wall0;
-    long long k = s->step - R->start_step;
-    if (s->dyn.integrator == AFV_EULER)
-      run_log(R, "%d cells, steps %lld..%lld (t = %.6g) in %.3g s (%.0f "
-              "steps/s; Euler steps that moved a cell more than %g l: "
-              "%lld, since this process started, relaxation included; "
-              "largest move of a cell in one step %.3g l); outputs in %s/: "
-              "observables.csv, trajectory.dat, snapshots snap_*.svg and "
-              "final.svg\n", s->n, R->start_step, s->step, s->t, w,
-              w > 0 ? (double)k / w : 0.0, AFV_MAX_STEP_DISP, s->jumps,
-              s->largest_move, R->dir);
-    else
-      run_log(R, "%d cells, steps %lld..%lld (t = %.6g) in %.3g s (%.0f "
-              "steps/s, %lld extra sub-steps); outputs in %s/: "
-              "observables.csv, trajectory.dat, snapshots snap_*.svg and "
-              "final.svg\n", s->n, R->start_step, s->step, s->t, w,
-              w > 0 ? (double)k / w : 0.0, s->substeps, R->dir);
+    long long k = afv_sim_steps(s) - R->start_step;
+    run_log(R, "%d cells, steps %lld..%lld (t = %.6g) in %.3g s (%.0f "
+            "steps/s; Euler steps that moved a cell more than %g l: "
+            "%lld, since this process started, relaxation included; "
+            "largest move of a cell in one step %.3g l); outputs in %s/: "
+            "observables.csv, trajectory.dat, snapshots snap_*.svg and "
+            "final.svg\n", afv_sim_n(s), R->start_step, afv_sim_steps(s),
+            afv_sim_time(s), w, w > 0 ? (double)k / w : 0.0, AFV_MAX_STEP_DISP, afv_sim_jumps(s),
+            afv_sim_largest_move(s), R->dir);
   }
   return 0;
 }
@@ -1749,8 +1787,8 @@ static const char *run_usage =
   "Simulates the active finite Voronoi model (paper protocol): the start\n"
   "(init; default: the authors' random cluster) relaxed at v0 = 0 until\n"
   "max |F| <= relax_tol or a kink of E, then dr/dt = mu F + v0 n,\n"
-  "dth = sqrt(2 Dr dt) xi (Euler-Maruyama; steps with large forces are\n"
-  "taken in pieces and halves, never refused for their size).\n"
+  "dth = sqrt(2 Dr dt) xi (Euler-Maruyama, the paper's steps of dt with\n"
+  "the exact force, never refused for their size).\n"
   "FILE holds 'KEY VALUE' lines ('#' comments); --KEY VALUE overrides it.\n"
   "Relative paths in FILE are relative to FILE's directory.  DIR gets\n"
   "params.txt (every key; --config DIR/params.txt repeats the run),\n"
@@ -1777,8 +1815,8 @@ static const char *run_usage =
   "naming the key.  Missing parent folders\n"
   "of DIR are created.\n"
   "Exit status: 0 done, 2 bad input or an I/O error, 3 unstable step (a\n"
-  "force not finite, v0 dt > l/2, or forces too large even for dt/256) or\n"
-  "a state that is not finite (never written).\n"
+  "force or position not finite, or a runaway move beyond 1e8 l) or a\n"
+  "state that is not finite (never written).\n"
   "\n"
   "keys (default, unit, meaning):\n";
 
@@ -1824,6 +1862,7 @@ typedef struct run_args {
 ** every other option is --KEY VALUE with a known KEY. */
 static int scan_args(int argc, char **argv, run_args *a)
 {
+  char msg[512];
   int k;
   memset(a, 0, sizeof *a);
   for (k = 1; k < argc; k++) {
@@ -1841,6 +1880,10 @@ static int scan_args(int argc, char **argv, run_args *a)
       a->cont = 1;
       continue;
     }
+    if (strncmp(o, "--", 2) == 0
+        && removed_key(o + 2, k + 1 < argc ? argv[k + 1] : NULL, msg,
+                       sizeof msg))
+      return !bad_input(msg);
     if (strncmp(o, "--", 2) != 0
         || (!find_key(o + 2) && strcmp(o, "--out") && strcmp(o, "--resume")
             && strcmp(o, "--config"))) {
@@ -2214,7 +2257,7 @@ static int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
     fprintf(stderr, "afv run: relaxation: %s\n", afv_strerror(st));
     return EXIT_BAD_INPUT;
   }
-  if (!obs_t1_reference(&R->an, &R->sim, R->dir, 0)) return EXIT_BAD_INPUT;
+  if (!obs_t1_reference(&R->an, R->sim, R->dir, 0)) return EXIT_BAD_INPUT;
   st = run_outputs(R);
   if (st == AFV_OK && !due(0, R->cfg.checkpoint_every))
     st = write_checkpoint(R);
@@ -2233,6 +2276,35 @@ static int parse_more_steps(const char *text, long long *more)
   return 0;
 }
 
+/* 1 if the KEY VALUE file at path has a line for key, 0 if not, -1 if it
+** cannot be read. */
+static int has_key(const char *path, const char *key)
+{
+  afv_lines L;
+  int found = 0;
+  if (afv_lines_open(&L, path, NULL, 0) != AFV_OK) return -1;
+  while (!found && afv_lines_next(&L, NULL, 0) > 0) {
+    char *k = strtok(L.line, " \t\r");
+    found = k && strcmp(k, key) == 0;
+  }
+  afv_lines_close(&L);
+  return found;
+}
+
+/* The params.txt of a run to go on with (--resume, --continue): one
+** without the integrator key was written by afv 0.1.0, whose runs used the
+** sub-steps (REMOVED KEYS), and is refused, naming the version that goes
+** on with it.  0 if it has the key (or cannot be read: read_config then
+** says why), else an exit status with the message printed. */
+static int written_after_0_1_0(const char *params)
+{
+  if (has_key(params, "integrator") != 0) return 0;
+  fprintf(stderr, "afv run: %s: no integrator key: a run of afv 0.1.0, "
+          "whose sub-steps (integrator substeps) were removed in afv 0.3.0; "
+          "finish it with afv 0.1.0\n", params);
+  return EXIT_BAD_INPUT;
+}
+
 /* Resume: params.txt (and the cells file it names) into R->cfg; set[k]
 ** records the line of key k.  0, or an exit status with the message
 ** printed. */
@@ -2240,12 +2312,10 @@ static int resume_params(run_state *R, const run_args *a, int *set,
                          const char *params)
 {
   char err[2 * RUN_PATH_MAX];
+  int st;
+  if ((st = written_after_0_1_0(params)) != 0) return st;
   if (!read_config(params, &R->cfg, set, err, sizeof err))
     return bad_input(err);
-  /* a params.txt without the key predates it (0.1.0): that run used the
-  ** sub-steps, and goes on with them */
-  if (!set[find_key("integrator") - run_keys])
-    snprintf(R->cfg.integrator, sizeof R->cfg.integrator, "substeps");
   if (a->quiet) R->cfg.quiet = a->quiet > 0;
   if (!cfg_validate(&R->cfg, set, &R->cells, err, sizeof err)) {
     locate_error(err, sizeof err, set, params);
@@ -2308,31 +2378,31 @@ static int resume_state(run_state *R, const afv_checkpoint *ck,
   afv_params p;
   afv_box b;
   afv_dyn d;
-  int st;
+  int st, i, j;
   cfg_model(&R->cfg, &R->cells, &p, &b, &d);
-  st = afv_sim_init(&R->sim, ck->n, ck->r, ck->theta, &p, &b, &d);
+  st = afv_sim_init(R->sim, ck->n, ck->r, ck->theta, &p, &b, &d);
+  afv_geom_bad_pair(afv_sim_geom(R->sim), &i, &j);
   if (st == AFV_ECOINCIDENT)
     afv_errorf(err, sizeof err, "%s: cells %d and %d have the same centre",
-               ckpt, R->sim.geom.bad_i, R->sim.geom.bad_j);
+               ckpt, i, j);
   else if (st != AFV_OK)
     afv_errorf(err, sizeof err, "%s: %s", ckpt, afv_strerror(st));
   if (st != AFV_OK) return bad_input(err);
-  R->sim.step = ck->step;
-  R->sim.t = ck->t;
+  afv_sim_set_steps(R->sim, ck->step);   /* t = step dt: ck->t, checked */
   R->ckpt_step = ck->step;
   if (!run_computable(R, ckpt, err, sizeof err)) {
     locate_error(err, sizeof err, set, params);  /* a key: its line */
     return bad_input(err);
   }
-  if (T->has_energy && T->energy != R->sim.geom.energy) {
+  if (T->has_energy && T->energy != afv_geom_energy(afv_sim_geom(R->sim))) {
     fprintf(stderr, "afv run: %s: its state has the energy %.17g under "
             "params.txt, but observables.csv's row of step %lld has %.17g: "
             "the checkpoint and params.txt do not describe these files "
             "(edited, or another run's); nothing was changed\n", ckpt,
-            R->sim.geom.energy, ck->step, T->energy);
+            afv_geom_energy(afv_sim_geom(R->sim)), ck->step, T->energy);
     return EXIT_BAD_INPUT;
   }
-  if (!obs_t1_reference(&R->an, &R->sim, R->dir, 1)) return EXIT_BAD_INPUT;
+  if (!obs_t1_reference(&R->an, R->sim, R->dir, 1)) return EXIT_BAD_INPUT;
   return 0;
 }
 
@@ -2392,8 +2462,8 @@ static int run_resume(run_state *R, const run_args *a)
   if (st != 0) return st;
   R->progress = !R->cfg.quiet && isatty(STDERR_FILENO);
   log_build(R, "resumed");
-  run_log(R, "resuming at step %lld (t = %.6g), to step %lld\n", R->sim.step,
-          R->sim.t, R->cfg.steps);
+  run_log(R, "resuming at step %lld (t = %.6g), to step %lld\n",
+          afv_sim_steps(R->sim), afv_sim_time(R->sim), R->cfg.steps);
   return run_loop(R);
 }
 
@@ -2452,14 +2522,13 @@ static int same_run_asked(const run_args *a, int argc, char **argv)
   cfg_defaults(&asked);
   cfg_defaults(&run);
   snprintf(path, sizeof path, "%s/params.txt", a->out);
-  if ((st = requested_cfg(&asked, &asked_cells, a, argc, argv, set_asked)))
+  if ((st = requested_cfg(&asked, &asked_cells, a, argc, argv, set_asked))
+      || (st = written_after_0_1_0(path)))
     goto done;
   if (!read_config(path, &run, set_run, err, sizeof err)) {
     st = bad_input(err);
     goto done;
   }
-  if (!set_run[find_key("integrator") - run_keys])   /* as resume_params */
-    snprintf(run.integrator, sizeof run.integrator, "substeps");
   if (!cfg_validate(&run, set_run, &run_cells, err, sizeof err)) {
     locate_error(err, sizeof err, set_run, path);
     st = bad_input(err);
@@ -2535,12 +2604,13 @@ int cmd_run(int argc, char **argv)
   memset(&R, 0, sizeof R);
   R.lock_fd = -1;
   cfg_defaults(&R.cfg);
+  if (!(R.sim = afv_sim_new())) return bad_input("run: out of memory");
   status = a.resume ? run_resume(&R, &a)
            : a.cont ? run_continue(&R, &a, argc, argv)
            : run_fresh(&R, &a, argc, argv);
   close_outputs(&R);
   unlock_run_dir(&R);
-  afv_sim_free(&R.sim);
+  afv_sim_delete(R.sim);
   afv_cells_free(&R.cells);
   afv_clusters_free(&R.an.c);
   afv_t1_free(&R.an.t1);

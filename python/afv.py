@@ -143,12 +143,11 @@ __version__ = _lib.afv_version().decode()
 _ORDER_NAMES = ("giant_fraction", "omega", "clusters", "pairs", "junctions")
 _ORDER_INTS = ("clusters", "pairs", "junctions")
 _RELAX_NAMES = ("iterations", "time", "max_force", "energy0", "energy",
-                "drift", "drop", "substeps", "halvings", "converged",
-                "at_kink", "refused")
-_RELAX_INTS = ("iterations", "substeps", "halvings")
+                "drift", "drop", "jumps", "converged", "at_kink", "refused")
+_RELAX_INTS = ("iterations", "jumps")
 _RELAX_FLAGS = ("converged", "at_kink", "refused")
-_DYN_NAMES = ("mu", "v0", "Dr", "dt", "max_move", "seed", "integrator")
-_INTEGRATORS = {"euler": 0, "substeps": 1}      # AFV_EULER, AFV_SUBSTEPS
+_DYN_NAMES = ("mu", "v0", "Dr", "dt", "seed")
+_REMOVED_DYN = ("max_move", "integrator")   # the sub-steps, gone in 0.3.0
 
 
 class AfvError(Exception):
@@ -437,10 +436,9 @@ def meanfield_p0(Lambda=0.2, A0=math.pi, KP=1.0):
 class Simulation(object):
     """A running simulation (afv_sim): the cells at r (N x 2), angles theta
     (N; default all 0), params, box as for compute(), and the dynamics'
-    values mu, v0, Dr, dt, max_move, seed, integrator ("euler" or
-    "substeps", in a library that has it) with afv_dyn_default's defaults
-    (mu 1, v0 0, Dr 0.1, dt 0.01, max_move 0.05, seed 1); v0 and Dr may be
-    one per cell.
+    values mu, v0, Dr, dt, seed with afv_dyn_default's defaults (mu 1,
+    v0 0, Dr 0.1, dt 0.01, seed 1); v0 and Dr may be one per cell.  The
+    step is the paper's Euler step.
 
     step(k) takes k steps; relax() relaxes at zero activity.  Between steps
     set(v0=...) changes the dynamics (a quench), set_params(P0=...) the
@@ -474,6 +472,10 @@ class Simulation(object):
 
     def _set_dyn(self, d, values):
         for name, value in values.items():
+            if name in _REMOVED_DYN:
+                raise TypeError("Simulation: %s: integrator substeps and "
+                                "max_move were removed in afv 0.3.0 (the "
+                                "step is the paper's Euler step)" % name)
             if name not in _DYN_NAMES:
                 raise TypeError("Simulation: unknown key %r (known: %s)"
                                 % (name, ", ".join(_DYN_NAMES)))
@@ -483,17 +485,14 @@ class Simulation(object):
                 _check(_lib.afv_dyn_set_cells(d, name.encode(), arr.ptr),
                        "dynamics " + name)
                 continue
-            if name == "integrator" and value in _INTEGRATORS:
-                value = _INTEGRATORS[value]
             if name in ("v0", "Dr"):
                 _lib.afv_dyn_set_cells(d, name.encode(), None)
                 self._cells.pop(name, None)
             try:
                 number = float(value)
             except (TypeError, ValueError):
-                raise ValueError("Simulation: %s = %r is not a number%s" % (
-                    name, value, " (nor euler or substeps)"
-                    if name == "integrator" else ""))
+                raise ValueError("Simulation: %s = %r is not a number"
+                                 % (name, value))
             _check(_lib.afv_dyn_set(d, name.encode(), number),
                    "dynamics %s = %r" % (name, value))
 

@@ -14,7 +14,7 @@
 **          12 x 12 box, angles afv_init_angles(seed 7), dyn defaults with
 **          seed 11; afv_relax(tol 1e-4, 3000 steps); v0 = 0.5 for 30
 **          steps; v0 per cell (0.2 + 0.05 i) for 20 steps; P0 = 5.5 and
-**          afv_sim_refresh, 20 steps; the sub-step integrator, 20 steps;
+**          afv_sim_refresh, 20 steps; dt = 0.005, 20 steps;
 **          positions, angles, forces, energy, time, steps, order
 **          parameters; a picture.
 */
@@ -116,7 +116,7 @@ static void simulation(const char *dir)
   afv_sim_params(s)->P0 = 5.5;
   if (afv_sim_refresh(s)) exit(1);
   run(s, 20);
-  afv_sim_dyn(s)->integrator = AFV_SUBSTEPS;
+  afv_sim_dyn(s)->dt = 0.005;
   run(s, 20);
   print_array("sim.positions", afv_sim_positions(s), 2 * N);
   print_array("sim.angles", afv_sim_angles(s), N);

@@ -104,7 +104,7 @@ def sim_scenario():
     sim.step(20)
     sim.set_params(P0=5.5)
     sim.step(20)
-    sim.set(integrator="substeps")
+    sim.set(dt=0.005)
     sim.step(20)
     return sim, rep
 
@@ -224,9 +224,10 @@ def bad_input_is_refused():
         ("unknown dynamics key", lambda: afv.Simulation([[0, 0]], v1=2),
          "'v1'"),
         ("seed 0.5", lambda: afv.Simulation([[0, 0]], seed=0.5), "seed"),
-        ("integrator rk4", lambda: afv.Simulation([[0, 0]],
-                                                  integrator="rk4"),
-         "integrator"),
+        ("integrator substeps", lambda: afv.Simulation(
+            [[0, 0]], integrator="substeps"), "removed in afv 0.3.0"),
+        ("max_move", lambda: afv.Simulation([[0, 0]], max_move=0.05),
+         "max_move"),
     ]
     for what, call, named in refusals:
         try:
@@ -246,9 +247,9 @@ def quench_continues_as_a_fresh_start():
     sim, _ = sim_scenario()
     fresh = afv.Simulation(sim.positions, sim.angles, box=(12, 12), seed=11,
                            v0=[0.2 + 0.05 * i for i in range(40)],
-                           params=afv.Params(P0=5.5), integrator="substeps")
-    if fresh.get("integrator") != 1:
-        fail("integrator='substeps' gave %r" % fresh.get("integrator"))
+                           params=afv.Params(P0=5.5), dt=0.005)
+    if fresh.get("dt") != 0.005:
+        fail("dt=0.005 gave %r" % fresh.get("dt"))
     fresh_steps = sim.steps
     sim.step(5)
     fresh.steps = fresh_steps       # the noise is drawn for (seed, cell, step)

@@ -69,9 +69,8 @@
 **     gathered from both cells' G (afv.c, "gather" form), so cells can be
 **     computed on threads; G_ij is split along u and t so that centres
 **     1e-16 l apart still get the right force;
-**   - the step: AFV_EULER (the default) is this file's step; with
-**     AFV_SUBSTEPS a cell the force would move more than max_move l
-**     takes its step in pieces (substeps.c);
+**   - the step: the same Euler step, in one pass over the cells that
+**     also keeps what the step needs (dynamics.c, euler_all);
 **   - the noise: Philox per (cell, step), the same for any thread count;
 **   - atan2, sin, cos: its own arithmetic, the same bits on every machine.
 */
@@ -430,9 +429,8 @@ static double cell_energy(const model *M, double A, double P, double L)
 ** race along the circle: ds/dd = -d/(4s) diverges.  So does the force,
 ** like (2l - d)^(-1/2), yet E stays continuous (the divergence is
 ** integrable).  An Euler step that lands a pair just inside 2l can throw
-** it far apart; the paper's Euler step does so, and so does this file.
-** (The library does so too by default, AFV_EULER; its AFV_SUBSTEPS
-** follows such a step in pieces instead.)
+** it far apart; the paper's Euler step does so, and so do this file and
+** the library.
 ** At a triple junction exactly on the circle E has a kink: moving a cell
 ** outward opens an arc there and moving it inward does not, so the two
 ** one-sided derivatives differ and F is not defined; a random tissue
@@ -631,8 +629,7 @@ static double rng_normal(rng *g)
 ** <eta_i(t) eta_i(t')> = 2 Dr delta(t - t'), adds up to a normal angle of
 ** variance 2 Dr dt; the polarity forgets its direction in a time 1/Dr.
 ** Every cell moves by the whole step: no sub-steps and no refusal of a
-** large move (the library's AFV_SUBSTEPS, which follows a contact about to
-** break in pieces, is not the paper's; its AFV_EULER is this step).  Centres are never wrapped, so
+** large move (the library's step is this one).  Centres are never wrapped, so
 ** r_i(t) - r_i(0) is the true displacement.  T->F must be the force at r
 ** (compute).  Returns compute's status at the new r. */
 static int euler_step(tissue *T, const model *M, const motion *mo, rng *g)

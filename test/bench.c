@@ -12,8 +12,8 @@
 **
 ** States (periodic, packing fraction N pi l^2 / (Lx Ly) = 0.5, l = 1, the
 ** paper's KA = KP = 1, A0 = pi, Lambda = 0.2, Dr = 0.1, dt = 0.01, mu = 1,
-** and afv run's defaults: exact forces (no cap) with sub-steps where the
-** force would move a cell more than max_move = 0.05 l, see dynamics.c):
+** and afv run's defaults: the paper's Euler step with exact forces (no
+** cap), see dynamics.c):
 **   random   afv_init_random centres, P0 = 4.8, v0 = 1;
 **   cluster  afv_init_cluster (spacing CLUSTER_SPACING), P0 = 4, v0 = 0.1;
 ** in both the cells are then numbered in afv_spatial_order.
@@ -110,7 +110,7 @@ static int spatial_order(int n, double *r, const afv_box *b)
 ** as wide, with n fresh angles.  A relaxation of n cells within the budget
 ** would stop far from converged at large n (about 25 relaxation steps at
 ** n = 400000), and a less relaxed tissue costs more per cell (larger
-** forces: more sub-steps and candidate rebuilds); the tiles give every n
+** forces: more candidate rebuilds); the tiles give every n
 ** the local structure of a relaxed random tissue, so that the per-cell
 ** figures compare the code at different n, not different states. */
 static int make_state(afv_sim *s, int cluster, int n);

@@ -267,27 +267,6 @@ void test_config_free(test_config *c)
   c->r = NULL;
 }
 
-int test_pair_sim(afv_sim *s, double x, double y, double KA, double dt,
-                  double max_move)
-{
-  afv_box b = {0, 0, 0};
-  afv_params p;
-  afv_dyn d;
-  double r[4];
-  r[0] = r[1] = 0;
-  r[2] = x;
-  r[3] = y;
-  afv_params_default(&p);
-  p.KA = KA;
-  afv_dyn_default(&d);
-  d.integrator = AFV_SUBSTEPS;   /* the sub-steps are what is tested */
-  d.Dr = 0;
-  d.dt = dt;
-  d.max_move = max_move;
-  memset(s, 0, sizeof *s);
-  return afv_sim_init(s, 2, r, NULL, &p, &b, &d);
-}
-
 /* ---- golden files ------------------------------------------------------- */
 /* A two-column CSV/space file read with afv_points_read (NULL if it cannot
 ** be read): the golden data of ../shared/golden/. */

@@ -9,7 +9,7 @@
 ** Defaults: N = 400, phi = 0.5, P0 in {4, 4.4, 4.8, 5.2, 5.6, 6, 6.4, 7.2,
 ** 8, 8.8}, seeds 1 .. 5 relaxed, seeds 1 .. 3 run, v0 in {0, 0.1, 0.5, 1,
 ** 1.85, 2.7}, 10^5 steps of dt = 0.01, the paper's other parameters, the
-** exact force with afv run's sub-steps (max_move 0.05).
+** paper's Euler step with the exact force (afv run's).
 **
 ** For every P0: the lattice start (afv_init_cluster, spacing 1.8 l, afv
 ** run's init lattice) relaxed, for its mean area A_lat.  For every seed:
@@ -25,7 +25,9 @@
 ** One line per (P0, v0, seed) (v0 "-" for a seed only relaxed, printed
 ** when relaxed; the runs follow, see worker()):
 **   P0 v0 seed relax_steps max_F stop mean_area area_vs_lattice exit
-**   extra_pieces halvings wall (relaxation + run, s) [FAIL: why]
+**   jumps wall (relaxation + run, s) [FAIL: why]
+** (jumps: the Euler steps that moved a cell more than AFV_MAX_STEP_DISP l,
+** in the relaxation or in the relaxation and the run.)
 ** and last `protocol: R runs, F failed` (R counts relaxations and runs).
 ** --jobs J: J worker processes share the P0 values (lines then come in
 ** the order they finish).  Wall times are on a shared machine.
@@ -168,11 +170,10 @@ static int relax_pair(const plan *P, double P0, int seed, double area_lat,
   why = relax_failure(st, &R->rep, R->area, area_lat);
   if (seed > P->seeds_run || why[0]) {
     printf("P0 %-4g v0 -    seed %d relax %6ld max_F %.3e %-11s area %.4f "
-           "(%+.1f%%) exit - pieces %lld halvings %lld wall %.1f s%s%s\n",
+           "(%+.1f%%) exit - jumps %lld wall %.1f s%s%s\n",
            P0, seed, R->rep.iterations, R->rep.max_force,
            stop_reason(&R->rep), R->area, 100 * (R->area / area_lat - 1),
-           R->rep.substeps, R->rep.halvings, R->wall, why[0] ? "  FAIL: " : "",
-           why);
+           R->rep.jumps, R->wall, why[0] ? "  FAIL: " : "", why);
     fflush(stdout);
   }
   return why[0] != 0;
@@ -195,13 +196,13 @@ static int run_pair(const plan *P, double P0, int seed, double v0,
   for (i = 0; i < P->steps && st == AFV_OK; i++) st = afv_sim_step(&s);
   code = exit_status(st);
   printf("P0 %-4g v0 %-4g seed %d relax %6ld max_F %.3e %-11s area %.4f "
-         "(%+.1f%%) exit %d pieces %lld halvings %lld wall %.1f+%.1f s",
+         "(%+.1f%%) exit %d jumps %lld wall %.1f+%.1f s",
          P0, v0, seed, R->rep.iterations, R->rep.max_force,
          stop_reason(&R->rep), R->area, 100 * (R->area / R->area_lat - 1),
-         code, s.substeps, s.halvings, R->wall, wall() - t0);
+         code, R->rep.jumps + s.jumps, R->wall, wall() - t0);
   if (code != 0)
     printf("  FAIL: step %lld: %s, cell %d would move %g l in %g", s.step + 1,
-           afv_strerror(st), s.bad_cell, s.bad_disp, s.bad_time);
+           afv_strerror(st), s.bad_cell, s.bad_disp, s.dyn.dt);
   printf("\n");
   fflush(stdout);
   afv_sim_free(&s);
@@ -232,7 +233,7 @@ static void lattice_areas(const plan *P, double *area_lat)
 /* Worker w of J takes the P0 with k % J == w: first it relaxes them for
 ** every seed (item 2), then runs them seed by seed, the largest v0 first,
 ** so that a partial output covers the whole range of P0 and the v0 that
-** stress the sub-steps most. */
+** stress the step most. */
 static int worker(const plan *P, const double *area_lat, int w)
 {
   relaxed *R = calloc((size_t)(P->nP0 * P->seeds_run) + 1, sizeof *R);

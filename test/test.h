@@ -72,12 +72,6 @@ typedef struct test_config {
 } test_config;
 int  test_config_make(int k, test_config *c);
 void test_config_free(test_config *c);
-/* Two cells in open space, at (0, 0) and (x, y), the paper's parameters
-** but KA, no rotational noise, time step dt and sub-step threshold
-** max_move: afv_sim_init's status. */
-int test_pair_sim(afv_sim *s, double x, double y, double KA, double dt,
-                  double max_move);
-
 /* A two-column CSV/space file (the golden data): its n rows as 2n doubles
 ** (malloc'd), or NULL if it cannot be read. */
 double *test_read_pairs(const char *path, int *n);

@@ -226,11 +226,11 @@ static void test_accessors_hand_out_the_fields(void)
         && afv_sim_geom(s) == &s->geom && afv_sim_params(s) == &s->par
         && afv_sim_box(s) == &s->box && afv_sim_dyn(s) == &s->dyn,
         "a simulation accessor is wrong");
-  s->substeps = 11; s->halvings = 12; s->bad_cell = 2;
-  s->bad_disp = 0.75; s->bad_time = 0.125;
-  CHECK(afv_sim_substeps(s) == 11 && afv_sim_halvings(s) == 12
-        && afv_sim_bad_cell(s) == 2 && afv_sim_bad_disp(s) == 0.75
-        && afv_sim_bad_time(s) == 0.125, "a counter accessor is wrong");
+  s->jumps = 11; s->largest_move = 12.5; s->bad_cell = 2;
+  s->bad_disp = 0.75;
+  CHECK(afv_sim_jumps(s) == 11 && afv_sim_largest_move(s) == 12.5
+        && afv_sim_bad_cell(s) == 2 && afv_sim_bad_disp(s) == 0.75,
+        "a counter accessor is wrong");
   afv_sim_set_steps(s, 42);
   CHECK(s->step == 42, "afv_sim_set_steps did not set the step");
   afv_geom_delete(g);
@@ -244,23 +244,21 @@ static void test_accessors_hand_out_the_fields(void)
 ** an integer in [0, 2^64), is refused and changes nothing. */
 static void test_bindings_by_name(void)
 {
-  static const char *const names[] = {"mu", "v0", "Dr", "dt", "max_move"};
+  static const char *const names[] = {"mu", "v0", "Dr", "dt"};
   afv_dyn *d = afv_dyn_new(), def;
   afv_relax_report rep;
   double v, cells[3] = {1, 2, 3};
-  double *fields[5];
+  double *fields[4];
   int k;
   CHECK(d != NULL, "afv_dyn_new failed");
   if (!d) return;
   afv_dyn_default(&def);
   CHECK(d->mu == def.mu && d->v0 == def.v0 && d->Dr == def.Dr
-        && d->dt == def.dt && d->max_move == def.max_move
-        && d->seed == def.seed && d->integrator == def.integrator
-        && !d->v0_i && !d->Dr_i,
+        && d->dt == def.dt && d->seed == def.seed && !d->v0_i && !d->Dr_i,
         "afv_dyn_new is not afv_dyn_default");
   fields[0] = &d->mu; fields[1] = &d->v0; fields[2] = &d->Dr;
-  fields[3] = &d->dt; fields[4] = &d->max_move;
-  for (k = 0; k < 5; k++) {
+  fields[3] = &d->dt;
+  for (k = 0; k < 4; k++) {
     CHECK(afv_dyn_set(d, names[k], 10.5 + k) == AFV_OK
           && *fields[k] == 10.5 + k, "afv_dyn_set %s", names[k]);
     CHECK(afv_dyn_get(d, names[k], &v) == AFV_OK && v == 10.5 + k,
@@ -273,15 +271,11 @@ static void test_bindings_by_name(void)
         && afv_dyn_set(d, "seed", 18446744073709551616.0) == AFV_EINVAL
         && afv_dyn_set(d, "seed", 0.0 / 0.0) == AFV_EINVAL
         && d->seed == 9007199254740992ULL, "a bad seed was accepted");
-  CHECK(afv_dyn_set(d, "integrator", AFV_SUBSTEPS) == AFV_OK
-        && d->integrator == AFV_SUBSTEPS
-        && afv_dyn_get(d, "integrator", &v) == AFV_OK && v == AFV_SUBSTEPS
-        && afv_dyn_set(d, "integrator", 2) == AFV_EINVAL
-        && afv_dyn_set(d, "integrator", 0.5) == AFV_EINVAL
-        && d->integrator == AFV_SUBSTEPS, "integrator by name");
   CHECK(afv_dyn_set(d, "v1", 1) == AFV_EINVAL
-        && afv_dyn_get(d, "seeds", &v) == AFV_EINVAL,
-        "an unknown name was accepted");
+        && afv_dyn_get(d, "seeds", &v) == AFV_EINVAL
+        && afv_dyn_set(d, "max_move", 0.05) == AFV_EINVAL
+        && afv_dyn_set(d, "integrator", 0) == AFV_EINVAL,
+        "an unknown name (or one of afv 0.2.0's sub-steps) was accepted");
   CHECK(afv_dyn_set_cells(d, "v0", cells) == AFV_OK && d->v0_i == cells
         && afv_dyn_set_cells(d, "Dr", cells + 1) == AFV_OK
         && d->Dr_i == cells + 1 && afv_dyn_set_cells(d, "v0", NULL) == AFV_OK
@@ -292,17 +286,18 @@ static void test_bindings_by_name(void)
 
   memset(&rep, 0, sizeof rep);
   rep.iterations = 1; rep.time = 2; rep.max_force = 3; rep.energy0 = 4;
-  rep.energy = 5; rep.drift = 6; rep.drop = 7; rep.substeps = 8;
-  rep.halvings = 9; rep.converged = 10; rep.at_kink = 11; rep.refused = 12;
+  rep.energy = 5; rep.drift = 6; rep.drop = 7; rep.jumps = 8;
+  rep.converged = 9; rep.at_kink = 10; rep.refused = 11;
   {
     static const char *const rnames[] = {"iterations", "time", "max_force",
-      "energy0", "energy", "drift", "drop", "substeps", "halvings",
-      "converged", "at_kink", "refused"};
-    for (k = 0; k < 12; k++)
+      "energy0", "energy", "drift", "drop", "jumps", "converged", "at_kink",
+      "refused"};
+    for (k = 0; k < 11; k++)
       CHECK(afv_relax_report_get(&rep, rnames[k], &v) == AFV_OK
             && v == k + 1, "afv_relax_report_get %s gave %g", rnames[k], v);
   }
-  CHECK(afv_relax_report_get(&rep, "steps", &v) == AFV_EINVAL,
+  CHECK(afv_relax_report_get(&rep, "steps", &v) == AFV_EINVAL
+        && afv_relax_report_get(&rep, "substeps", &v) == AFV_EINVAL,
         "an unknown report field was accepted");
   CHECK(afv_struct_size("afv_params") == sizeof(afv_params)
         && afv_struct_size("afv_box") == sizeof(afv_box)

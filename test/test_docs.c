@@ -5,7 +5,7 @@
 **     accepts the values inside it and refuses those outside (probed with
 **     tiny runs of ./afv); the defaults it prints are the ones a run uses
 **     and the library's (afv_params_default, afv_dyn_default), except v0;
-**     the constants it quotes are the code's (AFV_MAX_SUBSTEPS, ...);
+**     the constants it quotes are the code's (AFV_MAX_STEP_DISP);
 **   - the defaults printed by eval's and analyze's --help agree with them;
 **   - the man page doc/afv.1 names every command and every option;
 **   - every function, constant, key, figure and file that README.md,
@@ -280,7 +280,8 @@ static void test_run_help_ranges_true(void)
   for (k = 0; k < n; k++) {
     const help_key *K = &keys[k];
     range rg;
-    if (strchr(K->unit, '|')) probe_choices(K);
+    if (strchr(K->unit, '|') || strcmp(K->unit, K->def) == 0)
+      probe_choices(K);                  /* choices (one: the default) */
     else if (strcmp(K->unit, "file") == 0) continue;   /* a path */
     else if (!parse_range(K->text, &rg))
       CHECK(0, "afv run --help, key %s: no range stated (\"must be ...\" or "
@@ -305,20 +306,20 @@ static void test_run_help_defaults_true(void)
   static char params[TEXT_MAX];
   static const char *const lib_keys[] = {"l", "KA", "KP", "A0", "P0",
                                          "Lambda", "cap", "mu", "Dr", "dt",
-                                         "max_move", "seed"};
+                                         "seed"};
   help_key keys[MAX_KEYS];
-  int n = parse_run_help(keys, MAX_KEYS), k, most = -1;
+  int n = parse_run_help(keys, MAX_KEYS), k;
   afv_params p;
   afv_dyn d;
   const help_key *K;
   char args[256], path[128], *at;
-  double lib[12], disp = -1;
+  double lib[11], disp = -1;
   afv_params_default(&p);
   afv_dyn_default(&d);
   lib[0] = p.l; lib[1] = p.KA; lib[2] = p.KP; lib[3] = p.A0; lib[4] = p.P0;
   lib[5] = p.Lambda; lib[6] = p.cap; lib[7] = d.mu; lib[8] = d.Dr;
-  lib[9] = d.dt; lib[10] = d.max_move; lib[11] = (double)d.seed;
-  for (k = 0; k < 12; k++) {
+  lib[9] = d.dt; lib[10] = (double)d.seed;
+  for (k = 0; k < 11; k++) {
     CHECK((K = key_named(keys, n, lib_keys[k])) != NULL, "no key %s",
           lib_keys[k]);
     if (K) check_same_number(lib_keys[k], K->def, lib[k]);
@@ -348,19 +349,13 @@ static void test_run_help_defaults_true(void)
       CHECK(strcmp(K->def, value) == 0, "%s: help default %s, a run uses %s",
             K->name, K->def, value);
   }
-  /* the constants quoted by max_move and v0 */
-  K = key_named(keys, n, "max_move");
-  for (at = K ? strstr(K->text, "at most ") : NULL; at;
-       at = strstr(at + 1, "at most "))
-    if (sscanf(at, "at most %d", &most) == 1) break;   /* "at most N" */
-  CHECK(at && most == AFV_MAX_SUBSTEPS, "max_move: help says at most %d "
-        "pieces, the code allows AFV_MAX_SUBSTEPS = %d", most,
-        AFV_MAX_SUBSTEPS);
-  K = key_named(keys, n, "v0");
-  at = K ? strstr(K->text, "dt > ") : NULL;
-  CHECK(at && sscanf(at, "dt > %lf", &disp) == 1
-        && disp == AFV_MAX_STEP_DISP, "v0: help says a step refuses v0 dt > "
-        "%g l, the code AFV_MAX_STEP_DISP = %g", disp, AFV_MAX_STEP_DISP);
+  /* the constant quoted by integrator */
+  K = key_named(keys, n, "integrator");
+  at = K ? strstr(K->text, "more than ") : NULL;
+  CHECK(at && sscanf(at, "more than %lf", &disp) == 1
+        && disp == AFV_MAX_STEP_DISP, "integrator: help counts moves of more "
+        "than %g l, the code AFV_MAX_STEP_DISP = %g", disp,
+        AFV_MAX_STEP_DISP);
 }
 
 /* The number after `after` in the help of option opt (its line and those
@@ -482,7 +477,7 @@ static void test_man_page_covers_options(void)
 /* ---- quench: parameters changed between steps ------------------------- */
 /* A jittered periodic 10 x 10 triangular tissue with random polarities,
 ** P0 4.8, v0 0.3, initialised into s and stepped k steps; p and d get
-** its parameters.  (Contacts break and sub-steps occur once v0 is large.) */
+** its parameters.  (Contacts break once v0 is large.) */
 #define QN 100
 static int steps(afv_sim *s, int k)
 {
@@ -501,7 +496,6 @@ static void quench_start(afv_sim *s, afv_params *p, afv_dyn *d, int k)
   afv_init_angles(QN, 9, th);
   afv_params_default(p);
   afv_dyn_default(d);
-  d->integrator = AFV_SUBSTEPS;   /* the sub-steps are what is tested */
   d->v0 = 0.3;
   memset(s, 0, sizeof *s);
   CHECK(afv_sim_init(s, QN, r, th, p, &b, d) == AFV_OK, "init");
@@ -543,16 +537,15 @@ static void test_quench_v0_between_steps(void)
   hot.v0 = 2.5;
   CHECK(restart_from(&fresh, &s, &p, &hot) == AFV_OK, "fresh start");
   CHECK(restart_from(&old, &s, &p, &d) == AFV_OK, "old start");
-  before = s.substeps;
+  before = s.jumps;
   s.dyn.v0 = 2.5;                              /* the quench */
   CHECK(steps(&s, 60) == AFV_OK && steps(&fresh, 60) == AFV_OK
         && steps(&old, 60) == AFV_OK, "60 steps after the quench");
   CHECK(same_state(&s, &fresh), "quenched run differs from a fresh run at "
         "the new v0");
   CHECK(!same_state(&s, &old), "the quench changed nothing");
-  CHECK(s.substeps - before == fresh.substeps && fresh.substeps > 0,
-        "extra pieces after the quench: %lld quenched, %lld fresh (some are "
-        "needed to test the pieces)", s.substeps - before, fresh.substeps);
+  CHECK(s.jumps - before == fresh.jumps, "jumps after the quench: %lld "
+        "quenched, %lld fresh", s.jumps - before, fresh.jumps);
   afv_sim_free(&s);
   afv_sim_free(&fresh);
   afv_sim_free(&old);

@@ -189,8 +189,8 @@ static void test_sim_deterministic(void)
   afv_sim_free(&s2);
 }
 
-/* A step that would move a cell more than l/2, or a NaN force, is refused
-** with the cell named and the state unchanged. */
+/* A runaway step (a move beyond AFV_RUNAWAY_MOVE l), or a NaN force, is
+** refused with the cell named and the state unchanged. */
 static void test_sim_refuses_unstable_step(void)
 {
   enum { N = 50 };
@@ -202,16 +202,16 @@ static void test_sim_refuses_unstable_step(void)
   memset(&s, 0, sizeof s);
   cluster_system(N, &b, &p, r);
   afv_dyn_default(&d);
-  d.integrator = AFV_SUBSTEPS;   /* the sub-steps are what is tested */
-  d.v0 = 0.6;
-  d.dt = 1.0;       /* v0 dt = 0.6 l > l/2 */
+  d.v0 = 2 * AFV_RUNAWAY_MOVE;
+  d.dt = 1.0;       /* v0 dt = 2 AFV_RUNAWAY_MOVE l */
   CHECK(afv_sim_init(&s, N, r, NULL, &p, &b, &d) == AFV_OK, "init");
   memcpy(r0, s.r, sizeof r0);
-  CHECK(afv_sim_step(&s) == AFV_EUNSTABLE, "big step accepted");
-  CHECK(s.bad_cell >= 0 && s.bad_disp > 0.5, "bad cell %d disp %g",
-        s.bad_cell, s.bad_disp);
+  CHECK(afv_sim_step(&s) == AFV_EUNSTABLE, "runaway step accepted");
+  CHECK(s.bad_cell >= 0 && s.bad_disp > AFV_RUNAWAY_MOVE, "bad cell %d "
+        "disp %g", s.bad_cell, s.bad_disp);
   CHECK(memcmp(r0, s.r, sizeof r0) == 0 && s.step == 0, "state changed");
   s.dyn.dt = 0.01;
+  s.dyn.v0 = 0.6;
   s.f[2 * 7] = NAN;
   CHECK(afv_sim_step(&s) == AFV_EUNSTABLE && s.bad_cell == 7
         && isnan(s.bad_disp), "NaN force: status, cell %d", s.bad_cell);
@@ -773,8 +773,7 @@ static void test_run_unstable_exit(void)
 {
   char path[512], *err;
   long len;
-  int st = sh("./afv run --N 64 --integrator substeps --mu 1e6 --steps 10 "
-              "--quiet --out %s/u "
+  int st = sh("./afv run --N 64 --mu 1e10 --steps 10 --quiet --out %s/u "
               "2> %s/err.txt", tmpdir, tmpdir);
   snprintf(path, sizeof path, "%s/err.txt", tmpdir);
   err = slurp(path, &len);
@@ -852,420 +851,6 @@ static void test_run_survives_sigkill(void)
   CHECK(same_file("k", "k_ref", "checkpoint.txt"), "checkpoint differs");
 }
 
-/* Two cells a hair (1e-7 l) from losing contact: the exact force there is
-** ~ Lambda l^2 / (d s), s = sqrt(l (2l - d)) (afv.c, (V1)), so one plain
-** Euler step of dt = 0.01 would throw them apart by more than l/2
-** (refused), while sub-steps (max_move 0.1 l) follow the attraction: the
-** step succeeds, sub-steps happen, the energy falls, and as max_move
-** shrinks the result converges to a fine plain-Euler integration of the
-** same step (dt / 65536: converged to ~2e-4 l, measured). */
-static void pair_near_detachment(afv_sim *s, double max_move, double dt)
-{
-  CHECK(test_pair_sim(s, 2 - 1e-7, 0, 1, dt, max_move) == AFV_OK, "init");
-}
-
-static void test_substeps_tame_detachment(void)
-{
-  static const double max_moves[3] = {0.1, 0.01, 0.001};
-  afv_sim plain, sub, fine;
-  double E0, dfine, err[3];
-  int k;
-  pair_near_detachment(&plain, 0, 0.01);
-  CHECK(afv_sim_step(&plain) == AFV_EUNSTABLE && plain.bad_disp > 0.5,
-        "plain Euler step not refused (move %g l)", plain.bad_disp);
-  pair_near_detachment(&fine, 0, 0.01 / 65536);
-  for (k = 0; k < 65536; k++)
-    CHECK(afv_sim_step(&fine) == AFV_OK, "fine step %d refused", k);
-  dfine = fine.r[2] - fine.r[0];
-  for (k = 0; k < 3; k++) {
-    pair_near_detachment(&sub, max_moves[k], 0.01);
-    E0 = sub.geom.energy;
-    CHECK(afv_sim_step(&sub) == AFV_OK, "sub-stepped step refused");
-    CHECK(sub.substeps > 0, "no sub-steps");
-    CHECK(sub.geom.energy < E0, "energy rose: %.17g -> %.17g", E0,
-          sub.geom.energy);
-    err[k] = fabs(sub.r[2] - sub.r[0] - dfine);
-    printf("  max_move %g: %lld extra sub-steps, |d - d_fine| = %.3e\n",
-           max_moves[k], sub.substeps, err[k]);
-    afv_sim_free(&sub);
-  }
-  CHECK(err[0] > err[1] && err[1] > err[2] && err[2] < 2e-3,
-        "no convergence to the fine step: errors %.3e %.3e %.3e", err[0],
-        err[1], err[2]);
-  afv_sim_free(&plain);
-  afv_sim_free(&fine);
-}
-
-/* The l/2 rule holds for a whole step, sub-steps and halves included:
-** with forces far too large for dt (KA = 1e5 on a compressed random
-** packing) the pieces would carry a cell across more than l/2 even in the
-** smallest half, dt / 2^AFV_MAX_HALVINGS; the step is refused, the cell
-** and the time of the refused part named, and the state (counters
-** included) left as it was. */
-static void test_whole_step_move_bounded(void)
-{
-  enum { N = 60 };
-  afv_box b = {1, 8, 8};
-  afv_params p;
-  afv_dyn d;
-  afv_sim s;
-  double r[2 * N], r0[2 * N];
-  memset(&s, 0, sizeof s);
-  afv_params_default(&p);
-  p.KA = 1e5;
-  afv_dyn_default(&d);
-  d.integrator = AFV_SUBSTEPS;   /* the sub-steps are what is tested */
-  afv_init_random(N, 3, &b, 0, r);
-  CHECK(afv_sim_init(&s, N, r, NULL, &p, &b, &d) == AFV_OK, "init");
-  memcpy(r0, s.r, sizeof r0);
-  CHECK(afv_sim_step(&s) == AFV_EUNSTABLE, "step with huge forces accepted");
-  CHECK(s.bad_cell >= 0 && s.bad_disp > AFV_MAX_STEP_DISP, "cell %d moved "
-        "%g l", s.bad_cell, s.bad_disp);
-  CHECK_CLOSE(s.bad_time, d.dt / (1 << AFV_MAX_HALVINGS), 1e-12, 0,
-              "time of the refused part");
-  CHECK(memcmp(r0, s.r, sizeof r0) == 0 && s.step == 0 && s.substeps == 0
-        && s.halvings == 0, "state changed");
-  afv_sim_free(&s);
-}
-
-/* A tissue of N - 1 cells in a cluster at spacing 1.7 l (box one) and one
-** more cell just outside it, `gap` l short of losing its contact with the
-** rightmost cell: the detaching pair makes fast cells (sub-steps).  Its
-** parameters: the defaults, with v0 0.3 and no rotational noise. */
-static void detaching_cluster(int n, const afv_box *one, double gap,
-                              double *r, afv_params *p, afv_dyn *d)
-{
-  int i, rim = 0;
-  afv_params_default(p);
-  afv_dyn_default(d);
-  d->integrator = AFV_SUBSTEPS;   /* the sub-steps are what is tested */
-  d->v0 = 0.3;
-  d->Dr = 0;
-  afv_init_cluster(n - 1, 1.7, one, r);
-  for (i = 1; i < n - 1; i++)
-    if (r[2*i] > r[2*rim]) rim = i;
-  r[2*(n-1)] = r[2*rim] + 2 - gap;
-  r[2*(n-1)+1] = r[2*rim+1];
-}
-
-/* The groups of the fast cells fast[0 .. nf-1] by hand (substeps.c,
-** GROUPS): closer than R at positions r, directly or through other fast
-** cells.  gid[k] = the group of fast[k] (0, 1, ...); returns how many. */
-static int groups_by_hand(const double *r, const int *fast, int nf,
-                          const afv_box *b, double R, int *gid)
-{
-  int k, m, groups = 0, changed;
-  for (k = 0; k < nf; k++) gid[k] = -1;
-  for (k = 0; k < nf; k++) {
-    if (gid[k] >= 0) continue;
-    gid[k] = groups++;
-    do {                              /* grow the group until it closes */
-      changed = 0;
-      for (m = 0; m < nf; m++) {
-        int q;
-        if (gid[m] >= 0) continue;
-        for (q = 0; q < nf; q++) {
-          double dx = r[2*fast[m]] - r[2*fast[q]];
-          double dy = r[2*fast[m]+1] - r[2*fast[q]+1];
-          afv_min_image(b, &dx, &dy);
-          if (gid[q] == gid[k] && hypot(dx, dy) < R) {
-            gid[m] = gid[k];
-            changed = 1;
-            break;
-          }
-        }
-      }
-    } while (changed);
-  }
-  return groups;
-}
-
-/* Local sub-steps see what the whole tissue would show them: a tissue with
-** one pair 1e-7 l from detachment, stepped by afv_sim_step, against the
-** same rule (Euler for the others, then each group of fast cells in its
-** own pieces) computed by hand with forces of the whole tissue.  A region
-** too small to hold every cell the fast ones depend on would make the two
-** differ; so would a region that took the wrong cells' parameters, when
-** they are per cell (per_cell: KA, KP, A0 and P0 vary from cell to cell,
-** which also makes fast cells of the cluster's rim, in several groups:
-** the test checks that there are several). */
-static void local_vs_whole_tissue(int per_cell)
-{
-  enum { N = 80 };
-  const double R = 5.0;       /* REGION_RADIUS in substeps.c, in l */
-  afv_box b = {1, 30, 30};
-  afv_params p;
-  afv_dyn d;
-  afv_sim s;
-  afv_geom g;
-  double r[2 * N], f0[2 * N], f[2 * N], ref[2 * N];
-  double KA[N], KP[N], A0[N], P0[N], split, worst = 0;
-  int i, k, fast[N], gid[N], nf = 0, groups, grp, extra = 0;
-  memset(&s, 0, sizeof s);
-  memset(&g, 0, sizeof g);
-  detaching_cluster(N, &b, 1e-7, r, &p, &d);
-  if (per_cell) {
-    for (i = 0; i < N; i++) {
-      KA[i] = 0.9 + 0.05 * (i % 5);
-      KP[i] = 0.9 + 0.04 * (i % 6);
-      A0[i] = p.A0 * (0.9 + 0.05 * (i % 5));
-      P0[i] = 4 + 0.3 * (i % 7);
-    }
-    p.KA_i = KA;
-    p.KP_i = KP;
-    p.A0_i = A0;
-    p.P0_i = P0;
-  }
-  CHECK(afv_sim_init(&s, N, r, NULL, &p, &b, &d) == AFV_OK, "init");
-  /* by hand: the same pieces, forces from the whole tissue */
-  memcpy(ref, s.r, sizeof ref);
-  memcpy(f0, s.f, sizeof f0);
-  split = d.max_move;
-  for (i = 0; i < N; i++) {
-    double vx = d.v0 * cos(s.theta[i]), vy = d.v0 * sin(s.theta[i]);
-    if (d.dt * hypot(f0[2*i], f0[2*i+1]) > split) {
-      fast[nf++] = i;
-    } else {
-      ref[2*i] += d.dt * (f0[2*i] + vx);
-      ref[2*i+1] += d.dt * (f0[2*i+1] + vy);
-    }
-  }
-  groups = groups_by_hand(s.r, fast, nf, &b, R, gid);
-  printf("  %s: %d fast cells in %d groups\n",
-         per_cell ? "per-cell parameters" : "scalar", nf, groups);
-  CHECK(nf >= 2, "only %d fast cells", nf);
-  CHECK(!per_cell || groups >= 2, "one group: the test would not tell");
-  for (grp = 0; grp < groups; grp++) {
-    double left = d.dt;
-    int piece;
-    memcpy(f, f0, sizeof f);   /* each group starts from the step's forces */
-    for (piece = 1;; piece++) {
-      double len = 0, h;
-      for (k = 0; k < nf; k++)
-        if (gid[k] == grp)
-          len = fmax(len, left * hypot(f[2*fast[k]], f[2*fast[k]+1]));
-      h = len > split && piece < AFV_MAX_SUBSTEPS ? left * (split / len)
-                                                  : left;
-      for (k = 0; k < nf; k++) {
-        int c = fast[k];
-        if (gid[k] != grp) continue;
-        ref[2*c] += h * (f[2*c] + d.v0 * cos(s.theta[c]));
-        ref[2*c+1] += h * (f[2*c+1] + d.v0 * sin(s.theta[c]));
-      }
-      if (h == left) break;
-      left -= h;
-      extra++;
-      CHECK(afv_compute(&g, N, ref, &p, &b, f) == AFV_OK, "compute");
-    }
-  }
-  CHECK(afv_sim_step(&s) == AFV_OK, "step refused");
-  CHECK(s.substeps == extra, "%lld extra pieces, by hand %d", s.substeps,
-        extra);
-  for (i = 0; i < 2 * N; i++) worst = fmax(worst, fabs(s.r[i] - ref[i]));
-  CHECK(worst < 1e-12, "local and whole-tissue pieces differ by %.3e l%s",
-        worst, per_cell ? " (per-cell parameters)" : "");
-  afv_geom_free(&g);
-  afv_sim_free(&s);
-}
-
-static void test_local_substeps_match_whole_tissue(void)
-{
-  local_vs_whole_tissue(0);
-  local_vs_whole_tissue(1);
-}
-
-/* GROUPS (dynamics.c): fast cells far apart take their pieces apart.  Two
-** such tissues side by side in a box twice as wide, about 10 l apart, the
-** second with its first cell pushed 0.5 l onto a neighbour (so that its
-** fast cells need more pieces: 2 extra against 1; the test checks that
-** they do): after a step the first tissue's cells have the same bits as
-** when it is stepped alone.  (With one piece length for every fast cell,
-** the first tissue would take the second's pieces, and its cells would
-** differ.) */
-static void test_far_groups_step_alone(void)
-{
-  enum { N = 80 };
-  afv_box one = {1, 30, 30}, two = {1, 60, 30};
-  afv_params p;
-  afv_dyn d;
-  afv_sim alone, both;
-  double r[2 * N], rr[4 * N];
-  int i;
-  memset(&alone, 0, sizeof alone);
-  memset(&both, 0, sizeof both);
-  detaching_cluster(N, &one, 1e-7, r, &p, &d);
-  memcpy(rr, r, sizeof r);
-  detaching_cluster(N, &one, 1e-7, rr + 2 * N, &p, &d);
-  rr[2 * N] += 0.5;         /* pushed onto its neighbour: more pieces */
-  for (i = 0; i < N; i++) rr[2 * (N + i)] += 30;
-  CHECK(afv_sim_init(&alone, N, r, NULL, &p, &one, &d) == AFV_OK, "init");
-  CHECK(afv_sim_init(&both, 2 * N, rr, NULL, &p, &two, &d) == AFV_OK,
-        "init of the two");
-  CHECK(afv_sim_step(&alone) == AFV_OK && afv_sim_step(&both) == AFV_OK,
-        "step refused");
-  printf("  extra pieces: %lld alone, %lld with the other tissue\n",
-         alone.substeps, both.substeps);
-  CHECK(alone.substeps > 0 && both.substeps > 2 * alone.substeps,
-        "the second tissue needs no more pieces than the first (%lld, "
-        "%lld): the test would not tell", alone.substeps,
-        both.substeps - alone.substeps);
-  CHECK(memcmp(alone.r, both.r, sizeof r) == 0,
-        "the first tissue moved differently beside the second");
-  afv_sim_free(&alone);
-  afv_sim_free(&both);
-}
-
-/* GROUPS: two groups just over REGION_RADIUS (5 l) apart at the start,
-** whose cells end closer than that.  Pair A stands upright, its cells
-** 1e-7 l from detachment at (10, 10) and (10, 12 - 1e-7); pair B lies flat
-** to its right, its left cell at (10 + X, 11), X chosen so that that cell
-** is 5 + 1e-4 l from both of A's cells.  A's cells move towards each other
-** (the singular force pulls a detaching pair back into contact), so
-** towards y = 11, to within 5 l of B's left cell.  Numbered A then B, and
-** B then A, every cell must get the bits it gets when its pair is stepped
-** alone: whichever group is moved first, the other's region and pieces
-** must not see it, and on OpenMP threads the two move at once.  (The
-** groups are listed before either moves, so B's region holds none of A's
-** cells; when each group was listed after the one before had moved, B's
-** region held A's moved cells, which this test also allowed.) */
-static void test_near_groups_either_order(void)
-{
-  enum { N = 4 };
-  const double R = 5.0;       /* REGION_RADIUS in substeps.c, in l */
-  afv_box b = {1, 30, 30};
-  afv_params p;
-  afv_dyn d;
-  afv_sim ab, ba, a_alone, b_alone;
-  double X = sqrt((R + 1e-4) * (R + 1e-4) - 1), r[2 * N], rba[2 * N];
-  double closest = HUGE_VAL, split;
-  int i, j;
-  memset(&ab, 0, sizeof ab);
-  memset(&ba, 0, sizeof ba);
-  memset(&a_alone, 0, sizeof a_alone);
-  memset(&b_alone, 0, sizeof b_alone);
-  afv_params_default(&p);
-  afv_dyn_default(&d);
-  d.integrator = AFV_SUBSTEPS;   /* the sub-steps are what is tested */
-  d.Dr = 0;                   /* v0 = 0: the forces alone move the cells */
-  r[0] = 10;      r[1] = 10;                    /* pair A, upright */
-  r[2] = 10;      r[3] = 12 - 1e-7;
-  r[4] = 10 + X;  r[5] = 11;                    /* pair B, flat */
-  r[6] = 12 + X - 1e-7; r[7] = 11;
-  memcpy(rba, r + 4, 4 * sizeof(double));       /* B then A */
-  memcpy(rba + 4, r, 4 * sizeof(double));
-  CHECK(afv_sim_init(&ab, N, r, NULL, &p, &b, &d) == AFV_OK
-        && afv_sim_init(&ba, N, rba, NULL, &p, &b, &d) == AFV_OK
-        && afv_sim_init(&a_alone, 2, r, NULL, &p, &b, &d) == AFV_OK
-        && afv_sim_init(&b_alone, 2, r + 4, NULL, &p, &b, &d) == AFV_OK,
-        "init");
-  split = d.max_move * p.l;
-  for (i = 0; i < N; i++)
-    CHECK(d.dt * d.mu * hypot(ab.f[2*i], ab.f[2*i+1]) > split,
-          "cell %d is not fast: the pairs would not be groups", i);
-  CHECK(afv_sim_step(&ab) == AFV_OK && afv_sim_step(&ba) == AFV_OK
-        && afv_sim_step(&a_alone) == AFV_OK
-        && afv_sim_step(&b_alone) == AFV_OK, "step refused");
-  /* two groups at the start; A's cells end within R of B's left cell */
-  for (i = 0; i < 2; i++)
-    for (j = 2; j < N; j++)
-      CHECK(hypot(r[2*j] - r[2*i], r[2*j+1] - r[2*i+1]) >= R,
-            "cells %d and %d start within %g l: one group", i, j, R);
-  for (i = 0; i < 2; i++)
-    closest = fmin(closest, hypot(r[4] - ab.r[2*i], r[5] - ab.r[2*i+1]));
-  printf("  A's cells end %.6f l from B's left cell (region radius %g)\n",
-         closest, R);
-  CHECK(closest < R, "A's cells end %.6f l from B's left cell, not within "
-        "%g l: the test would not tell", closest, R);
-  CHECK(memcmp(ab.r, a_alone.r, 4 * sizeof(double)) == 0
-        && memcmp(ab.r + 4, b_alone.r, 4 * sizeof(double)) == 0,
-        "numbered A then B, a pair moved differently than alone");
-  CHECK(memcmp(ba.r, b_alone.r, 4 * sizeof(double)) == 0
-        && memcmp(ba.r + 4, a_alone.r, 4 * sizeof(double)) == 0,
-        "numbered B then A, a pair moved differently than alone");
-  afv_sim_free(&ab);
-  afv_sim_free(&ba);
-  afv_sim_free(&a_alone);
-  afv_sim_free(&b_alone);
-}
-
-/* The first neighbour of cell i in g that is neither cell `other` nor a
-** neighbour of it; -1 if none. */
-static int neighbour_not_shared(const afv_geom *g, int i, int other)
-{
-  int s, t;
-  for (s = g->nbr_start[i]; s < g->nbr_end[i]; s++) {
-    int c = g->nbr[s], shared = c == other;
-    for (t = g->nbr_start[other]; t < g->nbr_end[other] && !shared; t++)
-      shared = g->nbr[t] == c;
-    if (!shared) return c;
-  }
-  return -1;
-}
-
-/* A group of fast cells whose forces stop being finite in its sub-steps
-** refuses the step and names its first fast cell with such a force
-** (GROUPS).  Two far detaching clusters (as above), each with two fast
-** cells, its rim cell and the detaching one (the higher index).  After the
-** forces of the step's start, the simulation's own copy of KA is set to
-** 1e308 for a neighbour of each rim cell that does not touch the
-** detaching cell: a valid KA, but 2 KA (A - A0) overflows, and in the
-** first sub-step the rim cell's force becomes infinite while the
-** detaching cell's stays finite.  The step must be refused (AFV_EUNSTABLE,
-** state unchanged), naming the first cluster's rim cell with a move that
-** is not finite: the first failing group in the order of their first
-** fast cells, whatever thread moved which.  (Before, the piece for an
-** infinite force was 0 long, the cell moved by 0 inf = NaN, and the step
-** failed as "position is NaN or infinite"; and a NaN move followed by a
-** finite one in the same group was skipped.) */
-static void test_infinite_force_in_substeps_named(void)
-{
-  enum { N = 80 };
-  afv_box one = {1, 30, 30}, two = {1, 60, 30};
-  afv_params p;
-  afv_dyn d;
-  afv_sim s;
-  double r[2 * N], rr[4 * N], r0[4 * N], ka[2 * N], split;
-  int i, k, st, rim[2] = {-1, -1}, bad[2];
-  memset(&s, 0, sizeof s);
-  detaching_cluster(N, &one, 1e-7, r, &p, &d);
-  memcpy(rr, r, sizeof r);
-  memcpy(rr + 2 * N, r, sizeof r);
-  for (i = 0; i < N; i++) rr[2 * (N + i)] += 30;
-  for (i = 0; i < 2 * N; i++) ka[i] = p.KA;
-  p.KA_i = ka;
-  st = afv_sim_init(&s, 2 * N, rr, NULL, &p, &two, &d);
-  CHECK(st == AFV_OK, "init: %s", afv_strerror(st));
-  if (st != AFV_OK) return;
-  split = d.max_move * p.l;
-  for (i = 0; i < 2 * N; i++)            /* the fast cells, in order */
-    if (d.dt * d.mu * hypot(s.f[2*i], s.f[2*i+1]) > split) {
-      int c = i >= N;
-      CHECK(i == c * N + N - 1 || rim[c] < 0, "cluster %d: a third fast "
-            "cell %d", c, i);
-      if (i != c * N + N - 1) rim[c] = i;
-    }
-  for (k = 0; k < 2; k++) {
-    CHECK(rim[k] >= 0, "cluster %d: no fast rim cell", k);
-    if (rim[k] < 0) goto done;
-    bad[k] = neighbour_not_shared(&s.geom, rim[k], k * N + N - 1);
-    CHECK(bad[k] >= 0, "cluster %d: every neighbour of the rim cell "
-          "touches the detaching cell", k);
-    if (bad[k] < 0) goto done;
-    ((double *)s.par.KA_i)[bad[k]] = 1e308;  /* the simulation's copy */
-  }
-  memcpy(r0, s.r, sizeof r0);
-  st = afv_sim_step(&s);
-  CHECK(st == AFV_EUNSTABLE, "status %s, not %s", afv_strerror(st),
-        afv_strerror(AFV_EUNSTABLE));
-  CHECK(s.bad_cell == rim[0] && !isfinite(s.bad_disp), "named cell %d "
-        "(move %g l), not cell %d with a move that is not finite",
-        s.bad_cell, s.bad_disp, rim[0]);
-  CHECK(memcmp(r0, s.r, sizeof r0) == 0 && s.step == 0 && s.substeps == 0,
-        "the refused step changed the state");
-done:
-  afv_sim_free(&s);
-}
-
 void suite_dynamics(void)
 {
   snprintf(tmpdir, sizeof tmpdir, "/tmp/afv_test_dynamics.%ld",
@@ -1276,12 +861,6 @@ void suite_dynamics(void)
   RUN(test_streams_independent);
   RUN(test_sim_deterministic);
   RUN(test_sim_refuses_unstable_step);
-  RUN(test_substeps_tame_detachment);
-  RUN(test_whole_step_move_bounded);
-  RUN(test_local_substeps_match_whole_tissue);
-  RUN(test_far_groups_step_alone);
-  RUN(test_near_groups_either_order);
-  RUN(test_infinite_force_in_substeps_named);
   RUN(test_free_abp_msd_and_polarity);
   RUN(test_per_cell_v0_and_Dr);
   RUN(test_energy_decrease_first_order);

@@ -1,14 +1,17 @@
 /*
-** test_integrator.c -- the ways to integrate Eq. (4) (afv_dyn.integrator)
+** test_integrator.c -- the integration of Eq. (4) (the paper's Euler step)
 ** and the contact cap (afv_params.cap), as doc/design.md and afv.h state
 ** them:
-**   - an AFV_EULER step is Eq. (4) to the bit, a cell that moves 2 l
-**     included, and nothing finite is refused;
+**   - a step is Eq. (4) to the bit, a cell that moves 2 l included, and
+**     nothing finite is refused;
 **   - the detachment mechanism: a pair pulled apart by v0 separates under
 **     Euler at dt = 0.01 and stays joined at smaller dt (the exact force
 **     diverges as the contact breaks: only a finite step crosses it);
 **   - the cap is PyAFV's (golden forces of PyAFV 0.4.16 to 1e-10), it leaves
-**     the energy unchanged, and a relaxation with it says so.
+**     the energy unchanged, and a relaxation with it says so;
+**   - integrator substeps and max_move, removed in afv 0.3.0, are refused
+**     wherever they are named, and so are the runs of earlier versions that
+**     used them, each with the version that finishes it.
 */
 #define _POSIX_C_SOURCE 200809L   /* mkdtemp */
 #include "test.h"
@@ -19,11 +22,11 @@
 
 /* ---- the Euler step ------------------------------------------------------ */
 
-/* A step of AFV_EULER moves every cell by dt (mu F_i + v0 n_i), with F the
-** force at the start and n from the angle at the start, computed here in
-** the same order of operations; the angle then gets its noise.  The
-** configuration has a pair 0.1 l apart, whose force moves a cell about
-** 2 l in dt = 0.01 at KA = 10 (a move the sub-steps would split). */
+/* A step moves every cell by dt (mu F_i + v0 n_i), with F the force at
+** the start and n from the angle at the start, computed here in the same
+** order of operations; the angle then gets its noise.  The configuration
+** has a pair 0.1 l apart, whose force moves a cell about 2 l in
+** dt = 0.01 at KA = 40. */
 static void test_euler_step_is_eq4_to_the_bit(void)
 {
   enum { N = 6 };
@@ -41,7 +44,6 @@ static void test_euler_step_is_eq4_to_the_bit(void)
   d.v0 = 0.7;
   d.mu = 1.3;
   memset(&s, 0, sizeof s);
-  CHECK(d.integrator == AFV_EULER, "the default integrator is not euler");
   CHECK(afv_sim_init(&s, N, r, th, &p, &b, &d) == AFV_OK, "init");
   memcpy(f0, s.f, sizeof f0);
   for (i = 0; i < N; i++) {
@@ -81,14 +83,11 @@ static void test_euler_refuses_only_the_non_finite(void)
   afv_sim s;
   afv_params_default(&p);
   afv_dyn_default(&d);
-  d.v0 = 80;                         /* v0 dt = 0.8 l: substeps refuse it */
+  d.v0 = 80;                         /* v0 dt = 0.8 l */
   memset(&s, 0, sizeof s);
   CHECK(afv_sim_init(&s, 2, r, NULL, &p, &b, &d) == AFV_OK, "init");
-  CHECK(afv_sim_step(&s) == AFV_OK, "v0 dt = 0.8 l refused under euler");
-  s.dyn.integrator = AFV_SUBSTEPS;
+  CHECK(afv_sim_step(&s) == AFV_OK, "v0 dt = 0.8 l refused");
   memcpy(keep, s.r, sizeof keep);
-  CHECK(afv_sim_step(&s) == AFV_EUNSTABLE, "substeps took v0 dt = 0.8 l");
-  s.dyn.integrator = AFV_EULER;
   s.f[0] = NAN;                                /* a force not finite */
   CHECK(afv_sim_step(&s) == AFV_EUNSTABLE, "a NaN force was stepped");
   CHECK(memcmp(keep, s.r, sizeof keep) == 0, "refused step moved cells");
@@ -269,8 +268,7 @@ static void test_capped_relaxation_says_so(void)
 }
 
 /* An unknown integrator is refused before anything is written, with the
-** accepted names; so is max_move 0 with substeps (it had meant plain
-** Euler with refusals, which `integrator euler` now is, without them). */
+** accepted name. */
 static void test_integrator_key_refused_cleanly(void)
 {
   char dir[] = "/tmp/afv_integ_XXXXXX", path[256], *err;
@@ -280,15 +278,109 @@ static void test_integrator_key_refused_cleanly(void)
                 dir, dir) == 2, "integrator rk4: exit status not 2");
   snprintf(path, sizeof path, "%s/err", dir);
   err = slurp_file(path, &len);
-  CHECK(err && strstr(err, "integrator") && strstr(err, "euler|substeps"),
-        "the message does not name the key and the choices: %s",
+  CHECK(err && strstr(err, "integrator") && strstr(err, "euler"),
+        "the message does not name the key and the choice: %s",
         err ? err : "");
   free(err);
   snprintf(path, sizeof path, "%s/run", dir);
   CHECK(fopen(path, "r") == NULL, "a run directory was created");
-  CHECK(test_sh("./afv run --integrator substeps --max_move 0 --out %s/run "
-                "2> /dev/null", dir) == 2, "max_move 0: exit status not 2");
-  CHECK(fopen(path, "r") == NULL, "a run directory was created");
+  test_sh("rm -rf %s", dir);
+}
+
+/* ---- integrator substeps, removed in afv 0.3.0 ------------------------ */
+
+/* 1 if the file at path is one line that holds every string of want (up
+** to a NULL); else says what it holds. */
+static int one_line_with(const char *path, const char *const *want)
+{
+  long len = 0;
+  char *text = slurp_file(path, &len);
+  int ok = text && len > 0 && strchr(text, '\n') == text + len - 1, k;
+  for (k = 0; ok && want[k]; k++) ok = strstr(text, want[k]) != NULL;
+  if (!ok) printf("  %s: '%s'\n", path, text ? text : "(none)");
+  free(text);
+  return ok;
+}
+
+/* integrator substeps and its max_move, on the command line, in a config
+** file (named with its line) and as a sweep's key: exit 2, one line that
+** says they were removed in afv 0.3.0 and that afv 0.2.0 finishes a run
+** that uses them, and nothing written.  (afv 0.2.0 ran them.) */
+static void test_substeps_refused_naming_0_2_0(void)
+{
+  static const char *const cases[][2] = {
+    {"run --integrator substeps --steps 5 --out %s/out", "integrator"},
+    {"run --integrator=substeps --steps 5 --out %s/out", "integrator"},
+    {"run --max_move 0.05 --steps 5 --out %s/out", "max_move"},
+    {"run --config %s/sub.conf --out %s/out", "sub.conf:2: integrator"},
+    {"run --config %s/mm.conf --out %s/out", "mm.conf:3: max_move"},
+    {"sweep --out %s/out --max_move 0.05,0.1", "max_move"}};
+  char dir[] = "/tmp/afv_substeps_XXXXXX", cmd[700], err[300], out[300];
+  int k;
+  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+  CHECK(test_sh("printf 'N 30\\nintegrator substeps\\nsteps 5\\n' > %s/sub.conf"
+                " && printf 'N 30\\nintegrator euler\\nmax_move 0.05\\n' > "
+                "%s/mm.conf", dir, dir) == 0, "writing the configs");
+  snprintf(err, sizeof err, "%s/err", dir);
+  snprintf(out, sizeof out, "%s/out", dir);
+  for (k = 0; k < 6; k++) {
+    const char *const want[] = {cases[k][1], "removed in afv 0.3.0",
+                                "afv 0.2.0", NULL};
+    char args[300];
+    snprintf(args, sizeof args, cases[k][0], dir, dir);
+    snprintf(cmd, sizeof cmd, "./afv %s 2> %s", args, err);
+    CHECK(test_sh("%s", cmd) == 2, "afv %s: exit status not 2", args);
+    CHECK(one_line_with(err, want), "afv %s: not one line naming %s, afv "
+          "0.3.0 and afv 0.2.0", args, cases[k][1]);
+    CHECK(fopen(out, "r") == NULL, "afv %s: wrote %s", args, out);
+    test_sh("rm -rf %s", out);            /* each case on its own */
+  }
+  test_sh("rm -rf %s", dir);
+}
+
+/* A run to go on with (--resume, --continue) whose params.txt names the
+** removed keys (a run of afv 0.2.0) or has no integrator key (a run of
+** afv 0.1.0, whose sub-steps had no name) is refused, exit 2, in one line
+** naming the version that finishes it, and no file of it changes.  (afv
+** 0.2.0 resumed both: the first with the sub-steps or plain Euler, the
+** second with the sub-steps.) */
+static void test_old_runs_refused_naming_their_version(void)
+{
+  static const char *const edits[3][2] = {
+    {"s/^integrator .*/integrator       substeps/", "0.2.0"},
+    {"/^integrator/a max_move         0.05", "0.2.0"},
+    {"/^integrator/c max_move         0.05", "0.1.0"}};
+  const char *run_args = "--N 30 --steps 20 --checkpoint_every 10 "
+                         "--relax_max_steps 50 --quiet";
+  char dir[] = "/tmp/afv_oldrun_XXXXXX", err[300];
+  int k, how;
+  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+  CHECK(test_sh("./afv run %s --out %s/new", run_args, dir) == 0,
+        "the run to edit");
+  snprintf(err, sizeof err, "%s/err", dir);
+  for (k = 0; k < 3; k++) {
+    const char *const want[] = {"params.txt", edits[k][1], NULL};
+    CHECK(test_sh("rm -rf %s/old %s/copy && cp -r %s/new %s/old && "
+                  "sed -i '%s' %s/old/params.txt && cp -r %s/old %s/copy",
+                  dir, dir, dir, dir, edits[k][0], dir, dir, dir) == 0,
+          "making the run of afv %s", edits[k][1]);
+    for (how = 0; how < 2; how++) {
+      CHECK(test_sh("rm -rf %s/old && cp -r %s/copy %s/old", dir, dir, dir)
+            == 0, "restoring the run");    /* each way on its own */
+      if (how == 0)
+        CHECK(test_sh("./afv run --resume %s/old --steps 10 2> %s", dir,
+                      err) == 2, "edit '%s': --resume: exit status not 2",
+              edits[k][0]);
+      else
+        CHECK(test_sh("./afv run %s --out %s/old --continue 2> %s",
+                      run_args, dir, err) == 2,
+              "edit '%s': --continue: exit status not 2", edits[k][0]);
+      CHECK(one_line_with(err, want), "edit '%s': not one line naming "
+            "params.txt and afv %s", edits[k][0], edits[k][1]);
+      CHECK(test_sh("diff -r %s/old %s/copy > /dev/null", dir, dir) == 0,
+            "edit '%s': a file of the run changed", edits[k][0]);
+    }
+  }
   test_sh("rm -rf %s", dir);
 }
 
@@ -301,4 +393,6 @@ void suite_integrator(void)
   RUN(test_cap_changes_only_the_force);
   RUN(test_capped_relaxation_says_so);
   RUN(test_integrator_key_refused_cleanly);
+  RUN(test_substeps_refused_naming_0_2_0);
+  RUN(test_old_runs_refused_naming_their_version);
 }

@@ -4,8 +4,8 @@
 ** Timing targets live in the benchmark (test/bench.c, make bench), never
 ** here.  These tests check the properties the fast code relies on or
 ** promises: the OpenMP build gives the same bits for every thread count,
-** and neither a repeated evaluation nor a step (sub-steps included)
-** allocates once its buffers have grown.
+** and neither a repeated evaluation nor a step allocates once its buffers
+** have grown.
 */
 #include "test.h"
 #include "afv.h"
@@ -135,7 +135,7 @@ static void test_threads_bit_identical(void)
 #endif
 }
 
-/* An active tissue with fast cells to come: n random cells (packing
+/* An active tissue with large forces to come: n random cells (packing
 ** fraction 0.5, P0 4.8) relaxed only partly, so that many contacts are
 ** still to break, with random polarities and v0 = 1.  Fills r (2n), th
 ** (n), p, b and d; returns afv_sim_init's status. */
@@ -149,7 +149,6 @@ static int active_tissue(int n, double *r, double *th, afv_params *p,
   afv_params_default(p);
   p->P0 = 4.8;
   afv_dyn_default(d);
-  d->integrator = AFV_SUBSTEPS;   /* the sub-steps are what is tested */
   random_tissue(n, 0.5, r, b);
   if ((st = afv_sim_init(&relax, n, r, NULL, p, b, d)) == AFV_OK) {
     afv_relax(&relax, 1e-3, 200, &rep, NULL, NULL);
@@ -162,86 +161,55 @@ static int active_tissue(int n, double *r, double *th, afv_params *p,
 }
 
 #ifdef _OPENMP
-/* Steps a copy of the state (n cells at r, theta) with `threads` threads;
-** *most_groups: the most groups of fast cells in one step, *largest: the
-** largest region of a group. */
+/* Steps a copy of the state (n cells at r, theta) with `threads` threads. */
 static int steps_with(int threads, int n, const double *r, const double *th,
                       const afv_params *p, const afv_box *b, const afv_dyn *d,
-                      int steps, afv_sim *s, int *most_groups, int *largest)
+                      int steps, afv_sim *s)
 {
-  int k, g, st;
+  int k, st;
   omp_set_num_threads(threads);
-  *most_groups = *largest = 0;
   if ((st = afv_sim_init(s, n, r, th, p, b, d)) != AFV_OK) return st;
-  for (k = 0; k < steps; k++) {
+  for (k = 0; k < steps; k++)
     if ((st = afv_sim_step(s)) != AFV_OK) return st;
-    if (s->n_groups > *most_groups) *most_groups = s->n_groups;
-    for (g = 0; g < s->n_groups; g++)
-      if (s->groups[g].nr > *largest) *largest = s->groups[g].nr;
-  }
   return AFV_OK;
-}
-
-/* The trajectory of `steps` steps from (r, th) with 1 thread against 2
-** and 3, bit for bit.  Needs two groups in some step, and, if
-** want_large, a region of at least AFV_PARALLEL_MIN cells (such a group
-** is moved on the calling thread, the others at once on threads). */
-static void compare_thread_counts(const char *what, int n, const double *r,
-                                  const double *th, const afv_params *p,
-                                  const afv_box *b, const afv_dyn *d,
-                                  int steps, int want_large)
-{
-  static const int threads[] = {2, 3};
-  afv_sim s1, s2;
-  int groups, largest, g2, l2, t;
-  memset(&s1, 0, sizeof s1);
-  CHECK(steps_with(1, n, r, th, p, b, d, steps, &s1, &groups, &largest)
-        == AFV_OK, "%s, 1 thread: step refused", what);
-  printf("  %s, 1 thread: %lld extra pieces, up to %d groups in a step, "
-         "regions up to %d cells\n", what, s1.substeps, groups, largest);
-  CHECK(groups >= 2, "%s: never two groups of fast cells in a step (%d): "
-        "the test would not tell", what, groups);
-  CHECK(!want_large || largest >= AFV_PARALLEL_MIN, "%s: no region of %d "
-        "cells or more (%d): the test would not tell", what,
-        AFV_PARALLEL_MIN, largest);
-  for (t = 0; t < 2; t++) {
-    memset(&s2, 0, sizeof s2);
-    CHECK(steps_with(threads[t], n, r, th, p, b, d, steps, &s2, &g2, &l2)
-          == AFV_OK, "%s, %d threads: step refused", what, threads[t]);
-    CHECK(memcmp(s1.r, s2.r, 2 * (size_t)n * sizeof(double)) == 0
-          && memcmp(s1.f, s2.f, 2 * (size_t)n * sizeof(double)) == 0
-          && s1.substeps == s2.substeps,
-          "%s, 1 and %d threads: positions, forces or pieces differ after "
-          "%d steps", what, threads[t], steps);
-    afv_sim_free(&s2);
-  }
-  afv_sim_free(&s1);
 }
 #endif
 
-/* Sub-steps on threads (dynamics.c, GROUPS): the small groups of fast
-** cells of a step are moved at once, each thread with its own work space,
-** and a group with a large region on the calling thread; the trajectory
-** must not depend on the thread count.  Twice: at the default max_move
-** (groups of tens of cells), and at max_move 0.001 l, where tens of groups
-** move in a step and one may spread over most of the tissue. */
-static void test_threads_groups_bit_identical(void)
+/* The steps on threads (dynamics.c): the trajectory of an active tissue
+** whose contacts break, with 1 thread against 2 and 3, bit for bit (the
+** per-cell loops write their own cells; the reductions are a maximum, an
+** or, and integer sums). */
+static void test_threads_steps_bit_identical(void)
 {
 #ifdef _OPENMP
-  enum { N = 2000 };
+  enum { N = 2000, STEPS = 30 };
+  static const int threads[] = {2, 3};
   afv_params p;
   afv_box b;
   afv_dyn d;
+  afv_sim s1, s2;
   double *r = malloc(2 * N * sizeof(double)), *th = malloc(N * sizeof(double));
-  int saved = omp_get_max_threads();
+  int saved = omp_get_max_threads(), t;
+  memset(&s1, 0, sizeof s1);
   CHECK(r && th, "out of memory");
   if (!r || !th) goto done;
   CHECK(active_tissue(N, r, th, &p, &b, &d) == AFV_OK, "init");
-  compare_thread_counts("max_move 0.05", N, r, th, &p, &b, &d, 30, 0);
-  d.max_move = 0.001;
-  compare_thread_counts("max_move 0.001", N, r, th, &p, &b, &d, 10, 1);
+  CHECK(steps_with(1, N, r, th, &p, &b, &d, STEPS, &s1) == AFV_OK,
+        "1 thread: step refused");
+  for (t = 0; t < 2; t++) {
+    memset(&s2, 0, sizeof s2);
+    CHECK(steps_with(threads[t], N, r, th, &p, &b, &d, STEPS, &s2) == AFV_OK,
+          "%d threads: step refused", threads[t]);
+    CHECK(memcmp(s1.r, s2.r, 2 * (size_t)N * sizeof(double)) == 0
+          && memcmp(s1.f, s2.f, 2 * (size_t)N * sizeof(double)) == 0
+          && s1.jumps == s2.jumps && s1.largest_move == s2.largest_move,
+          "1 and %d threads: positions, forces or jumps differ after %d "
+          "steps", threads[t], STEPS);
+    afv_sim_free(&s2);
+  }
 done:
   omp_set_num_threads(saved);
+  afv_sim_free(&s1);
   free(r);
   free(th);
 #else
@@ -285,12 +253,10 @@ done:
   free(f);
 }
 
-/* Where a simulation's buffers are and how large: the geometry's, and
-** those of the sub-steps (groups, their cells, each thread's work space
-** and its region's geometry).  Two equal fingerprints mean that no buffer
-** moved or grew in between.  (Addresses are kept as integers: a pointer
+/* Where a simulation's buffers are and how large: the geometry's.  Two
+** equal fingerprints mean that no buffer moved or grew in between.  (Addresses are kept as integers: a pointer
 ** freed by a realloc may not even be compared.) */
-enum { MAX_BUFFERS = 1024 };   /* n_work is a capacity: 16 or more */
+enum { MAX_BUFFERS = 16 };
 typedef struct fingerprint {
   int n;
   uintptr_t addr[MAX_BUFFERS];
@@ -321,16 +287,8 @@ static void note_geom(fingerprint *fp, const afv_geom *g)
 static fingerprint fingerprint_of(const afv_sim *s)
 {
   fingerprint fp;
-  int w;
   fp.n = 0;
   note_geom(&fp, &s->geom);
-  note_buffer(&fp, s->groups, s->cap_groups);
-  note_buffer(&fp, s->group_cells, s->cap_group_cells);
-  note_buffer(&fp, s->work, s->n_work);
-  for (w = 0; w < s->n_work; w++) {
-    note_buffer(&fp, s->work[w].sub, s->work[w].cap_sub);
-    note_geom(&fp, &s->work[w].geom);
-  }
   return fp;
 }
 
@@ -343,16 +301,12 @@ static int same_fingerprint(const fingerprint *a, const fingerprint *b)
   return 1;
 }
 
-/* afv_sim_step allocates nothing once its buffers have grown, sub-steps
-** included.  The same steps are taken twice: the first run grows every
-** buffer to what these steps need; the replay, from the same state (the
-** candidates rebuilt at the start, as afv_sim_init does), must then leave
-** every buffer where it is and as large as it is after every step, and
-** end on the same bits.  The work space of the sub-steps must also still
-** be there (a work space freed after each group would be allocated again
-** at the next).  One thread: with more, which thread's work space serves
-** which group varies from run to run, so a replay could rightly grow
-** another thread's space the first time it meets a larger region. */
+/* afv_sim_step allocates nothing once its buffers have grown.  The same
+** steps are taken twice: the first run grows every buffer to what these
+** steps need; the replay, from the same state (the candidates rebuilt at
+** the start, as afv_sim_init does), must then leave every buffer where it
+** is and as large as it is after every step, and end on the same bits.
+** One thread, as in the other tests of buffers. */
 static void test_steps_reuse_their_buffers(void)
 {
   enum { N = 2000, STEPS = 30 };
@@ -364,7 +318,7 @@ static void test_steps_reuse_their_buffers(void)
   double *r = malloc(2 * N * sizeof(double)), *th = malloc(N * sizeof(double));
   double *f0 = malloc(2 * N * sizeof(double));
   double *r_end = malloc(2 * N * sizeof(double));
-  int k, groups = 0, kept = 0, regrown = -1, st;
+  int k, regrown = -1, st;
 #ifdef _OPENMP
   int saved = omp_get_max_threads();
   omp_set_num_threads(1);
@@ -377,15 +331,8 @@ static void test_steps_reuse_their_buffers(void)
   CHECK(st == AFV_OK, "init: %s", afv_strerror(st));
   if (st != AFV_OK) goto done;
   memcpy(f0, s.f, 2 * N * sizeof(double));     /* r, th: the start too */
-  for (k = 0; k < STEPS && st == AFV_OK; k++) {
-    st = afv_sim_step(&s);
-    groups += s.n_groups;
-  }
+  for (k = 0; k < STEPS && st == AFV_OK; k++) st = afv_sim_step(&s);
   CHECK(st == AFV_OK, "first run: %s", afv_strerror(st));
-  printf("  %d groups of fast cells in %d steps, %lld extra pieces\n", groups,
-         STEPS, s.substeps);
-  CHECK(groups >= STEPS, "%d groups of fast cells in %d steps: the "
-        "sub-steps' buffers would hardly be tested", groups, STEPS);
   if (st != AFV_OK) goto done;
   grown = fingerprint_of(&s);
   CHECK(grown.n <= MAX_BUFFERS, "%d buffers, room for %d", grown.n,
@@ -397,7 +344,6 @@ static void test_steps_reuse_their_buffers(void)
   memcpy(s.theta, th, N * sizeof(double));
   s.step = 0;
   s.t = 0;
-  s.substeps = 0;
   s.geom.cand_n = 0;
   st = afv_compute(&s.geom, N, s.r, &s.par, &s.box, s.f);
   CHECK(st == AFV_OK, "replay start: %s", afv_strerror(st));
@@ -408,9 +354,6 @@ static void test_steps_reuse_their_buffers(void)
   }
   CHECK(st == AFV_OK, "replay: %s", afv_strerror(st));
   CHECK(regrown < 0, "replay step %d moved or resized a buffer", regrown);
-  for (k = 0; k < s.n_work; k++)
-    kept += s.work[k].cap_sub > 0 && s.work[k].geom.cap_cells > 0;
-  CHECK(kept > 0, "no work space of the sub-steps left after the steps");
   CHECK(memcmp(s.r, r_end, 2 * N * sizeof(double)) == 0,
         "the replay ended elsewhere: not the same steps");
 done:
@@ -627,7 +570,7 @@ static void test_candidates_with_movers(void)
   free(r);
 }
 
-/* afv_cells_around (the sub-steps' region search) misses no cell, in the
+/* afv_cells_around (afv_force_check's region search) misses no cell, in the
 ** worst case: for each query point p the candidates stay those built at
 ** r0, every cell moves 0.14 l straight towards p (within the skin: no
 ** rebuild), the lists are refreshed there, and every cell moves `moved`
@@ -826,7 +769,7 @@ done:
 void suite_perf(void)
 {
   RUN(test_threads_bit_identical);
-  RUN(test_threads_groups_bit_identical);
+  RUN(test_threads_steps_bit_identical);
   RUN(test_no_allocation_when_repeated);
   RUN(test_steps_reuse_their_buffers);
   RUN(test_candidates_change_nothing);

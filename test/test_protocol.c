@@ -123,38 +123,105 @@ static void test_protocol_reduced(void)
   }
 }
 
-/* Two cells 0.05 l apart, KA = 100: the force (about 300) pushes them
-** apart by about 1 l within one step of dt = 0.01, a move the old code
-** refused (more than l/2).  The step is taken in halves, the energy falls,
-** and the separation agrees with a fine plain-Euler integration of the
-** same time (4096 steps of dt/4096). */
-static void near_pair(afv_sim *s, double dt, double max_move)
+/* ---- afv_protocol_start: the protocol in one call ---------------------- */
+/* The start of pr built, initialised and relaxed by the library's calls
+** one by one (afv_init_*, afv_init_angles, afv_sim_init, afv_relax or
+** afv_relax_fire): what afv_protocol_start must give.  AFV_OK or a status. */
+static int protocol_by_hand(afv_sim *s, int n, const afv_params *p,
+                            const afv_box *b, const afv_dyn *d,
+                            const afv_protocol *pr, afv_relax_report *rep)
 {
-  CHECK(test_pair_sim(s, 0.05, 0.01, 100, dt, max_move) == AFV_OK, "init");
+  double *r = malloc((size_t)(2 * n) * sizeof(double));
+  double *th = malloc((size_t)n * sizeof(double));
+  int st = AFV_OK;
+  if (pr->start == AFV_START_SQUARE)
+    afv_init_square(n, d->seed, b, pr->side, r);
+  else if (pr->start == AFV_START_LATTICE)
+    st = afv_init_cluster(n, pr->spacing, b, r);
+  else if (pr->start == AFV_START_RANDOM)
+    afv_init_random(n, d->seed, b, pr->side, r);
+  else memcpy(r, pr->r, (size_t)(2 * n) * sizeof(double));
+  if (pr->theta) memcpy(th, pr->theta, (size_t)n * sizeof(double));
+  else afv_init_angles(n, d->seed, th);
+  if (st == AFV_OK) st = afv_sim_init(s, n, r, th, p, b, d);
+  if (st == AFV_OK && pr->relax_max_steps > 0)
+    st = (pr->relax == AFV_RELAX_FIRE ? afv_relax_fire : afv_relax)
+         (s, pr->relax_tol, pr->relax_max_steps, rep, NULL, NULL);
+  free(r);
+  free(th);
+  return st;
 }
 
-static void test_halves_follow_a_large_force(void)
+/* afv_protocol_start is the paper's protocol in one call, the one afv run
+** makes: every start (the authors' square, a lattice, uniform, given
+** positions and angles), unrelaxed, relaxed by the flow at v0 = 0 or by
+** FIRE, gives the bits of the calls made one by one, and ends at step 0
+** with v0 on again; unrelaxed, its report holds the start's energy and
+** force. */
+static void test_protocol_start_is_the_papers_order(void)
 {
-  afv_sim s, fine;
-  double E0, d, d_fine;
-  int k;
-  near_pair(&s, 0.01, 0.05);
-  E0 = s.geom.energy;
-  CHECK(afv_sim_step(&s) == AFV_OK, "step refused: cell %d move %g l",
-        s.bad_cell, s.bad_disp);
-  d = hypot(s.r[2] - s.r[0], s.r[3] - s.r[1]);
-  near_pair(&fine, 0.01 / 4096, 0);
-  for (k = 0; k < 4096; k++)
-    CHECK(afv_sim_step(&fine) == AFV_OK, "fine step %d refused", k);
-  d_fine = hypot(fine.r[2] - fine.r[0], fine.r[3] - fine.r[1]);
-  printf("  separation 0.051 -> %.4f l (%lld halvings, %lld pieces), fine "
-         "Euler %.4f l\n", d, s.halvings, s.substeps, d_fine);
-  CHECK(s.halvings > 0, "no halving: the test does not test them");
-  CHECK(d - 0.051 > AFV_MAX_STEP_DISP, "the pair moved only %g l", d);
-  CHECK(s.geom.energy < E0, "energy rose: %g -> %g", E0, s.geom.energy);
-  CHECK(fabs(d - d_fine) < 0.05, "halves %g l, fine Euler %g l", d, d_fine);
-  afv_sim_free(&s);
-  afv_sim_free(&fine);
+  enum { N = 60 };
+  static const int starts[4] = {AFV_START_SQUARE, AFV_START_LATTICE,
+                                AFV_START_RANDOM, AFV_START_GIVEN};
+  afv_params p;
+  afv_box b;
+  afv_dyn d;
+  afv_protocol pr;
+  afv_relax_report rep, want;
+  double given[2 * N], th_given[N];
+  afv_sim *s = afv_sim_new(), *hand = afv_sim_new();
+  int k, relax;
+  CHECK(s && hand, "out of memory");
+  if (!s || !hand) goto done;
+  paper_model(N, 4.6, &p, &b, &d);
+  d.v0 = 0.7;
+  d.seed = 9;
+  afv_init_random(N, 77, &b, 0, given);
+  afv_init_angles(N, 78, th_given);
+  for (k = 0; k < 4; k++)
+    for (relax = 0; relax < 3; relax++) {     /* none, flow, FIRE */
+      size_t two = 2 * N * sizeof(double);
+      memset(&pr, 0, sizeof pr);
+      pr.start = starts[k];
+      pr.side = AFV_AUTHORS_SQUARE * b.Lx;
+      pr.spacing = 1.8;
+      pr.r = given;
+      pr.theta = starts[k] == AFV_START_GIVEN ? th_given : NULL;
+      pr.relax = relax == 2 ? AFV_RELAX_FIRE : AFV_RELAX_FLOW;
+      pr.relax_tol = 1e-6;
+      pr.relax_max_steps = relax ? 300 : 0;
+      memset(&want, 0, sizeof want);
+      CHECK(afv_protocol_start(s, N, &p, &b, &d, &pr, &rep, NULL, NULL)
+            == AFV_OK, "start %d, relax %d: refused", k, relax);
+      CHECK(protocol_by_hand(hand, N, &p, &b, &d, &pr, &want) == AFV_OK,
+            "start %d, relax %d: by hand", k, relax);
+      CHECK(memcmp(afv_sim_positions(s), afv_sim_positions(hand), two) == 0
+            && memcmp(afv_sim_angles(s), afv_sim_angles(hand), two / 2) == 0
+            && memcmp(afv_sim_forces(s), afv_sim_forces(hand), two) == 0,
+            "start %d, relax %d: not the state of the calls one by one", k,
+            relax);
+      CHECK(afv_sim_dyn(s)->v0 == d.v0 && afv_sim_steps(s) == 0
+            && afv_sim_time(s) == 0, "start %d, relax %d: v0 %g, step "
+            "%lld after the protocol", k, relax, afv_sim_dyn(s)->v0,
+            afv_sim_steps(s));
+      if (relax)
+        CHECK(rep.iterations == want.iterations && rep.iterations > 0
+              && rep.energy == want.energy && rep.energy0 == want.energy0,
+              "start %d, relax %d: report %ld steps E %.17g, by hand %ld "
+              "E %.17g", k, relax, rep.iterations, rep.energy,
+              want.iterations, want.energy);
+      else
+        CHECK(rep.iterations == 0 && rep.energy0 == rep.energy
+              && rep.energy == afv_geom_energy(afv_sim_geom(s))
+              && rep.max_force == afv_sim_max_force(s),
+              "start %d: the unrelaxed report is not the start's", k);
+    }
+  pr.start = 99;
+  CHECK(afv_protocol_start(s, N, &p, &b, &d, &pr, &rep, NULL, NULL)
+        == AFV_EINVAL, "an unknown start was accepted");
+done:
+  afv_sim_delete(s);
+  afv_sim_delete(hand);
 }
 
 /* ---- afv run: the starts and the relaxation's report ------------------- */
@@ -273,7 +340,7 @@ void suite_protocol(void)
 {
   char cmd[128];
   RUN(test_protocol_reduced);
-  RUN(test_halves_follow_a_large_force);
+  RUN(test_protocol_start_is_the_papers_order);
   snprintf(tmp, sizeof tmp, "/tmp/afv_test_protocol.XXXXXX");
   if (!mkdtemp(tmp)) {
     printf("  cannot make a temporary directory\n");

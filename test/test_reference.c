@@ -27,8 +27,9 @@
 ** library's, as its polarity uses), xi_i = afv_rng_normal(seed, i, step,
 ** AFV_RNG_NOISE).  Every factor is away from 1 (mu, dt, v0_i, Dr_i), so a
 ** dropped or misplaced one shows; per-cell v0_i and Dr_i include 0 and a
-** negative v0.  No cell is fast (dt mu |F_i| <= max_move l), so the step
-** is the plain Euler step and must equal these expressions exactly. */
+** negative v0.  The step must equal these expressions exactly, for every
+** test configuration (afv_sim_step is the plain Euler step, whatever the
+** moves). */
 static void check_one_step(const test_config *c, int per_cell)
 {
   afv_params p;
@@ -68,16 +69,11 @@ static void check_one_step(const test_config *c, int per_cell)
   /* the forces at r, from a geometry of its own */
   st = afv_compute(&g, n, c->r, &p, &c->box, f);
   CHECK(st == AFV_OK, "%s: afv_compute: %s", c->name, afv_strerror(st));
-  for (i = 0; i < n; i++)
-    CHECK(d.dt * d.mu * hypot(f[2*i], f[2*i+1]) <= d.max_move * p.l,
-          "%s: cell %d is fast: the configuration does not test the plain "
-          "step", c->name, i);
   memcpy(r0, s.r, (size_t)(2 * n) * sizeof(double));
   memcpy(th0, s.theta, (size_t)n * sizeof(double));
   step0 = s.step;
   st = afv_sim_step(&s);
   CHECK(st == AFV_OK, "%s: afv_sim_step: %s", c->name, afv_strerror(st));
-  CHECK(s.substeps == 0, "%s: %lld sub-steps", c->name, s.substeps);
   for (i = 0; st == AFV_OK && i < n; i++) {
     double v = per_cell ? v0[i] : d.v0, D = per_cell ? Dr[i] : d.Dr;
     double sn, cs, xi, x, y, th;
@@ -109,23 +105,14 @@ out:
 static void test_step_is_the_papers_equations(void)
 {
   test_config c;
-  int k, made, tested = 0;
-  /* the configurations whose forces move no cell more than max_move */
-  static const char *const plain[] = {"lens", "junction_on_circle",
-                                      "square_cocircular", "lattice_arcs",
-                                      "lattice_jittered", "cluster"};
+  int k, made;
   for (k = 0; (made = test_config_make(k, &c)) == 1; k++) {
-    size_t q;
-    for (q = 0; q < sizeof plain / sizeof plain[0]; q++)
-      if (!strcmp(c.name, plain[q])) {
-        check_one_step(&c, 0);
-        check_one_step(&c, 1);
-        tested++;
-      }
+    check_one_step(&c, 0);
+    check_one_step(&c, 1);
     test_config_free(&c);
   }
   CHECK(made == 0, "out of memory");
-  CHECK(tested == 6, "%d configurations tested, want 6", tested);
+  CHECK(k >= 6, "%d configurations tested, want 6 or more", k);
 }
 
 /* ---- a brute-force twin of the cell shape -------------------------------- */

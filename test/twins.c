@@ -22,7 +22,7 @@
 **              E has a kink (KINKS)
 **   N_GC       the same number of cells in the giant cluster
 ** and, from nine of them, 100 steps of the paper's Euler step (library:
-** afv_sim_step with integrator AFV_EULER; its Philox noise), the plain
+** afv_sim_step, the paper's Euler step; its Philox noise), the plain
 ** file fed the library's angle at the start of every step (the same noise
 ** sequence): every position within 1e-9 l.  The pairs about to detach
 ** jump up to 4000 l in one step (a force of 4e5), and still agree.
@@ -205,7 +205,6 @@ static int compare_dynamics(const test_config *c, double v0, worst *w)
   afv_dyn_default(&d);            /* mu = 1, Dr = 0.1, dt = 0.01 */
   d.v0 = v0;
   d.seed = 5;
-  d.integrator = AFV_EULER;       /* the paper's Euler step */
   mo.mu = d.mu;
   mo.v0 = d.v0;
   mo.dt = d.dt;

@@ -11,7 +11,7 @@
 set -eu
 CC="${1:-cc}"
 FLAGS="-O1 -std=c99 -I. -Itest"
-LIB="neighbours.c geom.c fastmath.c dynamics.c substeps.c rng.c analysis.c svg.c io.c phase.c api.c fits.c"
+LIB="neighbours.c geom.c fastmath.c dynamics.c rng.c analysis.c svg.c io.c phase.c api.c fits.c relax_fire.c"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$tmp/reference"

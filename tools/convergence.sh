@@ -6,7 +6,10 @@
 # authors' start (init cluster):
 #   euler      dt 0.02, 0.01, 0.005, 0.0025, exact force (cap 0) and PyAFV's
 #              contact cap 0.45 (one sweep per dt: steps = 1500 / dt)
-#   substeps   max_move 0.1, 0.05, 0.025, 0.0125 at dt = 0.01
+# (The committed study, doc/reproduction/convergence.md, also has the
+# sub-steps, `integrator substeps` at max_move 0.1 to 0.0125, measured
+# with afv 0.2.0; afv 0.3.0 removed them, and this script no longer runs
+# or tables them.)
 # Writes the sweeps into OUT/ (afv sweep), runs their jobs (make -j2; a run
 # stopped and started again continues where it stopped), tables them
 # (afv collect) and writes OUT/convergence.csv (one row per scheme,
@@ -14,7 +17,7 @@
 # compared), OUT/tables.md (the same as markdown tables) and
 # OUT/figures/*.svg (tools/convergence_plot).
 # JOBS=K sets make's -j (default 2); COLLECT_ONLY=1 tables what has
-# finished without running anything.  Cost: about 1.5 CPU-hours.
+# finished without running anything.  Cost: about 1 CPU-hour.
 set -e
 OUT=${1:?usage: tools/convergence.sh OUT [AFV]}
 HERE=$(cd "$(dirname "$0")/.." && pwd)
@@ -44,13 +47,10 @@ sweep euler_dt0.005  --integrator euler --dt 0.005  --cap 0,0.45 \
   --steps 300000 --frame_every 400 --checkpoint_every 20000
 sweep euler_dt0.0025 --integrator euler --dt 0.0025 --cap 0,0.45 \
   --steps 600000 --frame_every 800 --checkpoint_every 40000
-sweep substeps --integrator substeps --dt 0.01 \
-  --max_move 0.1,0.05,0.025,0.0125 \
-  --steps 150000 --frame_every 200 --checkpoint_every 10000
 
 # COLLECT_ONLY=1: no job is run; what has finished is tabled (collect
 # lists the rest in each sweep's missing.txt).
-for s in euler_dt0.0025 euler_dt0.005 substeps euler_dt0.01 euler_dt0.02; do
+for s in euler_dt0.0025 euler_dt0.005 euler_dt0.01 euler_dt0.02; do
   if [ "${COLLECT_ONLY:-0}" = 1 ]; then
     "$OUT/afv" collect "$OUT/$s" > /dev/null || true
   else
@@ -63,15 +63,12 @@ done
 # (mean and seed standard error), from each sweep's table.csv.
 {
   echo "scheme,setting,P0,v0,n_seeds,ngc_frac_mean,ngc_frac_sem,n_clusters_mean,n_clusters_sem,omega_mean,omega_sem"
-  for s in euler_dt0.02 euler_dt0.01 euler_dt0.005 euler_dt0.0025 substeps; do
+  for s in euler_dt0.02 euler_dt0.01 euler_dt0.005 euler_dt0.0025; do
     awk -F, -v sweep="$s" '
       NR == 1 { for (k = 1; k <= NF; k++) col[$k] = k; next }
       {
-        if (sweep == "substeps") { scheme = "substeps"; set = $col["max_move"] }
-        else {
-          scheme = $col["cap"] + 0 > 0 ? "euler_cap0.45" : "euler"
-          set = substr(sweep, 9)
-        }
+        scheme = $col["cap"] + 0 > 0 ? "euler_cap0.45" : "euler"
+        set = substr(sweep, 9)
         print scheme "," set "," $col["P0"] "," $col["v0"] "," $col["n_seeds"] \
           "," $col["ngc_frac_mean"] "," $col["ngc_frac_sem"] \
           "," $col["n_clusters_mean"] "," $col["n_clusters_sem"] \
@@ -82,7 +79,7 @@ done
 mv "$OUT/convergence.csv.tmp" "$OUT/convergence.csv"
 
 # verdicts.csv: for each scheme, state point and observable, the finest
-# two settings (dt 0.005 and 0.0025; max_move 0.025 and 0.0125), their
+# two settings (dt 0.005 and 0.0025), their
 # difference and 2 sqrt(sem1^2 + sem2^2): converged if the difference is
 # not larger (the criterion stated in convergence.md; equal values, such as
 # N_GC/N = 1 at both, are converged); "missing" if one has not finished
@@ -90,8 +87,8 @@ mv "$OUT/convergence.csv.tmp" "$OUT/convergence.csv"
 awk -F, '
   NR == 1 { next }
   {
-    fine = ($1 == "substeps") ? ($2 == "0.0125") : ($2 == "0.0025")
-    next_ = ($1 == "substeps") ? ($2 == "0.025") : ($2 == "0.005")
+    fine = $2 == "0.0025"
+    next_ = $2 == "0.005"
     key = $1 "," $3 "," $4
     if (fine) { f[key] = $0; keys[key] = 1 }
     if (next_) n[key] = $0
@@ -140,8 +137,7 @@ awk -F, '
       print "|---|---|---|---|---|---|---|"
       for (k = 1; k <= nk; k++) {
         split(order[k], p, ",")
-        if (p[3] == "substeps") split("0.1 0.05 0.025 0.0125", set, " ")
-        else split("0.02 0.01 0.005 0.0025", set, " ")
+        split("0.02 0.01 0.005 0.0025", set, " ")
         line = "| " p[1] " | " p[2] " | " p[3]
         for (q = 1; q <= 4; q++) line = line " | " v[order[k], set[q], o]
         print line " |"

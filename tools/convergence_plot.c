@@ -6,10 +6,11 @@
 **
 ** Reads convergence.csv (scheme,setting,P0,v0,n_seeds, then mean and seed
 ** standard error of ngc_frac, n_clusters and omega) and writes into DIR one
-** SVG per scheme and observable: the observable against the setting (dt
-** for euler and euler_cap0.45, max_move for substeps; log axis), one line
-** per state point (P0, v0), the seed standard error drawn as the two
-** dotted lines mean +- sem.  Exit status 2 on a malformed file.
+** SVG per scheme that has rows and per observable: the observable against
+** the setting (dt for euler and euler_cap0.45, max_move for the substeps
+** of afv 0.2.0, in the committed study; log axis), one line per state
+** point (P0, v0), the seed standard error drawn as the two dotted lines
+** mean +- sem.  Exit status 2 on a malformed file.
 */
 #include "afv.h"
 #include "afv_tool.h"   /* afv_svg_plot */
@@ -59,6 +60,15 @@ static int read_rows(const char *path, row *rows, int *n)
   }
   fclose(fp);
   return 1;
+}
+
+/* 1 if some row is of scheme. */
+static int has_scheme(const row *rows, int n, const char *scheme)
+{
+  int k;
+  for (k = 0; k < n; k++)
+    if (strcmp(rows[k].scheme, scheme) == 0) return 1;
+  return 0;
 }
 
 static int by_setting(const void *a, const void *b)
@@ -132,7 +142,7 @@ int main(int argc, char **argv)
   }
   if (!read_rows(argv[1], rows, &n)) return 2;
   for (k = 0; k < 3; k++)
-    for (o = 0; o < N_OBS; o++)
+    for (o = 0; o < N_OBS && has_scheme(rows, n, schemes[k]); o++)
       if (!plot_one(rows, n, schemes[k], o, argv[2])) return 2;
   return 0;
 }
