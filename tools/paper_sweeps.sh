@@ -8,8 +8,8 @@
 #
 # SCALE   grid (P0 x v0, seeds, steps)              finite-size (N x P0 x v0)
 # smoke   P0 4,8 x v0 0.1,1.85 (+ the panels' states), 1 seed ... numbers mean nothing
-# quick   8 x 10, 2 seeds, 3e4 steps                N 6400,1600,400 x 4,8 x 4 v0, lattice
-# paper   8 x 9 at the paper's length: 2 seeds, 1e6 steps  as quick
+# quick   8 x 10, 2 seeds, 3e4 steps                N 6400,1600,400 x 4,8 x 4 v0, 1 seed
+# paper   8 x 9, 2 seeds, 1e6 steps (the paper's length)  as quick
 # full    the paper's: P0 4:8.8:0.2 x v0 0:2.7:0.1, 2 seeds, 1e6 steps
 #
 # Every run starts from afv run's default start (init cluster: the
@@ -41,17 +41,13 @@ quick)
   GRID_ANALYZE="--steady-from 100 --lag 50"
   # Finite size: N = 6400, 1600, 400 (the largest first: they take
   # longest, the runner starts them while the grid runs beside), P0 4, 8,
-  # v0 1, 1.4, 1.85, 2.3, 1 seed, 3e4 steps as the grid.  Start: init
-  # lattice (relaxed in seconds) for every N, because the authors' random
-  # square costs far more than linearly in N to relax (measured: the first
-  # 2000 relaxation steps at P0 = 8 take 6.9 s at N = 400, 231 s at
-  # N = 1600: 87 and 1033 halved steps, with the sub-steps integrator of
-  # afv 0.1.0; not measured again with euler); afv paper draws the grid's
-  # N = 400 runs (cluster start) beside them, which measures the start's
-  # effect.
+  # v0 1, 1.4, 1.85, 2.3, 1 seed, 3e4 steps as the grid, from the paper's
+  # start at every N (the authors' square, relaxed by Euler steps at
+  # v0 = 0): at N = 6400 the relaxation takes 38000 (P0 4) and 53000
+  # (P0 8) steps, 210 s and 156 s of CPU (doc/performance.md, make
+  # relax-cost), about 3 times a job's active steps.
   FSS="--N 6400,1600,400 --P0 4,8 --v0 1,1.4,1.85,2.3 --seeds 1
-       --steps 30000 --frame_every 100 --init lattice
-       --relax_max_steps 20000"
+       --steps 30000 --frame_every 100"
   FSS_ANALYZE="--steady-from 100 --lag 50"
   ;;
 paper)
@@ -60,15 +56,14 @@ paper)
   # 8, 8.8 x v0 0.1, 0.4, 0.7, 1, 1.4, 1.6, 1.85, 2.1, 2.6 (the dispersal
   # line v_s(P0) lies between 1.6 and 2.1) x 2 seeds = 144 jobs of 1e6
   # steps (t = 10^4), steady window t >= 1000, D_s at lag 5000 as in the
-  # paper.  The finite-size study stays the quick one (t = 300, lattice
-  # start): its cost at the paper's length is in doc/reproduction/.
+  # paper.  The finite-size study is the quick one (t = 300, the paper's
+  # start at every N).
   GRID="--P0 4,4.4,4.8,5.6,6.4,7.2,8,8.8
         --v0 0.1,0.4,0.7,1,1.4,1.6,1.85,2.1,2.6 --seeds 2 --N 400
         --steps 1000000 --frame_every 1000 --checkpoint_every 100000"
   GRID_ANALYZE="--steady-from 1000 --lag 5000"
   FSS="--N 6400,1600,400 --P0 4,8 --v0 1,1.4,1.85,2.3 --seeds 1
-       --steps 30000 --frame_every 100 --init lattice
-       --relax_max_steps 20000"
+       --steps 30000 --frame_every 100"
   FSS_ANALYZE="--steady-from 100 --lag 50"
   ;;
 full)
@@ -77,9 +72,8 @@ full)
   GRID="--P0 4:8.8:0.2 --v0 0:2.7:0.1 --seeds 2 --N 400 --steps 1000000
         --frame_every 1000 --checkpoint_every 100000"
   GRID_ANALYZE="--steady-from 1000 --lag 5000"
-  FSS="--N 6400,1600,400 --P0 4,8 --v0 1:2.5:0.15 --seeds 2 --init lattice
-       --steps 1000000 --frame_every 1000 --checkpoint_every 100000
-       "
+  FSS="--N 6400,1600,400 --P0 4,8 --v0 1:2.5:0.15 --seeds 2
+       --steps 1000000 --frame_every 1000 --checkpoint_every 100000"
   FSS_ANALYZE="--steady-from 1000 --lag 5000"
   ;;
 *)
