@@ -47,7 +47,7 @@ TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
 .PHONY: all test run bench bench-quick bench-compare fuzz twins plain \
         protocol-check shared python-test install uninstall clean FORCE \
-        paper paper-sweeps paper-grid paper-fss convergence
+        paper paper-sweeps paper-grid paper-fss convergence lambda
 
 all: afv libafv.a
 
@@ -261,6 +261,18 @@ tools/convergence_plot: tools/convergence_plot.c libafv.a afv.h .build-flags
 convergence: afv tools/convergence_plot
 	sh tools/convergence.sh $(CONV_OUT)
 
+# The Lambda study (doc/reproduction/lambda.md): make lambda LAMBDA_OUT=DIR
+# runs tools/lambda.sh: the quick grid at Lambda = 0 and 0.5 (make -j2;
+# resumable), one figure per Lambda with the three boundaries (0.2 from
+# doc/reproduction/grid_table.csv) and the dt check at Lambda = 0.
+LAMBDA_OUT ?= lambda
+
+tools/lambda_plot: tools/lambda_plot.c libafv.a afv.h .build-flags
+	$(CC) $(CFLAGS) -I. -o $@ tools/lambda_plot.c libafv.a $(LDLIBS)
+
+lambda: afv tools/convergence_plot tools/lambda_plot
+	sh tools/lambda.sh $(LAMBDA_OUT)
+
 # Evidence for the paper's protocol (test/protocol_check.c): the authors'
 # random start relaxed and run at every P0 and v0 of the paper's range.
 # PROTOCOL_ARGS may shrink it (e.g. --N 100 --steps 2000).
@@ -307,6 +319,7 @@ uninstall:
 clean:
 	rm -f *.o libafv.a libafv.so afv.pc afv test/run_tests test/bench \
 	  python/check_driver \
-	  test/protocol_check tools/convergence_plot .build-flags
+	  test/protocol_check tools/convergence_plot tools/lambda_plot \
+	  .build-flags
 	rm -f test/twins reference/afv_plain
 	rm -rf fuzz/build python/__pycache__
