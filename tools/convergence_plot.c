@@ -6,8 +6,9 @@
 **
 ** Reads convergence.csv (scheme,setting,P0,v0,n_seeds, then mean and seed
 ** standard error of ngc_frac, n_clusters and omega) and writes into DIR one
-** SVG per scheme and observable: the observable against the setting (dt
-** for euler and euler_cap0.45, max_move for substeps; log axis), one line
+** SVG per scheme in the file and observable: the observable against the
+** setting (dt for euler and euler_cap0.45, max_move for substeps; log
+** axis), one line
 ** per state point (P0, v0), the seed standard error drawn as the two
 ** dotted lines mean +- sem.  Exit status 2 on a malformed file.
 */
@@ -102,6 +103,7 @@ static int plot_one(const row *rows, int n, const char *scheme, int o,
       s[ns + 2].color = colors[c]; s[ns + 2].points = 1;
       if (m > 0) ns += 3;
     }
+  if (ns == 0) return 1;            /* a scheme not in the file: no figure */
   memset(&pl, 0, sizeof pl);
   snprintf(title, sizeof title, "%s, %s (N = 400; markers: mean +- sem)",
            obs_label[o], scheme);

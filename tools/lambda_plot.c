@@ -13,6 +13,10 @@
 **   confluency  at each v0, the P0 where Omega falls below 0.5
 **   dynamics    at each P0, the v0 where msd_beta rises above 0.5
 ** and the state points that afv collect labels glassy are marked.  The
+** dynamics leave out v0 = 0: there no cell moves after the relaxation
+** (MSD_rel ~ 1e-19 l^2 at Lambda 0), msd_beta is the slope of round-off
+** and its label means nothing (afv collect's D_eff label is undefined
+** there for the same reason).  The
 ** boundary points are also printed on stdout as CSV (boundary,P0,v0).
 ** The figure is written atomically.  Exit status 2 on a malformed table.
 */
@@ -169,6 +173,8 @@ static int boundary(const plane *P, int q, double level, int sign,
   for (i = 0; i < n; i++) {
     for (j = 0; j < m; j++)
       line[j] = sign * (along_p0 ? P->q[q][j][i] : P->q[q][i][j]);
+    if (q == Q_BETA && !along_p0 && P->v0[0] == 0)
+      line[0] = NAN;                     /* v0 = 0: nothing moves */
     if (afv_crossing(m, along_p0 ? P->p0 : P->v0, line, sign * level,
                      &xc)) {
       bx[nb] = along_p0 ? xc : P->p0[i];
@@ -185,11 +191,12 @@ int main(int argc, char **argv)
   static const char *name[3] = {"clustering", "confluency", "dynamics"};
   static const char *lab[3] = {"clustering: N_GC/N = 0.99",
                                "confluency: Omega = 0.5",
-                               "dynamics: msd_beta = 0.5"};
+                               "dynamics: msd_beta = 0.5 (v0 > 0)"};
   static const char *col[3] = {"#d62728", "#1f77b4", "#9467bd"};
   double bx[3][MAX_VALUES], by[3][MAX_VALUES];
   double gx[MAX_VALUES * MAX_VALUES], gy[MAX_VALUES * MAX_VALUES];
   char title[160], tmp[4096];
+  char label[3][96];
   afv_plot pl;
   afv_plot_series s[4];
   int nb[3], ng = 0, i, j, k;
@@ -204,7 +211,11 @@ int main(int argc, char **argv)
   nb[2] = boundary(&P, Q_BETA, BETA_GLASS_LEVEL, -1, 0, bx[2], by[2]);
   for (i = 0; i < P.np; i++)
     for (j = 0; j < P.nv; j++)
-      if (P.glassy[i][j]) { gx[ng] = P.p0[i]; gy[ng] = P.v0[j]; ng++; }
+      if (P.glassy[i][j] && P.v0[j] > 0) {
+        gx[ng] = P.p0[i];
+        gy[ng] = P.v0[j];
+        ng++;
+      }
 
   printf("boundary,P0,v0\n");
   for (k = 0; k < 3; k++)
@@ -214,21 +225,20 @@ int main(int argc, char **argv)
   memset(s, 0, sizeof s);
   for (k = 0; k < 3; k++) {
     s[k].x = bx[k]; s[k].y = by[k]; s[k].n = nb[k];
-    s[k].label = lab[k]; s[k].color = col[k]; s[k].points = nb[k] < 2;
+    snprintf(label[k], sizeof label[k], "%s%s", lab[k],
+             nb[k] ? "" : ": no crossing");
+    s[k].label = label[k]; s[k].color = col[k]; s[k].points = nb[k] < 2;
   }
   s[3].x = gx; s[3].y = gy; s[3].n = ng; s[3].points = 1;
-  s[3].label = "glassy state points"; s[3].color = "#9467bd";
+  s[3].label = "glassy (v0 > 0)"; s[3].color = "#9467bd";
   memset(&pl, 0, sizeof pl);
   snprintf(title, sizeof title, "Lambda = %s: the three boundaries "
            "(N = 400, t = 300, Euler dt = 0.01)", argv[2]);
   pl.title = title;
   pl.xlabel = "P0 (l)";
   pl.ylabel = "v0 (l/time)";
-  if (P.nv > 1) {            /* a margin: markers at v0 = 0 stay visible */
-    double margin = 0.03 * (P.v0[P.nv - 1] - P.v0[0]);
-    pl.ymin = P.v0[0] - margin;
-    pl.ymax = P.v0[P.nv - 1] + margin;
-  }
+  pl.ymin = P.nv ? P.v0[0] : 0;
+  pl.ymax = P.nv ? P.v0[P.nv - 1] : 1;
   snprintf(tmp, sizeof tmp, "%s.tmp", argv[3]);
   if (!(fp = fopen(tmp, "w"))) {
     fprintf(stderr, "lambda_plot: %s: cannot write\n", tmp);
