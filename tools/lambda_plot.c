@@ -12,7 +12,9 @@
 **   clustering  at each P0, the v0 where N_GC/N falls below 0.99
 **   confluency  at each v0, the P0 where Omega falls below 0.5
 **   dynamics    at each P0, the v0 where msd_beta rises above 0.5
-** and the state points that afv collect labels glassy are marked.  The
+** and the state points that afv collect labels clustered or glassy are
+** marked (a clustered region need not end at a crossing along v0: at
+** Lambda = 0 the tissue comes apart at v0 = 0 for large P0).  The
 ** dynamics leave out v0 = 0: there no cell moves after the relaxation
 ** (MSD_rel ~ 1e-19 l^2 at Lambda 0), msd_beta is the slope of round-off
 ** and its label means nothing (afv collect's D_eff label is undefined
@@ -46,6 +48,7 @@ typedef struct plane {
   double p0[MAX_VALUES], v0[MAX_VALUES];
   double q[N_Q][MAX_VALUES][MAX_VALUES];  /* [q][ip][iv]; NAN: no row */
   int glassy[MAX_VALUES][MAX_VALUES];     /* afv collect's dynamic_phase */
+  int clustered[MAX_VALUES][MAX_VALUES];  /* afv collect's cluster_phase */
 } plane;
 
 /* Splits line at commas in place (empty fields kept); the field count. */
@@ -95,8 +98,8 @@ static int number(const char *s, double *x)
 static int read_table(const char *path, plane *P)
 {
   char line[LINE_LEN], *field[MAX_FIELDS];
-  int col[N_Q] = {-1, -1, -1}, cp = -1, cv = -1, cd = -1, nf = 0, pass,
-      lineno, k;
+  int col[N_Q] = {-1, -1, -1}, cp = -1, cv = -1, cd = -1, cc = -1, nf = 0,
+      pass, lineno, k;
   FILE *fp = fopen(path, "r");
   if (!fp) {
     fprintf(stderr, "lambda_plot: %s: cannot open\n", path);
@@ -114,8 +117,9 @@ static int read_table(const char *path, plane *P)
         cp = column(field, n, "P0");
         cv = column(field, n, "v0");
         cd = column(field, n, "dynamic_phase");
+        cc = column(field, n, "cluster_phase");
         for (k = 0; k < N_Q; k++) col[k] = column(field, n, q_column[k]);
-        if (cp < 0 || cv < 0 || cd < 0 || col[0] < 0 || col[1] < 0
+        if (cp < 0 || cv < 0 || cd < 0 || cc < 0 || col[0] < 0 || col[1] < 0
             || col[2] < 0) {
           fprintf(stderr, "lambda_plot: %s:1: not afv collect's table of "
                   "a (P0, v0) sweep\n", path);
@@ -149,6 +153,7 @@ static int read_table(const char *path, plane *P)
         P->q[k][ip][iv] = x;
       }
       P->glassy[ip][iv] = strcmp(field[cd], "glassy") == 0;
+      P->clustered[ip][iv] = strcmp(field[cc], "clustered") == 0;
     }
     if (pass == 0) {       /* every state point NAN until its row is read */
       int i, j;
@@ -195,11 +200,13 @@ int main(int argc, char **argv)
   static const char *col[3] = {"#d62728", "#1f77b4", "#9467bd"};
   double bx[3][MAX_VALUES], by[3][MAX_VALUES];
   double gx[MAX_VALUES * MAX_VALUES], gy[MAX_VALUES * MAX_VALUES];
+  double cx[MAX_VALUES * MAX_VALUES], cy[MAX_VALUES * MAX_VALUES];
   char title[160], tmp[4096];
   char label[3][96];
   afv_plot pl;
-  afv_plot_series s[4];
-  int nb[3], ng = 0, i, j, k;
+  afv_plot_series s[6];
+  double ex[2], ey[2];
+  int nb[3], ng = 0, nc = 0, i, j, k;
   FILE *fp;
   if (argc != 4) {
     fprintf(stderr, "usage: tools/lambda_plot TABLE.CSV LAMBDA FIGURE.SVG\n");
@@ -216,6 +223,13 @@ int main(int argc, char **argv)
         gy[ng] = P.v0[j];
         ng++;
       }
+  for (i = 0; i < P.np; i++)
+    for (j = 0; j < P.nv; j++)
+      if (P.clustered[i][j]) {
+        cx[nc] = P.p0[i];
+        cy[nc] = P.v0[j];
+        nc++;
+      }
 
   printf("boundary,P0,v0\n");
   for (k = 0; k < 3; k++)
@@ -231,6 +245,13 @@ int main(int argc, char **argv)
   }
   s[3].x = gx; s[3].y = gy; s[3].n = ng; s[3].points = 1;
   s[3].label = "glassy (v0 > 0)"; s[3].color = "#9467bd";
+  s[4].x = cx; s[4].y = cy; s[4].n = nc; s[4].points = 1;
+  s[4].label = "clustered"; s[4].color = "#f4a6a6";
+  /* the grid's corners, not drawn: the axes span the whole grid */
+  ex[0] = P.np ? P.p0[0] : 0; ex[1] = P.np ? P.p0[P.np - 1] : 1;
+  ey[0] = ey[1] = P.nv ? P.v0[0] : 0;
+  s[5].x = ex; s[5].y = ey; s[5].n = 2; s[5].points = 1;
+  s[5].color = "none";
   memset(&pl, 0, sizeof pl);
   snprintf(title, sizeof title, "Lambda = %s: the three boundaries "
            "(N = 400, t = 300, Euler dt = 0.01)", argv[2]);
@@ -244,7 +265,7 @@ int main(int argc, char **argv)
     fprintf(stderr, "lambda_plot: %s: cannot write\n", tmp);
     return 2;
   }
-  k = afv_svg_plot(fp, &pl, s, 4);
+  k = afv_svg_plot(fp, &pl, s, 6);
   if (fclose(fp) != 0 || k != AFV_OK || rename(tmp, argv[3]) != 0) {
     fprintf(stderr, "lambda_plot: %s: cannot write\n", argv[3]);
     remove(tmp);
