@@ -20,6 +20,8 @@
 #   make python-test  the Python module's tests, with and without numpy
 #   make -j2 paper SCALE=smoke|quick|paper|full OUT=DIR   reproduce the paper's
 #                   figures and claims table (see "Reproducing the paper")
+#   make lambda LAMBDA_OUT=DIR  the phase diagram at Lambda 0 and 0.5 and the
+#                   time step at Lambda 0 (doc/reproduction/lambda.md)
 #   make clean
 #
 # CC and CFLAGS may be overridden (make CC=clang, make CC=tcc).
