@@ -23,6 +23,8 @@
 #   make python-test  the Python module's tests, with and without numpy
 #   make -j2 paper SCALE=smoke|quick|paper|full OUT=DIR   reproduce the paper's
 #                   figures and claims table (see "Reproducing the paper")
+#   make lambda LAMBDA_OUT=DIR  the phase diagram at Lambda 0 and 0.5 and the
+#                   time step at Lambda 0 (doc/reproduction/lambda.md)
 #   make clean
 #
 # CC and CFLAGS may be overridden (make CC=clang, make CC=tcc).
@@ -55,7 +57,7 @@ TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 .PHONY: all test run bench bench-quick bench-compare fuzz twins plain \
         protocol-check shared python-test install uninstall clean FORCE \
         paper paper-sweeps paper-grid paper-fss convergence \
-        relax-cost diagram-budget diagram-budget-sweep diagram-budget-project
+        relax-cost diagram-budget diagram-budget-sweep diagram-budget-project lambda
 
 all: afv libafv.a
 
@@ -315,6 +317,18 @@ diagram-budget: diagram-budget-sweep
 diagram-budget-project: afv
 	sh tools/diagram_budget.sh $(BUDGET_OUT) ./afv
 
+# The Lambda study (doc/reproduction/lambda.md): make lambda LAMBDA_OUT=DIR
+# runs tools/lambda.sh: the quick grid at Lambda = 0 and 0.5 (make -j2;
+# resumable), one figure per Lambda with the three boundaries (0.2 from
+# doc/reproduction/grid_table.csv) and the dt check at Lambda = 0.
+LAMBDA_OUT ?= lambda
+
+tools/lambda_plot: tools/lambda_plot.c libafv.a afv.h .build-flags
+	$(CC) $(CFLAGS) -I. -o $@ tools/lambda_plot.c libafv.a $(LDLIBS)
+
+lambda: afv tools/convergence_plot tools/lambda_plot
+	sh tools/lambda.sh $(LAMBDA_OUT)
+
 # Evidence for the paper's protocol (test/protocol_check.c): the authors'
 # random start relaxed and run at every P0 and v0 of the paper's range.
 # PROTOCOL_ARGS may shrink it (e.g. --N 100 --steps 2000).
@@ -361,6 +375,7 @@ uninstall:
 clean:
 	rm -f *.o cmd/*.o libafv.a libafv.so afv.pc afv test/run_tests test/bench \
 	  python/check_driver \
-	  test/protocol_check tools/convergence_plot .build-flags
+	  test/protocol_check tools/convergence_plot tools/lambda_plot \
+	  .build-flags
 	rm -f test/twins reference/afv_plain
 	rm -rf fuzz/build python/__pycache__

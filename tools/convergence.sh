@@ -17,15 +17,20 @@
 # compared), OUT/tables.md (the same as markdown tables) and
 # OUT/figures/*.svg (tools/convergence_plot).
 # JOBS=K sets make's -j (default 2); COLLECT_ONLY=1 tables what has
-# finished without running anything.  Cost: about 1 CPU-hour.
+# finished without running anything.  Cost: about 1.5 CPU-hours.
+# LAMBDA=X runs the study at Lambda = X (default 0.2, the paper's);
+# CAPS=LIST the euler schemes' caps (default 0,0.45) (tools/lambda.sh:
+# Lambda 0, cap 0).
 set -e
 OUT=${1:?usage: tools/convergence.sh OUT [AFV]}
 HERE=$(cd "$(dirname "$0")/.." && pwd)
 AFV=${2:-$HERE/afv}
 PLOT=$HERE/tools/convergence_plot
 JOBS=${JOBS:-2}
-COMMON="--N 400 --P0 4,8 --v0 1,1.85,2.6 --seeds 2 --sample_every 0
-        --svg_every 0 --quiet 1 --steady-from 500 --lag 50"
+LAMBDA=${LAMBDA:-0.2}
+CAPS=${CAPS:-0,0.45}
+COMMON="--N 400 --P0 4,8 --v0 1,1.85,2.6 --seeds 2 --Lambda $LAMBDA
+        --sample_every 0 --svg_every 0 --quiet 1 --steady-from 500 --lag 50"
 
 mkdir -p "$OUT"
 # A copy of the program, so that a rebuild during the study changes nothing.
@@ -39,13 +44,13 @@ sweep() {
   "$OUT/afv" sweep --out "$OUT/$name" --afv "$OUT/afv" $COMMON "$@"
 }
 # Frames every 2 time units; checkpoints every 100 time units.
-sweep euler_dt0.02   --integrator euler --dt 0.02   --cap 0,0.45 \
+sweep euler_dt0.02   --integrator euler --dt 0.02   --cap "$CAPS" \
   --steps 75000  --frame_every 100 --checkpoint_every 5000
-sweep euler_dt0.01   --integrator euler --dt 0.01   --cap 0,0.45 \
+sweep euler_dt0.01   --integrator euler --dt 0.01   --cap "$CAPS" \
   --steps 150000 --frame_every 200 --checkpoint_every 10000
-sweep euler_dt0.005  --integrator euler --dt 0.005  --cap 0,0.45 \
+sweep euler_dt0.005  --integrator euler --dt 0.005  --cap "$CAPS" \
   --steps 300000 --frame_every 400 --checkpoint_every 20000
-sweep euler_dt0.0025 --integrator euler --dt 0.0025 --cap 0,0.45 \
+sweep euler_dt0.0025 --integrator euler --dt 0.0025 --cap "$CAPS" \
   --steps 600000 --frame_every 800 --checkpoint_every 40000
 
 # COLLECT_ONLY=1: no job is run; what has finished is tabled (collect
@@ -64,10 +69,13 @@ done
 {
   echo "scheme,setting,P0,v0,n_seeds,ngc_frac_mean,ngc_frac_sem,n_clusters_mean,n_clusters_sem,omega_mean,omega_sem"
   for s in euler_dt0.02 euler_dt0.01 euler_dt0.005 euler_dt0.0025; do
-    awk -F, -v sweep="$s" '
+    [ -f "$OUT/$s/table.csv" ] || continue
+    awk -F, -v sweep="$s" -v caps="$CAPS" '
       NR == 1 { for (k = 1; k <= NF; k++) col[$k] = k; next }
       {
-        scheme = $col["cap"] + 0 > 0 ? "euler_cap0.45" : "euler"
+        # cap is a column when swept, else the one value of CAPS
+        cap = ("cap" in col) ? $col["cap"] : caps
+        scheme = cap + 0 > 0 ? "euler_cap0.45" : "euler"
         set = substr(sweep, 9)
         print scheme "," set "," $col["P0"] "," $col["v0"] "," $col["n_seeds"] \
           "," $col["ngc_frac_mean"] "," $col["ngc_frac_sem"] \

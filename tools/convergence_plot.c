@@ -113,6 +113,7 @@ static int plot_one(const row *rows, int n, const char *scheme, int o,
       s[ns + 2].color = colors[c]; s[ns + 2].points = 1;
       if (m > 0) ns += 3;
     }
+  if (ns == 0) return 1;            /* a scheme not in the file: no figure */
   memset(&pl, 0, sizeof pl);
   snprintf(title, sizeof title, "%s, %s (N = 400; markers: mean +- sem)",
            obs_label[o], scheme);
