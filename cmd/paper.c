@@ -421,6 +421,32 @@ static void read_integration(const char *out)
   snprintf(integration, sizeof integration, "%s, %s", version, how);
 }
 
+/* How a claim's value moves with dt, from the committed convergence study
+** (doc/reproduction/convergence.md: N = 400, t = 1500, exact Euler at
+** Lambda = 0.2), for runs integrated that way; "" for the others and for
+** claims the study does not touch (the mean field) or did not measure. */
+static const char *dt_dependence(const char *claim)
+{
+  static const char *const ngc[] = {"v0_star", "ngc_at_v0_star", "vs_",
+    "collapse_", "csd_exponent", "tau_ngc", "state_P0_4_v0_0.1_cluster",
+    "state_P0_8.8_v0_0.1_cluster", "state_P0_4.4_v0_2.6_cluster",
+    "state_P0_8.8_v0_2.6_cluster"};
+  size_t k;
+  if (!strstr(integration, "integrator euler, dt 0.01, exact force"))
+    return "";
+  for (k = 0; k < sizeof ngc / sizeof ngc[0]; k++)
+    if (strncmp(claim, ngc[k], strlen(ngc[k])) == 0)
+      return " Depends on dt: built on N_GC/N, which does not converge in dt "
+             "(convergence.md: 0.41, 0.61, 0.77, 1.00 at P0 4, v0 1.85 for dt "
+             "0.02, 0.01, 0.005, 0.0025).";
+  if (strstr(claim, "omega") || strstr(claim, "confluency"))
+    return " Omega moves little with dt (convergence.md: at most 0.034, "
+           "dt 0.005 -> 0.0025, at P0 4, v0 2.6).";
+  if (strncmp(claim, "msd_beta", 8) == 0 || strncmp(claim, "glassy", 6) == 0)
+    return " Its dependence on dt was not measured.";
+  return "";
+}
+
 /* nc curves y[c n + k] against x[k] (or x[c n + k] if xper), labelled,
 ** with error bars y +- err (err may be NULL) as unlabelled two-point
 ** series of the curve's colour; extra series (e.g. a threshold line)
@@ -774,9 +800,10 @@ static int claims_write(const char *out, const claims *C)
     put_field(fp, c->name);
     fputc(',', fp);
     put_field(fp, c->paper);
-    char note[sizeof c->note + sizeof integration + 8];
+    char note[sizeof c->note + sizeof integration + 256];
     fprintf(fp, ",%.6g,%.6g,%s,", c->afv, c->afv_err, agree_text(c));
-    snprintf(note, sizeof note, "%s [%s]", c->note, integration);
+    snprintf(note, sizeof note, "%s [%s]%s", c->note, integration,
+             dt_dependence(c->name));
     put_field(fp, note);
     fputc('\n', fp);
   }

@@ -216,7 +216,7 @@ static void paper_names_header_only_table(void)
 ** (4, 0.4) it reported the msd_beta of (4, 1.85), the only row). */
 static void paper_partial_grid_not_measured(void)
 {
-  char dir[128], path[160], line[512];
+  char dir[128], path[160], line[4096];
   FILE *fp;
   int found = 0;
   if (access("./afv", X_OK) != 0) { SKIP("./afv not built"); return; }
@@ -229,10 +229,20 @@ static void paper_partial_grid_not_measured(void)
   put_file(dir, "fss/points.csv", "id,N,P0,v0,seed\n0001,400,4,1,1\n");
   put_file(dir, "fss/table.csv", "N,P0,v0,ngc_frac_mean,ngc_frac_sem\n"
            "400,4,1,0.5,nan\n");
+  test_sh("mkdir -p %s/grid/jobs", dir);
+  put_file(dir, "grid/jobs/0001.conf", "integrator euler\ndt 0.01\ncap 0\n");
   test_sh("./afv paper %s > /dev/null 2>&1", dir);
   snprintf(path, sizeof path, "%s/claims.csv", dir);
   if ((fp = fopen(path, "r"))) {
-    while (fgets(line, sizeof line, fp))
+    while (fgets(line, sizeof line, fp)) {
+      /* each note says how the claim moves with dt (the convergence
+      ** study): N_GC/N's claims depend on it, the mean field does not */
+      if (strncmp(line, "v0_star,", 8) == 0)
+        CHECK(strstr(line, "Depends on dt"), "v0_star's note does not say "
+              "that it depends on dt: %.200s", line);
+      if (strncmp(line, "meanfield_P0_star,", 18) == 0)
+        CHECK(!strstr(line, "Depends on dt") && !strstr(line, "with dt"),
+              "the mean field's note gives it a dt dependence: %.200s", line);
       if (strncmp(line, "msd_beta_P0_4_v0_0.4,", 21) == 0) {
         /* claim,paper,afv,afv_err,agrees: afv is NaN ("nan" or "-nan") */
         const char *afv = strchr(line + 21, ',');
@@ -241,6 +251,7 @@ static void paper_partial_grid_not_measured(void)
               && strstr(line, ",not measured,"), "a claim at an unfinished "
               "point was read from another: %.80s", line);
       }
+    }
     fclose(fp);
   }
   CHECK(found, "%s has no msd_beta_P0_4_v0_0.4 claim", path);
