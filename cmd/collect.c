@@ -483,6 +483,7 @@ static int summary_ok(const sweep_table *T, job *J, long *frames,
   kv_file F;
   const char *f;
   int k, st;
+  double fr;
   snprintf(path, sizeof path, "%s/runs/%s/analysis/summary.txt", T->dir, J->id);
   if ((st = kv_read(path, &F, why, sizeof why)) <= 0)
     return st < 0 ? job_fails(J, JOB_MISSING, "")
@@ -502,9 +503,14 @@ static int summary_ok(const sweep_table *T, job *J, long *frames,
                        params[k].key, v);
   }
   f = kv_get(&F, "frames");
-  *frames = f && number_of(f) >= 1 ? (long)number_of(f) : -1;
-  if (*frames < 0) return job_fails(J, JOB_DAMAGED, "summary.txt lacks "
-                                    "frames (an incomplete analysis)");
+  if (!f) return job_fails(J, JOB_DAMAGED, "summary.txt lacks frames (an "
+                           "incomplete analysis)");
+  /* a frame count, checked before the cast: 1e27 would overflow a long */
+  fr = number_of(f);
+  if (!(fr >= 1 && fr <= 1e15 && fr == floor(fr)))
+    return job_fails(J, JOB_DAMAGED, "summary.txt: frames '%s' is not a "
+                     "frame count", f);
+  *frames = (long)fr;
   return 1;
 }
 

@@ -540,6 +540,12 @@ static void collect_verifies_jobs(void)
         "%.0s", base);
   expect_damaged("partial analysis", "0004", "analysed 2 frames of the "
                  "finished run's 3");
+  /* a frame count beyond a long (libFuzzer: UBSan's out-of-range cast) */
+  fake_job("0004", "4", "1", "2", 1.00, 1, 0.5, 3e-9, 30, 0.4, 1.1);
+  shell("sed -i 's/^frames 3/frames 1111111111111111111111111113/' "
+        "%s/c/runs/0004/analysis/summary.txt%.0s", base);
+  expect_damaged("frames beyond a long", "0004", "frames "
+                 "'1111111111111111111111111113' is not a frame count");
   fake_job("0004", "4", "1", "2", 1.00, 1, 0.5, 3e-9, 30, 0.4, 1.1);
   CHECK(afv("collect %s/c") == 0 && !strcmp(read_rel("c/table.csv", buf),
         table), "the repaired sweep: not the table of before (%s)", err_text);
