@@ -99,6 +99,13 @@ int  afv_checkpoint_check_files(const char *path, const afv_checkpoint *c,
                                 char *err, size_t errlen);
 void afv_checkpoint_free(afv_checkpoint *c);
 
+/* A format-2 trajectory frame starts with AFV_TRAJ_FRAME_HEAD bytes: its
+** step (int64) and time (float64), little-endian (io.c).  Decodes them;
+** the step is -1 if it is not in 0 .. 2^63-1. */
+#define AFV_TRAJ_FRAME_HEAD 16
+#define AFV_TRAJ_CELL_BYTES 20  /* then per cell x, y (float64), theta (float32) */
+void afv_traj_frame_head(const unsigned char *b, long long *step, double *t);
+
 /* C(0) in a file (T1 REFERENCE format, io.c): written atomically by afv run,
 ** read back on --resume; n is the number of cells (pairs i < j < n). */
 int    afv_t1_reference_write(const char *path, const afv_t1 *t);

@@ -419,8 +419,8 @@ int afv_atomic_commit(FILE *fp, const char *tmp, const char *path)
 ** then per frame "# step S time T", N lines "x y theta" (%.17g), two blank
 ** lines.  In both formats frames run forward: each step and time larger
 ** than the frame's before. */
-#define TRAJ_HEAD_BYTES 16      /* step and time of a frame */
-#define TRAJ_CELL_BYTES 20      /* x, y (float64) and theta (float32) */
+#define TRAJ_HEAD_BYTES AFV_TRAJ_FRAME_HEAD   /* step and time of a frame */
+#define TRAJ_CELL_BYTES AFV_TRAJ_CELL_BYTES
 #define TRAJ_CHUNK 256          /* cells encoded per fwrite */
 #define TRAJ_TWO_PI 6.28318530717958647692
 
@@ -735,6 +735,13 @@ static int traj_fetch(afv_traj_file *f, int k, long long at, void *buf,
   return AFV_OK;
 }
 
+void afv_traj_frame_head(const unsigned char *b, long long *step, double *t)
+{
+  uint64_t s = get_u64(b);
+  *step = s <= (uint64_t)LLONG_MAX ? (long long)s : -1;
+  *t = get_f64(b + 8);
+}
+
 /* Format 2: every whole record's step and time, checked. */
 static int traj_index(afv_traj_file *f, long long size, char *err,
                       size_t errlen)
@@ -752,15 +759,12 @@ static int traj_index(afv_traj_file *f, long long size, char *err,
     return frame_fail(f, 0, AFV_ENOMEM, err, errlen, "out of memory for "
                       "%lld frames", frames);
   for (k = 0; st == AFV_OK && k < frames; k++) {
-    uint64_t s;
     if ((st = traj_fetch(f, k, 0, b, sizeof b, err, errlen)) != AFV_OK)
       break;
-    s = get_u64(b);
-    f->t[k] = get_f64(b + 8);
-    f->step[k] = s <= (uint64_t)LLONG_MAX ? (long long)s : -1;
+    afv_traj_frame_head(b, &f->step[k], &f->t[k]);
     if (f->step[k] < 0)
       st = frame_fail(f, k, AFV_EFORMAT, err, errlen, "step: %llu is not "
-                      "in 0 .. 2^63-1", (unsigned long long)s);
+                      "in 0 .. 2^63-1", (unsigned long long)get_u64(b));
     else if (!isfinite(f->t[k]))
       st = frame_fail(f, k, AFV_EFORMAT, err, errlen, "time is not finite");
     else if (!runs_forward(f->step, f->t, k, why, sizeof why))

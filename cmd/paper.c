@@ -375,17 +375,18 @@ static char integration[320] = "integration not recorded";
 
 /* "afv VERSION" of the program that wrote the grid's first started run
 ** (its params.txt's first line, "... written by afv 0.3.0 (commit ...)":
-** the version without the commit), or "afv version not recorded".  Job
-** ids are 0001, 0002, ... (afv sweep); a partial grid may lack the first. */
-static void read_version(const char *out, char *buf, size_t len)
+** the version without the commit), or "afv version not recorded".  The
+** runs are taken in points.csv's order; a partial grid may lack some. */
+static void read_version(const plane *P, char *buf, size_t len)
 {
-  char path[PATH_LEN], line[512], version[64];
+  char path[PATH_LEN + 16], line[512], version[64];
   const char *at;
   FILE *fp = NULL;
-  int id;
+  int r, ci = csv_col(&P->points, "id");
   snprintf(buf, len, "afv version not recorded");
-  for (id = 1; id <= 99999 && !fp; id++) {
-    snprintf(path, sizeof path, "%s/grid/runs/%04d/params.txt", out, id);
+  for (r = 0; ci >= 0 && r < P->points.nrow && !fp; r++) {
+    snprintf(path, sizeof path, "%s/runs/%s/params.txt", P->dir,
+             csv_str(&P->points, r, ci));
     fp = fopen(path, "r");
   }
   if (!fp) return;
@@ -395,12 +396,17 @@ static void read_version(const char *out, char *buf, size_t len)
   fclose(fp);
 }
 
-static void read_integration(const char *out)
+/* integration: the afv version and the integrator of the grid's runs, from
+** the first job's configuration (every job of a sweep shares them). */
+static void read_integration(const plane *P)
 {
-  char path[PATH_LEN], line[256], key[64], val[64], version[96], how[160];
+  char path[PATH_LEN + 32], line[256], key[64], val[64], version[96], how[160];
   char integ[64] = "substeps", dt[64] = "?", cap[64] = "0", mm[64] = "?";
   FILE *fp;
-  snprintf(path, sizeof path, "%s/grid/jobs/0001.conf", out);
+  int ci = csv_col(&P->points, "id");
+  if (ci < 0 || P->points.nrow < 1) return;
+  snprintf(path, sizeof path, "%s/jobs/%s.conf", P->dir,
+           csv_str(&P->points, 0, ci));
   if (!(fp = fopen(path, "r"))) return;
   while (fgets(line, sizeof line, fp))
     if (sscanf(line, "%63s %63s", key, val) == 2) {
@@ -417,7 +423,7 @@ static void read_integration(const char *out)
     snprintf(how, sizeof how, "integrator %.20s, dt %.20s, %s%.20s", integ,
              dt, strtod(cap, NULL) > 0 ? "cap " : "exact force",
              strtod(cap, NULL) > 0 ? cap : "");
-  read_version(out, version, sizeof version);
+  read_version(P, version, sizeof version);
   snprintf(integration, sizeof integration, "%s, %s", version, how);
 }
 
@@ -1653,8 +1659,8 @@ int cmd_paper(int argc, char **argv)
   out = argv[1];
   if (strlen(out) > RUN_PATH_MAX - 64) return bad_input("paper: OUT too long");
   read_scale(out);
-  read_integration(out);
   if (!plane_read(out, &P)) { plane_free(&P); return EXIT_BAD_INPUT; }
+  read_integration(&P);
   if (!fss_read(out, &F)) { plane_free(&P); return EXIT_BAD_INPUT; }
   snprintf(path, sizeof path, "%s/figures", out);
   if (mkdir(path, 0777) != 0 && errno != EEXIST) {

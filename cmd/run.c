@@ -1380,29 +1380,21 @@ static int obs_agrees(ckpt_trust *T)
   return 1;
 }
 
-/* A little-endian 8-byte field of a format-2 frame (io.c writes them). */
-static unsigned long long le_u64(const unsigned char *p)
-{
-  unsigned long long v = 0;
-  int b;
-  for (b = 7; b >= 0; b--) v = v << 8 | p[b];
-  return v;
-}
-
 /* trajectory.dat (format 2, io.c): its text header line, then frames of
-** 16 + 20 N bytes whose first 16 are int64 step and float64 time; the
-** file must end, at the checkpoint's size, with the whole frame of the
-** last frame step.  A format-1 (text) trajectory of afv < 0.3 is not
+** AFV_TRAJ_FRAME_HEAD + AFV_TRAJ_CELL_BYTES N bytes (step and time, which
+** afv_traj_frame_head decodes, then the cells); the file must end, at the
+** checkpoint's size, with the whole frame of the last frame step.  A format-1 (text) trajectory of afv < 0.3 is not
 ** appended to: its run is finished with the afv that began it. */
 static int traj_agrees(ckpt_trust *T, int fd)
 {
   const run_state *R = T->R;
-  long long end = T->ck->bytes[OUT_TRAJ], frame = 16 + 20LL * R->cfg.N,
+  long long end = T->ck->bytes[OUT_TRAJ], frame = AFV_TRAJ_FRAME_HEAD
+                + (long long)AFV_TRAJ_CELL_BYTES * R->cfg.N,
             due_step = last_due(T->ck->step, R->cfg.frame_every), head, step;
   char line[256], why[160];
-  unsigned char rec[17] = {0};   /* read_span ends what it reads with 0 */
-  double t;
-  unsigned long long bits;
+  unsigned char rec[AFV_TRAJ_FRAME_HEAD + 1] = {0}; /* read_span ends what
+                                                    ** it reads with 0 */
+  double t = 0;
   if (!line_at(fd, 0, end, line, sizeof line)
       || strncmp(line, "# afv trajectory ", 17) != 0)
     return untrusted(T, OUT_TRAJ, "does not start with a trajectory header");
@@ -1415,13 +1407,11 @@ static int traj_agrees(ckpt_trust *T, int fd)
     return end == head ? 1 : untrusted(T, OUT_TRAJ, "is not the header "
                                        "alone (frame_every 0)");
   if (end < head + frame || (end - head) % frame != 0
-      || !read_span(fd, end - frame, end - frame + 16, (char *)rec,
-                    sizeof rec))
+      || !read_span(fd, end - frame, end - frame + AFV_TRAJ_FRAME_HEAD,
+                    (char *)rec, sizeof rec))
     step = -1;
   else
-    step = (long long)le_u64(rec);
-  bits = le_u64(rec + 8);
-  memcpy(&t, &bits, sizeof t);
+    afv_traj_frame_head(rec, &step, &t);
   if (step != due_step || t != (double)step * R->cfg.dt) {
     snprintf(why, sizeof why, "does not end with the whole frame of step "
              "%lld", due_step);

@@ -213,7 +213,11 @@ static void paper_names_header_only_table(void)
 /* A grid with unfinished state points: a claim at a point without a
 ** finished run is "not measured", never read from a neighbouring point
 ** (the code before took the grid's values from table.csv's rows, so at
-** (4, 0.4) it reported the msd_beta of (4, 1.85), the only row). */
+** (4, 0.4) it reported the msd_beta of (4, 1.85), the only row).  The
+** notes name the afv version and integrator of the grid's own runs, taken
+** by points.csv's ids: here 0101 - 0104, 0101 not started, beside a stray
+** runs/0001 of another afv (the code before read jobs/0001.conf and the
+** first of runs/0001, 0002, ... that existed). */
 static void paper_partial_grid_not_measured(void)
 {
   char dir[128], path[160], line[4096];
@@ -222,24 +226,34 @@ static void paper_partial_grid_not_measured(void)
   if (access("./afv", X_OK) != 0) { SKIP("./afv not built"); return; }
   snprintf(dir, sizeof dir, "/tmp/afv_paper_test_partial.%ld", (long)getpid());
   test_sh("rm -rf %s && mkdir -p %s/grid %s/fss", dir, dir, dir);
-  put_file(dir, "grid/points.csv", "id,P0,v0,seed\n0001,4,0.4,1\n"
-           "0002,4,1.85,1\n0003,8,0.4,1\n0004,8,1.85,1\n");
+  put_file(dir, "grid/points.csv", "id,P0,v0,seed\n0101,4,0.4,1\n"
+           "0102,4,1.85,1\n0103,8,0.4,1\n0104,8,1.85,1\n");
   put_file(dir, "grid/table.csv", "P0,v0,n_seeds,ngc_frac_mean,ngc_frac_sem,"
            "msd_beta_mean,msd_beta_sem\n4,1.85,1,0.6,nan,1.5,nan\n");
   put_file(dir, "fss/points.csv", "id,N,P0,v0,seed\n0001,400,4,1,1\n");
   put_file(dir, "fss/table.csv", "N,P0,v0,ngc_frac_mean,ngc_frac_sem\n"
            "400,4,1,0.5,nan\n");
-  test_sh("mkdir -p %s/grid/jobs", dir);
-  put_file(dir, "grid/jobs/0001.conf", "integrator euler\ndt 0.01\ncap 0\n");
+  test_sh("mkdir -p %s/grid/jobs %s/grid/runs/0001 %s/grid/runs/0102", dir,
+          dir, dir);
+  put_file(dir, "grid/jobs/0101.conf", "integrator euler\ndt 0.01\ncap 0\n");
+  put_file(dir, "grid/jobs/0001.conf", "integrator euler\ndt 0.02\ncap 0\n");
+  put_file(dir, "grid/runs/0001/params.txt", "# afv run parameters, written "
+           "by afv 0.0.1 (commit 0)\n");
+  put_file(dir, "grid/runs/0102/params.txt", "# afv run parameters, written "
+           "by afv 9.8.7 (commit 0)\n");
   test_sh("./afv paper %s > /dev/null 2>&1", dir);
   snprintf(path, sizeof path, "%s/claims.csv", dir);
   if ((fp = fopen(path, "r"))) {
     while (fgets(line, sizeof line, fp)) {
       /* each note says how the claim moves with dt (the convergence
       ** study): N_GC/N's claims depend on it, the mean field does not */
-      if (strncmp(line, "v0_star,", 8) == 0)
+      if (strncmp(line, "v0_star,", 8) == 0) {
         CHECK(strstr(line, "Depends on dt"), "v0_star's note does not say "
               "that it depends on dt: %.200s", line);
+        CHECK(strstr(line, "[afv 9.8.7, integrator euler, dt 0.01,"),
+              "v0_star's note does not name the grid runs' afv and dt: "
+              "%.300s", line);
+      }
       if (strncmp(line, "meanfield_P0_star,", 18) == 0)
         CHECK(!strstr(line, "Depends on dt") && !strstr(line, "with dt"),
               "the mean field's note gives it a dt dependence: %.200s", line);
