@@ -49,9 +49,9 @@
 /* The library's version (semantic versioning); the program prints it with
 ** `afv --version`, and the Makefile reads it from here. */
 #define AFV_VERSION_MAJOR 0
-#define AFV_VERSION_MINOR 3
+#define AFV_VERSION_MINOR 4
 #define AFV_VERSION_PATCH 0
-#define AFV_VERSION "0.3.0"
+#define AFV_VERSION "0.4.0"
 
 /* ---- status codes ------------------------------------------------------ */
 #define AFV_OK           0  /* success */
@@ -432,7 +432,9 @@ typedef struct afv_protocol {
 /* Initialises s (afv_sim_new'd) at the start of pr for n cells with p, b,
 ** d, relaxes it at v0 = 0 as pr says (rep: its report; mon, ctx as for
 ** afv_relax), and leaves it at step 0 with d's v0 on, ready for
-** afv_sim_step.  Status as afv_sim_init (the start), then as afv_relax. */
+** afv_sim_step.  A generated start's centres (all but GIVEN) are numbered
+** in afv_spatial_order before the angles are drawn, for memory locality.
+** Status as afv_sim_init (the start), then as afv_relax. */
 int afv_protocol_start(afv_sim *s, int n, const afv_params *p,
                        const afv_box *b, const afv_dyn *d,
                        const afv_protocol *pr, afv_relax_report *rep,

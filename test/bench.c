@@ -38,6 +38,12 @@
 **     states (compare_sizes); prints
 **     compare state=STATE N=N vs=400 us_400=X us_N=Y ratio=R copies=C
 **       threads=T
+**   test/bench --numbering random|cluster N [STEPS]
+**     the state as numbered (afv_spatial_order) against the same state
+**     with its cells numbered at random, as drawn centres come, stepped
+**     one step each in turn (compare_numbering); prints
+**     numbering state=STATE N=N us_spatial=X us_shuffled=Y ratio=R
+**       steps=S threads=T
 **   test/bench --threads random|cluster N [CHUNKS]     (OpenMP build)
 **     1 against 2 threads on the same steps, and what 2 threads give
 **     for a loop of independent arithmetic at the same moments
@@ -293,6 +299,61 @@ static int compare_sizes(const char *name, int cluster, int n, int copies)
   return 0;
 }
 
+/* The n-cell state against a copy whose cells are numbered at random (a
+** fixed shuffle), each stepped COMPARE_WARM steps untimed, then one timed
+** step each in turn, `steps` times: the cost of memory order alone, at
+** the same age and machine mode (the two are the same tissue relabelled,
+** so their noise differs only in which cell draws which stream). */
+static int compare_numbering(const char *name, int cluster, int n, int steps)
+{
+  afv_sim a, b;
+  double t_a = 0, t_b = 0, t = 0, *r = NULL, *th = NULL;
+  int *perm = NULL, k, st;
+  unsigned long long x = 0x9e3779b97f4a7c15ULL;
+  memset(&a, 0, sizeof a);
+  memset(&b, 0, sizeof b);
+  st = make_state(&a, cluster, n);
+  r = malloc((size_t)n * 2 * sizeof *r);
+  th = malloc((size_t)n * sizeof *th);
+  perm = malloc((size_t)n * sizeof *perm);
+  if (st == AFV_OK && (!r || !th || !perm)) st = AFV_ENOMEM;
+  for (k = 0; st == AFV_OK && k < n; k++) perm[k] = k;
+  for (k = n - 1; st == AFV_OK && k > 0; k--) {    /* Fisher-Yates */
+    int j, tmp;
+    x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+    j = (int)((x >> 33) % (unsigned long long)(k + 1));
+    tmp = perm[k]; perm[k] = perm[j]; perm[j] = tmp;
+  }
+  for (k = 0; st == AFV_OK && k < n; k++) {
+    r[2*k] = a.r[2*perm[k]];
+    r[2*k+1] = a.r[2*perm[k]+1];
+    th[k] = a.theta[perm[k]];
+  }
+  if (st == AFV_OK) st = afv_sim_init(&b, n, r, th, &a.par, &a.box, &a.dyn);
+  if (st == AFV_OK && (time_steps(&a, 0, COMPARE_WARM) < 0
+                       || time_steps(&b, 0, COMPARE_WARM) < 0)) st = -1;
+  for (k = 0; k < steps && st == AFV_OK; k++) {
+    if ((t = time_steps(&a, 0, 1)) < 0) st = -1;
+    t_a += t;
+    if (st == AFV_OK && (t = time_steps(&b, 0, 1)) < 0) st = -1;
+    t_b += t;
+  }
+  afv_sim_free(&a);
+  afv_sim_free(&b);
+  free(r);
+  free(th);
+  free(perm);
+  if (st != AFV_OK) {
+    if (st > 0) fprintf(stderr, "bench: %s\n", afv_strerror(st));
+    return 1;
+  }
+  printf("numbering state=%s N=%d us_spatial=%.4g us_shuffled=%.4g "
+         "ratio=%.3f steps=%d threads=%d\n", name, n,
+         1e6 * t_a / ((double)steps * n), 1e6 * t_b / ((double)steps * n),
+         t_b / t_a, steps, threads());
+  return 0;
+}
+
 #ifdef _OPENMP
 #define CHUNK_STEPS 12
 #define REFERENCE_ITERATIONS 2000000L
@@ -379,26 +440,30 @@ static int usage(void)
   fprintf(stderr,
           "usage: bench random|cluster|random-force|cluster-force N [STEPS]\n"
           "       bench --vs-400 random|cluster N [COPIES]   (default 100)\n"
+          "       bench --numbering random|cluster N [STEPS] (default 20)\n"
           "       bench --threads random|cluster N [CHUNKS]  (default 20; "
           "OpenMP build)\n");
   return 2;
 }
 
-/* The comparisons' command lines: argv[1] is --vs-400 or --threads. */
+/* The comparisons' command lines: argv[1] is --vs-400, --numbering or
+** --threads. */
 static int compare_main(int argc, char **argv)
 {
   int threads_mode = strcmp(argv[1], "--threads") == 0, cluster, n, count;
+  int numbering = strcmp(argv[1], "--numbering") == 0;
   if (argc < 4 || argc > 5) return usage();
   if (strcmp(argv[2], "random") != 0 && strcmp(argv[2], "cluster") != 0)
     return usage();
   cluster = strcmp(argv[2], "cluster") == 0;
-  count = threads_mode ? 20 : 100;
+  count = threads_mode || numbering ? 20 : 100;
   if (!parse_int(argv[3], 2, &n)
       || (argc > 4 && !parse_int(argv[4], 1, &count))) {
     fprintf(stderr, "bench: N must be an integer >= 2 and the count an "
             "integer >= 1\n");
     return 2;
   }
+  if (numbering) return compare_numbering(argv[2], cluster, n, count);
   if (!threads_mode) return compare_sizes(argv[2], cluster, n, count);
 #ifdef _OPENMP
   return compare_threads(argv[2], cluster, n, count);
@@ -417,6 +482,7 @@ int main(int argc, char **argv)
   double t[REPEATS];
   int n, steps, k, state = -1, st;
   if (argc >= 2 && (strcmp(argv[1], "--vs-400") == 0
+                    || strcmp(argv[1], "--numbering") == 0
                     || strcmp(argv[1], "--threads") == 0))
     return compare_main(argc, argv);
   if (argc >= 2)

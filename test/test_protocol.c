@@ -141,6 +141,18 @@ static int protocol_by_hand(afv_sim *s, int n, const afv_params *p,
   else if (pr->start == AFV_START_RANDOM)
     afv_init_random(n, d->seed, b, pr->side, r);
   else memcpy(r, pr->r, (size_t)(2 * n) * sizeof(double));
+  if (st == AFV_OK && pr->start != AFV_START_GIVEN) {  /* cell list order */
+    double *q = malloc((size_t)(2 * n) * sizeof(double));
+    int *perm = malloc((size_t)n * sizeof(int)), i;
+    st = q && perm ? afv_spatial_order(n, r, p->l, b, perm) : AFV_ENOMEM;
+    for (i = 0; st == AFV_OK && i < n; i++) {
+      q[2*i] = r[2 * perm[i]];
+      q[2*i+1] = r[2 * perm[i] + 1];
+    }
+    if (st == AFV_OK) memcpy(r, q, (size_t)(2 * n) * sizeof(double));
+    free(q);
+    free(perm);
+  }
   if (pr->theta) memcpy(th, pr->theta, (size_t)n * sizeof(double));
   else afv_init_angles(n, d->seed, th);
   if (st == AFV_OK) st = afv_sim_init(s, n, r, th, p, b, d);
@@ -155,9 +167,9 @@ static int protocol_by_hand(afv_sim *s, int n, const afv_params *p,
 /* afv_protocol_start is the paper's protocol in one call, the one afv run
 ** makes: every start (the authors' square, a lattice, uniform, given
 ** positions and angles), unrelaxed, relaxed by the flow at v0 = 0 or by
-** FIRE, gives the bits of the calls made one by one, and ends at step 0
-** with v0 on again; unrelaxed, its report holds the start's energy and
-** force. */
+** FIRE, gives the bits of the calls made one by one (a generated start
+** numbered in afv_spatial_order), and ends at step 0 with v0 on again;
+** unrelaxed, its report holds the start's energy and force. */
 static void test_protocol_start_is_the_papers_order(void)
 {
   enum { N = 60 };
@@ -222,6 +234,49 @@ static void test_protocol_start_is_the_papers_order(void)
 done:
   afv_sim_delete(s);
   afv_sim_delete(hand);
+}
+
+/* A generated start is numbered in space: cells i and i + 1 lie a few l
+** apart on average, where the order drawn puts them a third of the square
+** apart (about 17 l here), and the centres are the start's own (the same
+** set, only renumbered).  Memory locality: doc/performance.md. */
+static void test_generated_start_numbered_in_space(void)
+{
+  enum { N = 2000 };
+  afv_params p;
+  afv_box b;
+  afv_dyn d;
+  afv_protocol pr;
+  afv_sim *s = afv_sim_new();
+  static double drawn[2 * N];
+  double gap = 0, sum_s[2] = {0, 0}, sum_d[2] = {0, 0};
+  int i;
+  CHECK(s != NULL, "out of memory");
+  if (!s) return;
+  paper_model(N, 4, &p, &b, &d);
+  memset(&pr, 0, sizeof pr);
+  pr.start = AFV_START_SQUARE;
+  pr.side = AFV_AUTHORS_SQUARE * b.Lx;
+  CHECK(afv_protocol_start(s, N, &p, &b, &d, &pr, NULL, NULL, NULL)
+        == AFV_OK, "refused");
+  afv_init_square(N, d.seed, &b, pr.side, drawn);
+  for (i = 0; i < N; i++) {
+    const double *r = afv_sim_positions(s);
+    if (i + 1 < N) {
+      double dx = r[2*i+2] - r[2*i], dy = r[2*i+3] - r[2*i+1];
+      afv_min_image(&b, &dx, &dy);
+      gap += sqrt(dx * dx + dy * dy) / (N - 1);
+    }
+    sum_s[0] += r[2*i];
+    sum_s[1] += r[2*i+1];
+    sum_d[0] += drawn[2*i];
+    sum_d[1] += drawn[2*i+1];
+  }
+  CHECK(gap < 3 * p.l, "cells i and i + 1 are %.3g l apart on average", gap);
+  CHECK(fabs(sum_s[0] - sum_d[0]) < 1e-9 * fabs(sum_d[0])
+        && fabs(sum_s[1] - sum_d[1]) < 1e-9 * fabs(sum_d[1]),
+        "the centres are not the square's drawn ones");
+  afv_sim_delete(s);
 }
 
 /* ---- afv run: the starts and the relaxation's report ------------------- */
@@ -341,6 +396,7 @@ void suite_protocol(void)
   char cmd[128];
   RUN(test_protocol_reduced);
   RUN(test_protocol_start_is_the_papers_order);
+  RUN(test_generated_start_numbered_in_space);
   snprintf(tmp, sizeof tmp, "/tmp/afv_test_protocol.XXXXXX");
   if (!mkdtemp(tmp)) {
     printf("  cannot make a temporary directory\n");
