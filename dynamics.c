@@ -652,8 +652,8 @@ static int start_positions(int n, const afv_box *b, const afv_dyn *d,
 ** (afv_spatial_order), so that cells near in space are near in memory.
 ** The start's centres are drawn independently (or a lattice), so their
 ** numbering means nothing; in the order drawn, a cell's neighbours lie
-** anywhere in memory, which at N = 400000 made each step 2.8 times
-** dearer (doc/performance.md, "Cell numbering"). */
+** anywhere in memory, which at N = 400000 made each step 1.8 - 2.8
+** times dearer (doc/performance.md, "Cell numbering"). */
 static int number_spatially(int n, const afv_params *p, const afv_box *b,
                             double *r)
 {
