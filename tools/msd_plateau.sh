@@ -4,9 +4,13 @@
 # D_eff = 10^-8 floor for glassy states).
 #
 # For each run with analysis/summary.txt it prints one CSV row:
-#   id,P0,v0,seed,lag,msd_rel,plateau_over_v0sq,D_eff,D_eff_from_plateau,msd_beta
+#   id,P0,v0,seed,lag,msd_rel,plateau_over_v0sq,D_eff,D_eff_from_plateau,msd_beta,beta_long
 # lag: D_s's lag (summary's D_s_lag); msd_rel: the relative MSD at that
-# lag (analysis/msd.csv); plateau_over_v0sq = msd_rel / v0^2.  A caged
+# lag (analysis/msd.csv); plateau_over_v0sq = msd_rel / v0^2.  msd_beta
+# is afv collect's (the slope at lags 1% - 10% of the steady window);
+# beta_long is the slope of log msd_rel over the decade that ends at D_s's
+# lag (from the msd.csv lag nearest lag/10 in log to lag): the exponent
+# at the lags of the paper's D_s.  A caged
 # state's relative MSD stops growing at a plateau set by how far a cell
 # rattles in its cage, which grows as v0^2, and D_0 = v0^2 / (2 Dr) grows
 # the same way, so D_eff = msd_rel / (4 lag D_0) of a caged state does not
@@ -16,7 +20,7 @@
 set -e
 SWEEP=${1:?usage: tools/msd_plateau.sh SWEEP_DIR}
 [ -f "$SWEEP/points.csv" ] || { echo "tools/msd_plateau.sh: $SWEEP/points.csv: no such file (not an afv sweep)" >&2; exit 2; }
-echo "id,P0,v0,seed,lag,msd_rel,plateau_over_v0sq,D_eff,D_eff_from_plateau,msd_beta"
+echo "id,P0,v0,seed,lag,msd_rel,plateau_over_v0sq,D_eff,D_eff_from_plateau,msd_beta,beta_long"
 missing=0
 # points.csv: id,P0,v0,seed (header first)
 tail -n +2 "$SWEEP/points.csv" | while IFS=, read -r id P0 v0 seed; do
@@ -29,13 +33,20 @@ tail -n +2 "$SWEEP/points.csv" | while IFS=, read -r id P0 v0 seed; do
     FILENAME ~ /params.txt$/ && $1 == "Dr" { Dr = $2 }
     FILENAME ~ /summary.txt$/ { s[$1] = $2 }
     FILENAME ~ /msd.csv$/ && FNR > 1 {
-      split($0, f, ","); if (f[1] + 0 == s["D_s_lag"] + 0) rel = f[3] }
+      split($0, f, ","); if (f[1] + 0 == s["D_s_lag"] + 0) rel = f[3]
+      # the row nearest lag/10 in log: the decade before the D_s lag
+      d = log(f[1] / (s["D_s_lag"] / 10)); if (d < 0) d = -d
+      if (f[1] > 0 && f[3] > 0 && (near == "" || d < near)) {
+        near = d; lag0 = f[1]; rel0 = f[3] } }
     END {
       if (rel == "" || v0 + 0 == 0) exit
       p = rel / (v0 * v0)
-      printf "%s,%s,%s,%s,%s,%.6g,%.6g,%s,%.6g,%s\n", id, P0, v0, seed,
+      bl = "nan"
+      if (rel0 > 0 && rel > 0 && lag0 != s["D_s_lag"])
+        bl = log(rel / rel0) / log(s["D_s_lag"] / lag0)
+      printf "%s,%s,%s,%s,%s,%.6g,%.6g,%s,%.6g,%s,%.4g\n", id, P0, v0, seed,
              s["D_s_lag"], rel, p, s["D_eff"], p * 2 * Dr / (4 * s["D_s_lag"]),
-             s["msd_beta"]
+             s["msd_beta"], bl
     }' "$run/params.txt" "$run/analysis/summary.txt" "$run/analysis/msd.csv"
 done
 if [ -f "${TMPDIR:-/tmp}/msd_plateau.$$" ]; then
