@@ -44,6 +44,16 @@
 **     one step each in turn (compare_numbering); prints
 **     numbering state=STATE N=N us_spatial=X us_shuffled=Y ratio=R
 **       steps=S threads=T
+**   test/bench --relax-vs-400 N P0 [SECONDS]
+**     the relaxation of the authors' square (afv_protocol_start, the
+**     flow, as afv run makes it) at N against that at 400 cells, in one
+**     process: every SECONDS (default 20) of the N-cell relaxation's CPU
+**     time its monitor runs one whole 400-cell relaxation (seeds 1, 2,
+**     ...), timed apart (compare_relax); prints
+**     relax N=N P0=P0 steps=S stop=STOP us_N=X us_400=Y ratio=R
+**       samples=K ms_per_cell=M peak_rss_kb=K
+**     with X, Y the CPU time per cell and step (one step is 0.01 of
+**     relaxed time) and M the N-cell relaxation's CPU time per cell.
 **   test/bench --threads random|cluster N [CHUNKS]     (OpenMP build)
 **     1 against 2 threads on the same steps, and what 2 threads give
 **     for a loop of independent arithmetic at the same moments
@@ -354,6 +364,105 @@ static int compare_numbering(const char *name, int cluster, int n, int steps)
   return 0;
 }
 
+/* ---- the relaxation against N ---------------------------------------- */
+static double cpu_seconds(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+/* The authors' start at n cells and P0 relaxed by the flow to a kink or
+** max |F| <= RELAX_TOL, as afv run makes it (seed: of the square and the
+** angles); the status, the report in rep. */
+static int relax_square(afv_sim *s, int n, double P0, unsigned long long seed,
+                        afv_relax_report *rep, afv_relax_monitor mon,
+                        void *ctx)
+{
+  afv_params p;
+  afv_box b;
+  afv_dyn d;
+  afv_protocol pr;
+  afv_params_default(&p);
+  p.P0 = P0;
+  afv_dyn_default(&d);
+  d.seed = seed;
+  b.periodic = 1;
+  b.Lx = b.Ly = sqrt(n * PI / PHI);
+  memset(&pr, 0, sizeof pr);
+  pr.start = AFV_START_SQUARE;
+  pr.side = AFV_AUTHORS_SQUARE * b.Lx;
+  pr.relax = AFV_RELAX_FLOW;
+  pr.relax_tol = RELAX_TOL;
+  pr.relax_max_steps = 4000000;
+  return afv_protocol_start(s, n, &p, &b, &d, &pr, rep, mon, ctx);
+}
+
+typedef struct relax_compare {
+  double P0, every;        /* seconds of the big relaxation between samples */
+  double next, aside;      /* CPU time of the next sample; time in samples */
+  double small_time;       /* CPU seconds of the 400-cell relaxations */
+  double small_steps;      /* and their steps */
+  int samples, status;
+} relax_compare;
+
+/* The monitor of the N-cell relaxation: when its CPU time (less the time
+** of earlier samples) passes the next mark, one 400-cell relaxation. */
+static void sample_small(void *ctx, long iter, double energy, double max_force)
+{
+  relax_compare *c = ctx;
+  afv_sim *small;
+  afv_relax_report rep;
+  double t0 = cpu_seconds(), t1;
+  (void)iter; (void)energy; (void)max_force;
+  if (t0 - c->aside < c->next || c->status != AFV_OK) return;
+  if (!(small = afv_sim_new())) { c->status = AFV_ENOMEM; return; }
+  c->status = relax_square(small, SMALL_N, c->P0,
+                           (unsigned long long)(c->samples + 1), &rep, NULL,
+                           NULL);
+  afv_sim_delete(small);
+  t1 = cpu_seconds();
+  c->small_time += t1 - t0;
+  c->small_steps += (double)rep.iterations;
+  c->samples++;
+  c->aside += t1 - t0;
+  c->next += c->every;
+}
+
+static int compare_relax(int n, double P0, double every)
+{
+  relax_compare c;
+  afv_relax_report rep;
+  afv_sim *big = afv_sim_new();
+  double t0, t_big, us_n, us_small;
+  int st;
+  memset(&c, 0, sizeof c);
+  c.P0 = P0;
+  c.every = every;
+  if (!big) return 1;
+  t0 = cpu_seconds();
+  c.next = t0;                          /* a first sample at the start */
+  c.aside = 0;
+  st = relax_square(big, n, P0, SEED, &rep, sample_small, &c);
+  sample_small(&c, 0, 0, 0);            /* and one at the end */
+  t_big = cpu_seconds() - t0 - c.aside;
+  afv_sim_delete(big);
+  if (st == AFV_OK) st = c.status;
+  if (st != AFV_OK || rep.iterations == 0 || c.small_steps == 0) {
+    fprintf(stderr, "bench: %s\n", st != AFV_OK ? afv_strerror(st)
+            : "no relaxation step");
+    return 1;
+  }
+  us_n = 1e6 * t_big / ((double)rep.iterations * n);
+  us_small = 1e6 * c.small_time / (c.small_steps * SMALL_N);
+  printf("relax N=%d P0=%g steps=%ld stop=%s us_N=%.4g us_400=%.4g "
+         "ratio=%.3f samples=%d ms_per_cell=%.4g peak_rss_kb=%ld\n", n, P0,
+         rep.iterations, rep.converged ? "converged" : rep.at_kink ? "kink"
+         : rep.refused ? "refused" : "max_steps", us_n, us_small,
+         us_n / us_small, c.samples, 1e3 * t_big / n, peak_rss_kb());
+  return 0;
+}
+
 #ifdef _OPENMP
 #define CHUNK_STEPS 12
 #define REFERENCE_ITERATIONS 2000000L
@@ -441,6 +550,7 @@ static int usage(void)
           "usage: bench random|cluster|random-force|cluster-force N [STEPS]\n"
           "       bench --vs-400 random|cluster N [COPIES]   (default 100)\n"
           "       bench --numbering random|cluster N [STEPS] (default 20)\n"
+          "       bench --relax-vs-400 N P0 [SECONDS]      (default 20)\n"
           "       bench --threads random|cluster N [CHUNKS]  (default 20; "
           "OpenMP build)\n");
   return 2;
@@ -481,6 +591,13 @@ int main(int argc, char **argv)
   afv_sim sim;
   double t[REPEATS];
   int n, steps, k, state = -1, st;
+  if (argc >= 4 && argc <= 5 && strcmp(argv[1], "--relax-vs-400") == 0) {
+    double P0 = strtod(argv[3], NULL), every = argc > 4 ? strtod(argv[4], NULL)
+                                                     : 20;
+    if (!parse_int(argv[2], 2, &n) || !(P0 > 0) || !(every > 0))
+      return usage();
+    return compare_relax(n, P0, every);
+  }
   if (argc >= 2 && (strcmp(argv[1], "--vs-400") == 0
                     || strcmp(argv[1], "--numbering") == 0
                     || strcmp(argv[1], "--threads") == 0))
