@@ -198,6 +198,10 @@ int  afv_neighbours(afv_geom *g, int n, const double *r, double l,
 int  afv_cells_around(const afv_geom *g, double x, double y, double R,
                       double moved, int *out);
 
+/* Renumbers the n centres r in place in the order of afv_spatial_order,
+** so that cells near in space are near in memory.  AFV_OK or AFV_ENOMEM. */
+int  afv_spatial_renumber(int n, double *r, double l, const afv_box *b);
+
 /* 1 if cell i's list is sorted by direction, as afv_neighbours leaves it
 ** (the clipping relies on it; for assert). */
 int  afv_slots_sorted(const afv_geom *g, int i);

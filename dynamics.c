@@ -648,30 +648,6 @@ static int start_positions(int n, const afv_box *b, const afv_dyn *d,
   }
 }
 
-/* A generated start's cells renumbered in the cell list's order
-** (afv_spatial_order), so that cells near in space are near in memory.
-** The start's centres are drawn independently (or a lattice), so their
-** numbering means nothing; in the order drawn, a cell's neighbours lie
-** anywhere in memory, which at N = 400000 made each step 1.8 - 2.8
-** times dearer (doc/performance.md, "Cell numbering"). */
-static int number_spatially(int n, const afv_params *p, const afv_box *b,
-                            double *r)
-{
-  int *perm = malloc((size_t)(n + 1) * sizeof(int));
-  double *q = malloc((size_t)(2 * n + 1) * sizeof(double));
-  int i, st = perm && q ? afv_spatial_order(n, r, p->l, b, perm) : AFV_ENOMEM;
-  if (st == AFV_OK) {
-    for (i = 0; i < n; i++) {
-      q[2*i] = r[2 * perm[i]];
-      q[2*i+1] = r[2 * perm[i] + 1];
-    }
-    memcpy(r, q, (size_t)(2 * n) * sizeof(double));
-  }
-  free(perm);
-  free(q);
-  return st;
-}
-
 /* The report of a start left unrelaxed: its energy and force. */
 static void unrelaxed(const afv_sim *s, double tol, afv_relax_report *rep)
 {
@@ -696,9 +672,13 @@ int afv_protocol_start(afv_sim *s, int n, const afv_params *p,
   r = malloc((size_t)(2 * n + 1) * sizeof(double));
   theta = malloc((size_t)(n + 1) * sizeof(double));
   st = r && theta ? start_positions(n, b, d, pr, r) : AFV_ENOMEM;
+  /* A generated start's centres are drawn independently (or a lattice),
+  ** so their numbering means nothing; in the order drawn a cell's
+  ** neighbours lie anywhere in memory, which at N = 400000 made each step
+  ** 1.8 - 2.8 times dearer (doc/performance.md, "Cell numbering"). */
   if (st == AFV_OK && pr->start != AFV_START_GIVEN
       && afv_params_check(p, n) == AFV_OK)     /* else afv_sim_init refuses */
-    st = number_spatially(n, p, b, r);
+    st = afv_spatial_renumber(n, r, p->l, b);
   if (st == AFV_OK) {
     if (pr->theta) memcpy(theta, pr->theta, (size_t)n * sizeof(double));
     else afv_init_angles(n, d->seed, theta);

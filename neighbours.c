@@ -27,8 +27,11 @@
 ** in order of distance, with Voro++'s radius test as the stop (DENSE,
 ** dense_candidates); long lists are merge-sorted and reverse slots found
 ** by binary search.
-** afv_cells_around reads the cell list for afv_force_check; afv_spatial_order numbers cells in its order.  The
-** buffers of an afv_geom are grown here too (afv_grow, grow_cells).
+** afv_cells_around reads the cell list for afv_force_check;
+** afv_spatial_order numbers cells in its order, afv_spatial_renumber
+** renumbers centres so (afv_protocol_start's generated starts, make
+** bench).  The buffers of an afv_geom are grown here too (afv_grow,
+** grow_cells).
 ** Every per-cell loop may run on OpenMP threads with the same result bits
 ** (afv_internal.h).
 **
@@ -1472,5 +1475,22 @@ int afv_spatial_order(int n, const double *r, double l, const afv_box *b,
   if (st == AFV_OK) st = fill_bins(&tmp, &G, n, r);
   if (st == AFV_OK) memcpy(perm, tmp.bin_cell, (size_t)n * sizeof(int));
   afv_geom_free(&tmp);
+  return st;
+}
+
+int afv_spatial_renumber(int n, double *r, double l, const afv_box *b)
+{
+  int *perm = malloc((size_t)(n + 1) * sizeof(int)), i;
+  double *q = malloc((size_t)(2 * n + 1) * sizeof(double));
+  int st = perm && q ? afv_spatial_order(n, r, l, b, perm) : AFV_ENOMEM;
+  if (st == AFV_OK) {
+    for (i = 0; i < n; i++) {
+      q[2*i] = r[2 * perm[i]];
+      q[2*i+1] = r[2 * perm[i] + 1];
+    }
+    memcpy(r, q, (size_t)(2 * n) * sizeof(double));
+  }
+  free(perm);
+  free(q);
   return st;
 }

@@ -102,25 +102,6 @@
 #define STEPS_PER_REPEAT 20
 
 /* ---- states ------------------------------------------------------------ */
-/* Renumbers the cells in the order of afv_spatial_order, so that neighbours
-** are close in memory (the order a simulation should give its cells). */
-static int spatial_order(int n, double *r, const afv_box *b)
-{
-  int *perm = malloc((size_t)n * sizeof *perm), k, st;
-  double *copy = malloc((size_t)n * 2 * sizeof *copy);
-  st = perm && copy ? afv_spatial_order(n, r, 1.0, b, perm) : AFV_ENOMEM;
-  if (st == AFV_OK) {
-    memcpy(copy, r, (size_t)n * 2 * sizeof *copy);
-    for (k = 0; k < n; k++) {
-      r[2*k] = copy[2*perm[k]];
-      r[2*k+1] = copy[2*perm[k]+1];
-    }
-  }
-  free(perm);
-  free(copy);
-  return st;
-}
-
 /* The random state at n = TILES^2 m cells (m >= 400): TILES x TILES copies
 ** of the relaxed random state of m cells (same seed), in a box TILES times
 ** as wide, with n fresh angles.  A relaxation of n cells within the budget
@@ -158,7 +139,7 @@ static int tiled_random_state(afv_sim *s, int n)
     p = tile.par;
     d = tile.dyn;
     afv_init_angles(n, SEED, th);
-    st = spatial_order(n, r, &b);
+    st = afv_spatial_renumber(n, r, 1.0, &b);
   }
   if (st == AFV_OK) st = afv_sim_init(s, n, r, th, &p, &b, &d);
   afv_sim_free(&tile);
@@ -194,7 +175,7 @@ static int make_state(afv_sim *s, int cluster, int n)
   st = AFV_OK;
   if (cluster) st = afv_init_cluster(n, CLUSTER_SPACING, &b, r);
   else afv_init_random(n, SEED, &b, 0, r);
-  if (st == AFV_OK) st = spatial_order(n, r, &b);
+  if (st == AFV_OK) st = afv_spatial_renumber(n, r, 1.0, &b);
   if (st == AFV_OK) st = afv_sim_init(s, n, r, th, &p, &b, &d);
   if (st == AFV_OK)
     st = afv_relax(s, RELAX_TOL, (long)fmax(RELAX_MIN_STEPS, RELAX_BUDGET / n),
