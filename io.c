@@ -419,8 +419,6 @@ int afv_atomic_commit(FILE *fp, const char *tmp, const char *path)
 ** then per frame "# step S time T", N lines "x y theta" (%.17g), two blank
 ** lines.  In both formats frames run forward: each step and time larger
 ** than the frame's before. */
-#define TRAJ_HEAD_BYTES AFV_TRAJ_FRAME_HEAD   /* step and time of a frame */
-#define TRAJ_CELL_BYTES AFV_TRAJ_CELL_BYTES
 #define TRAJ_CHUNK 256          /* cells encoded per fwrite */
 #define TRAJ_TWO_PI 6.28318530717958647692
 
@@ -497,18 +495,18 @@ int afv_traj_write_header(FILE *fp, int n, const afv_box *b)
 int afv_traj_write_frame(FILE *fp, long long step, double t, int n,
                          const double *r, const double *theta)
 {
-  unsigned char buf[TRAJ_CHUNK * TRAJ_CELL_BYTES];
+  unsigned char buf[TRAJ_CHUNK * AFV_TRAJ_CELL_BYTES];
   int i, m = 0;
   put_u64(buf, (uint64_t)step);
   put_f64(buf + 8, t);
-  fwrite(buf, 1, TRAJ_HEAD_BYTES, fp);
+  fwrite(buf, 1, AFV_TRAJ_FRAME_HEAD, fp);
   for (i = 0; i < n; i++) {
-    unsigned char *p = buf + (size_t)m * TRAJ_CELL_BYTES;
+    unsigned char *p = buf + (size_t)m * AFV_TRAJ_CELL_BYTES;
     put_f64(p, r[2*i]);
     put_f64(p + 8, r[2*i+1]);
     put_f32(p + 16, theta ? stored_angle(theta[i]) : 0.0f);
     if (++m == TRAJ_CHUNK || i == n - 1) {
-      fwrite(buf, TRAJ_CELL_BYTES, (size_t)m, fp);
+      fwrite(buf, AFV_TRAJ_CELL_BYTES, (size_t)m, fp);
       m = 0;
     }
   }
@@ -747,7 +745,7 @@ static int traj_index(afv_traj_file *f, long long size, char *err,
                       size_t errlen)
 {
   long long frames = (size - f->head) / f->record;
-  unsigned char b[TRAJ_HEAD_BYTES];
+  unsigned char b[AFV_TRAJ_FRAME_HEAD];
   char why[160];
   int k, st = AFV_OK;
   if (frames > INT_MAX)
@@ -802,7 +800,7 @@ int afv_traj_open(afv_traj_file *f, const char *path, char *err,
   f->n = head.n;
   f->box = head.box;
   f->head = (long long)L.len + 1;
-  f->record = TRAJ_HEAD_BYTES + (long long)TRAJ_CELL_BYTES * f->n;
+  f->record = AFV_TRAJ_FRAME_HEAD + (long long)AFV_TRAJ_CELL_BYTES * f->n;
   if (st == AFV_OK && f->format == 2 && !L.newline)
     f->nframes = 0;                       /* a header cut short: no frame */
   else if (st == AFV_OK && f->format == 2 && !(f->fp = fopen(path, "rb")))
@@ -830,13 +828,13 @@ int afv_traj_frame(afv_traj_file *f, int k, double *r, double *theta,
                       n * sizeof(double));
     return AFV_OK;
   }
-  if (!f->buf && !(f->buf = malloc(n * TRAJ_CELL_BYTES)))
+  if (!f->buf && !(f->buf = malloc(n * AFV_TRAJ_CELL_BYTES)))
     return frame_fail(f, k, AFV_ENOMEM, err, errlen, "out of memory");
-  if ((st = traj_fetch(f, k, TRAJ_HEAD_BYTES, f->buf, n * TRAJ_CELL_BYTES,
-                       err, errlen)) != AFV_OK)
+  if ((st = traj_fetch(f, k, AFV_TRAJ_FRAME_HEAD, f->buf,
+                       n * AFV_TRAJ_CELL_BYTES, err, errlen)) != AFV_OK)
     return st;
   for (i = 0; i < n; i++) {
-    const unsigned char *p = f->buf + i * TRAJ_CELL_BYTES;
+    const unsigned char *p = f->buf + i * AFV_TRAJ_CELL_BYTES;
     r[2*i] = get_f64(p);
     r[2*i+1] = get_f64(p + 8);
     if (theta) theta[i] = get_f32(p + 16);

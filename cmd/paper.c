@@ -396,8 +396,9 @@ static void read_version(const plane *P, char *buf, size_t len)
   fclose(fp);
 }
 
-/* integration: the afv version and the integrator of the grid's runs, from
-** the first job's configuration (every job of a sweep shares them). */
+/* integration: the integrator of the grid's runs, from the first job's
+** configuration (every job of a sweep shares it), and their afv version
+** (read_version). */
 static void read_integration(const plane *P)
 {
   char path[PATH_LEN + 32], line[256], key[64], val[64], version[96], how[160];

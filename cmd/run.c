@@ -1383,8 +1383,9 @@ static int obs_agrees(ckpt_trust *T)
 /* trajectory.dat (format 2, io.c): its text header line, then frames of
 ** AFV_TRAJ_FRAME_HEAD + AFV_TRAJ_CELL_BYTES N bytes (step and time, which
 ** afv_traj_frame_head decodes, then the cells); the file must end, at the
-** checkpoint's size, with the whole frame of the last frame step.  A format-1 (text) trajectory of afv < 0.3 is not
-** appended to: its run is finished with the afv that began it. */
+** checkpoint's size, with the whole frame of the last frame step.  A
+** format-1 (text) trajectory of afv < 0.3 is not appended to: its run is
+** finished with the afv that began it. */
 static int traj_agrees(ckpt_trust *T, int fd)
 {
   const run_state *R = T->R;

@@ -423,7 +423,6 @@ static int compare_relax(int n, double P0, double every)
   if (!big) return 1;
   t0 = cpu_seconds();
   c.next = t0;                          /* a first sample at the start */
-  c.aside = 0;
   st = relax_square(big, n, P0, SEED, &rep, sample_small, &c);
   c.next = -HUGE_VAL;
   sample_small(&c, 0, 0, 0);            /* and one at the end */
