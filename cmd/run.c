@@ -2115,35 +2115,46 @@ static const char *const run_files[] = {
   "params.txt", "checkpoint.txt", "trajectory.dat", LOCK_FILE,
   "trajectory.xyz", "log.txt", "t1_reference.txt", "cells.txt", "final.svg"};
 
+/* DIR's params.txt: 1 if afv wrote it, 0 if there is none, -1 if it is
+** a user's file (it does not start with afv's first line). */
+static int params_written_by_afv(const char *dir)
+{
+  char path[RUN_PATH_MAX + 32], line[64] = "";
+  struct stat sb;
+  FILE *fp;
+  snprintf(path, sizeof path, "%s/params.txt", dir);
+  if (lstat(path, &sb) != 0) return 0;
+  if ((fp = fopen(path, "r"))) {
+    if (!fgets(line, sizeof line, fp)) line[0] = 0;
+    fclose(fp);
+  }
+  return strncmp(line, "# afv run parameters", 20) == 0 ? 1 : -1;
+}
+
 /* 1 (with a message) if DIR holds files of a run's names that afv did not
 ** write: a params.txt that is not afv's, or any of run_files, or a
 ** snapshot, without a params.txt.  A fresh run would overwrite them
 ** (before, a user's own log.txt and trajectory.dat were, without a
 ** word).  An empty observables.csv is the lock of a run being started
-** (it writes params.txt next), not a user's file. */
+** (it writes params.txt next), not a user's file.  This look comes before
+** the lock, so a run started at the same moment may write its files
+** during it: they are that run's when DIR is locked, or when afv's
+** params.txt has appeared meanwhile (before, such a run's params.txt was
+** reported as a foreign file, "holds params.txt but no params.txt"). */
 static int foreign_files(const char *dir)
 {
-  char path[RUN_PATH_MAX + 300], line[64] = "";
+  char path[RUN_PATH_MAX + 300];
   struct stat sb;
   size_t k;
-  FILE *fp;
+  long holder;
   DIR *d;
   struct dirent *e;
   const char *found = NULL;
-  snprintf(path, sizeof path, "%s/params.txt", dir);
-  if (lstat(path, &sb) == 0) {
-    if ((fp = fopen(path, "r"))) {
-      if (!fgets(line, sizeof line, fp)) line[0] = 0;
-      fclose(fp);
-    }
-    if (strncmp(line, "# afv run parameters", 20) == 0) return 0;
-    fprintf(stderr, "afv run: %s is not afv's (it does not start with '# afv "
-            "run parameters'): afv run writes only into a new or empty "
-            "directory or a run directory of its own; choose another "
-            "--out\n", path);
-    return 1;
-  }
-  for (k = 0; !found && k < sizeof run_files / sizeof run_files[0]; k++) {
+  int params = params_written_by_afv(dir);
+  if (params > 0) return 0;
+  if (params < 0) found = "params.txt";
+  /* run_files[0] is params.txt, looked at above */
+  for (k = 1; !found && k < sizeof run_files / sizeof run_files[0]; k++) {
     snprintf(path, sizeof path, "%s/%s", dir, run_files[k]);
     if (lstat(path, &sb) == 0 && !(strcmp(run_files[k], LOCK_FILE) == 0
                                    && S_ISREG(sb.st_mode) && sb.st_size == 0))
@@ -2155,9 +2166,21 @@ static int foreign_files(const char *dir)
     closedir(d);
   }
   if (!found) return 0;
-  fprintf(stderr, "afv run: %s holds %s but no params.txt: not a run "
-          "directory of afv, and a run would overwrite it; choose another "
-          "--out, or move that file away\n", dir, found);
+  if ((holder = run_lock_holder(dir)) > 0) {
+    report_in_use(dir, holder);
+    return 1;
+  }
+  if (params == 0 && params_written_by_afv(dir) > 0)
+    return 0;   /* a run's, started meanwhile: the lock or holds_run says */
+  if (params < 0)
+    fprintf(stderr, "afv run: %s/params.txt is not afv's (it does not start "
+            "with '# afv run parameters'): afv run writes only into a new or "
+            "empty directory or a run directory of its own; choose another "
+            "--out\n", dir);
+  else
+    fprintf(stderr, "afv run: %s holds %s but no params.txt: not a run "
+            "directory of afv, and a run would overwrite it; choose another "
+            "--out, or move that file away\n", dir, found);
   return 1;
 }
 

@@ -15,6 +15,7 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
@@ -287,6 +288,48 @@ static int refused_rightly(const char *name)
   return ok;
 }
 
+/* Writes a cells file of n rows (P0 near 4.5, v0 near 0.3) to path; 1 if
+** written. */
+static int write_cells_file(const char *path, int n, unsigned long long seed)
+{
+  FILE *fp = fopen(path, "w");
+  int i;
+  if (!fp) return 0;
+  test_rng_seed(seed);
+  fputs("# theta v0 Dr KA KP A0 P0\n", fp);
+  for (i = 0; i < n; i++)
+    fprintf(fp, "%.17g %.17g 0.1 1 1 3.14159 %.17g\n",
+            6.28 * test_rng_uniform(), 0.3 + 1e-3 * test_rng_uniform(),
+            4.5 + 1e-3 * test_rng_uniform());
+  return fclose(fp) == 0;
+}
+
+/* A child that takes the fcntl lock on path and holds it until killed;
+** its pid, or -1 if it could not lock. */
+static pid_t hold_lock(const char *path)
+{
+  int ready[2];
+  char c = 0;
+  pid_t pid;
+  if (pipe(ready) != 0) return -1;
+  if ((pid = fork()) == 0) {
+    struct flock fl;
+    int fd = open(path, O_RDWR);
+    memset(&fl, 0, sizeof fl);
+    fl.l_type = F_WRLCK;
+    fl.l_whence = SEEK_SET;
+    c = fd >= 0 && fcntl(fd, F_SETLK, &fl) == 0;
+    if (write(ready[1], &c, 1) != 1 || !c) _exit(1);
+    for (;;) pause();
+  }
+  close(ready[1]);
+  if (read(ready[0], &c, 1) != 1) c = 0;
+  close(ready[0]);
+  if (c == 1) return pid;
+  exit_status(pid);
+  return -1;
+}
+
 /* Two fresh runs started together (released by one pipe) into the same
 ** --out: exactly one runs (exit 0, its outputs equal to a run alone), the
 ** other is refused (exit 2, in use).  A 6000-row cells file, copied into
@@ -303,20 +346,12 @@ static void test_concurrent_fresh_runs(void)
   static const char *const files[] = {"cells.txt", "params.txt",
                                       "trajectory.dat", "observables.csv",
                                       "checkpoint.txt", "t1_reference.txt"};
-  int trial, i;
-  FILE *fp;
+  int trial;
   snprintf(cells, sizeof cells, "%s/cells6k.txt", root);
-  if (!(fp = fopen(cells, "w"))) {
+  if (!write_cells_file(cells, 6000, 22)) {
     CHECK(0, "cannot write %s", cells);
     return;
   }
-  test_rng_seed(22);
-  fputs("# theta v0 Dr KA KP A0 P0\n", fp);
-  for (i = 0; i < 6000; i++)
-    fprintf(fp, "%.17g %.17g 0.1 1 1 3.14159 %.17g\n",
-            6.28 * test_rng_uniform(), 0.3 + 1e-3 * test_rng_uniform(),
-            4.5 + 1e-3 * test_rng_uniform());
-  fclose(fp);
   snprintf(ref, sizeof ref, "%s/c_ref", root);
   argv[12] = ref;
   CHECK(exit_status(start_afv(argv, "ref.txt", NULL)) == 0, "the reference "
@@ -348,6 +383,57 @@ static void test_concurrent_fresh_runs(void)
         CHECK(same_file(sub, "c_ref", files[k]), "trial %d: the winner's "
               "%s differs from a run alone", trial, files[k]);
   }
+}
+
+/* A fresh run asks for the lock's holder at once, reads its cells, and
+** only then looks at the directory and takes the lock.  A run started at
+** the same moment can lock the directory and write its files in between:
+** the second run then found the first's params.txt (or trajectory.dat)
+** and called them a user's files, "holds params.txt but no params.txt"
+** (CI saw it once in test_concurrent_fresh_runs).  That moment, held
+** still: the run reads 30000 cells (about 0.6 s here) while, 0.1 s after
+** its start, a child locks observables.csv in its directory beside a
+** trajectory.dat, without params.txt.  The run is refused as the
+** directory's second writer, naming the holder, and changes nothing.
+** (The code before: "holds trajectory.dat but no params.txt".) */
+static void test_run_locked_meanwhile_is_in_use(void)
+{
+  char dir[512], cells[512], lock[600], want[64], *before, *after;
+  const char *argv[] = {"afv", "run", "--cells", cells, "--steps", "0",
+                        "--relax_max_steps", "0", "--svg_every", "0",
+                        "--quiet", "--out", dir, NULL};
+  long nb, na, len;
+  pid_t run, holder;
+  int st;
+  char *e;
+  snprintf(dir, sizeof dir, "%s/meanwhile", root);
+  snprintf(cells, sizeof cells, "%s/cells30k.txt", root);
+  snprintf(lock, sizeof lock, "%s/observables.csv", dir);
+  CHECK(write_cells_file(cells, 30000, 23), "cannot write %s", cells);
+  CHECK(test_sh("mkdir -p %s", dir) == 0, "mkdir %s", dir);
+  run = start_afv(argv, "m.txt", NULL);
+  sleep_ms(100);   /* past its first look at the lock, before its second */
+  test_sh("echo t >%s/trajectory.dat && echo o >%s", dir, lock);
+  holder = hold_lock(lock);
+  CHECK(holder > 0, "the child could not lock %s", lock);
+  before = picture("meanwhile", &nb);
+  st = exit_status(run);
+  after = picture("meanwhile", &na);
+  if (holder > 0) {
+    kill(holder, SIGKILL);
+    exit_status(holder);
+  }
+  snprintf(lock, sizeof lock, "%s/m.txt", root);
+  e = read_whole(lock, &len);
+  snprintf(want, sizeof want, "in use by process %ld", (long)holder);
+  CHECK(st == 2 && e && strstr(e, want), "a run whose directory was locked "
+        "while it read its cells: exit %d, want 2 and '%s': %s", st, want,
+        e ? e : "(nothing)");
+  CHECK(nb == na && memcmp(before, after, (size_t)nb) == 0, "the refused "
+        "run changed the directory");
+  free(e);
+  free(before);
+  free(after);
 }
 
 /* ---- a resume is all or nothing ----------------------------------------- */
@@ -815,6 +901,7 @@ void suite_runjob(void)
   test_sh("rm -rf %s && mkdir -p %s", root, root);
   RUN(test_second_writer_refused);
   RUN(test_concurrent_fresh_runs);
+  RUN(test_run_locked_meanwhile_is_in_use);
   RUN(test_lock_survives_cleaning);
   RUN(test_failed_resume_changes_nothing);
   RUN(test_uncomputable_parameters_refused);
