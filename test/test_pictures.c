@@ -49,7 +49,7 @@ static char *read_all(const char *path)
 
 static void write_text(const char *name, const char *text)
 {
-  char p[128];
+  char p[512];   /* tmpdir (64) and any name of this file (256) */
   FILE *fp = fopen(in_tmp(p, sizeof p, name), "w");
   CHECK(fp != NULL, "cannot create %s", p);
   if (!fp) return;
