@@ -125,8 +125,9 @@ static void test_protocol_reduced(void)
 
 /* ---- afv_protocol_start: the protocol in one call ---------------------- */
 /* The start of pr built, initialised and relaxed by the library's calls
-** one by one (afv_init_*, afv_init_angles, afv_sim_init, afv_relax or
-** afv_relax_fire): what afv_protocol_start must give.  AFV_OK or a status. */
+** one by one (afv_init_*, afv_spatial_renumber, afv_init_angles,
+** afv_sim_init, afv_relax or afv_relax_fire): what afv_protocol_start
+** must give.  AFV_OK or a status. */
 static int protocol_by_hand(afv_sim *s, int n, const afv_params *p,
                             const afv_box *b, const afv_dyn *d,
                             const afv_protocol *pr, afv_relax_report *rep)
@@ -141,18 +142,8 @@ static int protocol_by_hand(afv_sim *s, int n, const afv_params *p,
   else if (pr->start == AFV_START_RANDOM)
     afv_init_random(n, d->seed, b, pr->side, r);
   else memcpy(r, pr->r, (size_t)(2 * n) * sizeof(double));
-  if (st == AFV_OK && pr->start != AFV_START_GIVEN) {  /* cell list order */
-    double *q = malloc((size_t)(2 * n) * sizeof(double));
-    int *perm = malloc((size_t)n * sizeof(int)), i;
-    st = q && perm ? afv_spatial_order(n, r, p->l, b, perm) : AFV_ENOMEM;
-    for (i = 0; st == AFV_OK && i < n; i++) {
-      q[2*i] = r[2 * perm[i]];
-      q[2*i+1] = r[2 * perm[i] + 1];
-    }
-    if (st == AFV_OK) memcpy(r, q, (size_t)(2 * n) * sizeof(double));
-    free(q);
-    free(perm);
-  }
+  if (st == AFV_OK && pr->start != AFV_START_GIVEN)   /* cell list order */
+    st = afv_spatial_renumber(n, r, p->l, b);
   if (pr->theta) memcpy(th, pr->theta, (size_t)n * sizeof(double));
   else afv_init_angles(n, d->seed, th);
   if (st == AFV_OK) st = afv_sim_init(s, n, r, th, p, b, d);

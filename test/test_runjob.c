@@ -398,20 +398,19 @@ static void test_concurrent_fresh_runs(void)
 ** (The code before: "holds trajectory.dat but no params.txt".) */
 static void test_run_locked_meanwhile_is_in_use(void)
 {
-  char dir[512], cells[512], lock[600], want[64], *before, *after;
+  char dir[512], cells[512], lock[600], want[64], *before, *after, *e;
   const char *argv[] = {"afv", "run", "--cells", cells, "--steps", "0",
                         "--relax_max_steps", "0", "--svg_every", "0",
                         "--quiet", "--out", dir, NULL};
-  long nb, na, len;
+  long nb, na;
   pid_t run, holder;
   int st;
-  char *e;
   snprintf(dir, sizeof dir, "%s/meanwhile", root);
   snprintf(cells, sizeof cells, "%s/cells30k.txt", root);
   snprintf(lock, sizeof lock, "%s/observables.csv", dir);
   CHECK(write_cells_file(cells, 30000, 23), "cannot write %s", cells);
   CHECK(test_sh("mkdir -p %s", dir) == 0, "mkdir %s", dir);
-  run = start_afv(argv, "m.txt", NULL);
+  run = start_afv(argv, "err.txt", NULL);
   sleep_ms(100);   /* past its first look at the lock, before its second */
   test_sh("echo t >%s/trajectory.dat && echo o >%s", dir, lock);
   holder = hold_lock(lock);
@@ -423,12 +422,10 @@ static void test_run_locked_meanwhile_is_in_use(void)
     kill(holder, SIGKILL);
     exit_status(holder);
   }
-  snprintf(lock, sizeof lock, "%s/m.txt", root);
-  e = read_whole(lock, &len);
+  e = last_err();
   snprintf(want, sizeof want, "in use by process %ld", (long)holder);
-  CHECK(st == 2 && e && strstr(e, want), "a run whose directory was locked "
-        "while it read its cells: exit %d, want 2 and '%s': %s", st, want,
-        e ? e : "(nothing)");
+  CHECK(st == 2 && strstr(e, want), "a run whose directory was locked "
+        "while it read its cells: exit %d, want 2 and '%s': %s", st, want, e);
   CHECK(nb == na && memcmp(before, after, (size_t)nb) == 0, "the refused "
         "run changed the directory");
   free(e);
@@ -789,12 +786,6 @@ static void test_analyze_refuses_unfinished_run(void)
   free(after);
 }
 
-/* A write that fails during afv analyze (a file size limit: ulimit -f,
-** with SIGXFSZ ignored, makes write(2) fail with EFBIG, as a full disk
-** makes it fail with ENOSPC): exit 2, one line naming the file and the
-** system's reason, and the earlier analysis/ unchanged, no staging folder
-** left.  (The code before: "msd.svg: input/output error", and the files
-** written before the failing one replaced.) */
 /* ThreadSanitizer's runtime maps files of its own, which a file-size limit
 ** breaks (SIGBUS inside the runtime, before afv writes anything). */
 #if defined(__SANITIZE_THREAD__)
@@ -805,6 +796,12 @@ static void test_analyze_refuses_unfinished_run(void)
 #endif
 #endif
 
+/* A write that fails during afv analyze (a file size limit: ulimit -f,
+** with SIGXFSZ ignored, makes write(2) fail with EFBIG, as a full disk
+** makes it fail with ENOSPC): exit 2, one line naming the file and the
+** system's reason, and the earlier analysis/ unchanged, no staging folder
+** left.  (The code before: "msd.svg: input/output error", and the files
+** written before the failing one replaced.) */
 static void test_analyze_write_error_changes_nothing(void)
 {
   char *e, *before, *after;
