@@ -22,15 +22,19 @@ SWEEP=${1:?usage: tools/msd_plateau.sh SWEEP_DIR}
 [ -f "$SWEEP/points.csv" ] || { echo "tools/msd_plateau.sh: $SWEEP/points.csv: no such file (not an afv sweep)" >&2; exit 2; }
 echo "id,P0,v0,seed,lag,msd_rel,plateau_over_v0sq,D_eff,D_eff_from_plateau,msd_beta,beta_long"
 missing=0
-# points.csv: id,P0,v0,seed (header first)
-tail -n +2 "$SWEEP/points.csv" | while IFS=, read -r id P0 v0 seed; do
+# points.csv: id first (header first); P0, v0 and seed are read from the
+# run's params.txt, whichever of them the sweep varied
+tail -n +2 "$SWEEP/points.csv" | cut -d, -f1 | while read -r id; do
   run=$SWEEP/runs/$id
   if [ ! -f "$run/analysis/summary.txt" ]; then
     missing=$((missing + 1)); echo "$missing" > "${TMPDIR:-/tmp}/msd_plateau.$$"
     continue
   fi
-  awk -v id="$id" -v P0="$P0" -v v0="$v0" -v seed="$seed" '
+  awk -v id="$id" '
     FILENAME ~ /params.txt$/ && $1 == "Dr" { Dr = $2 }
+    FILENAME ~ /params.txt$/ && $1 == "P0" { P0 = $2 + 0 }
+    FILENAME ~ /params.txt$/ && $1 == "v0" { v0 = $2 + 0 }
+    FILENAME ~ /params.txt$/ && $1 == "seed" { seed = $2 }
     FILENAME ~ /summary.txt$/ { s[$1] = $2 }
     FILENAME ~ /msd.csv$/ && FNR > 1 {
       split($0, f, ","); if (f[1] + 0 == s["D_s_lag"] + 0) rel = f[3]

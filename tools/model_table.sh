@@ -1,0 +1,121 @@
+#!/bin/sh
+# tools/model_table.sh OUT DEST -- tables the finished runs of
+# tools/model_sweeps.sh OUT into DEST (doc/reproduction/model/):
+#
+#   runs.csv        one row per finished run: sweep,id,P0,v0,seed,dt,cap,N and
+#                   each run's observables (afv analyze's summary.txt;
+#                   beta_long from tools/msd_plateau.sh)
+#   dt_table.csv    the dt study: one row per state point and dt, each
+#                   observable's mean and seed standard error (n_seeds
+#                   runs; sem empty with one seed)
+#   dt_verdicts.csv per state point and observable: dt 0.005 against
+#                   0.0025 (converged: |difference| <= 2 sqrt(sem1^2 +
+#                   sem2^2), the rule of convergence.md) and dt 0.01
+#                   against 0.0025 by the same rule; "missing" without
+#                   two seeds at both
+#   cap_table.csv   the same as dt_table.csv for the cap sweeps (cap column)
+#
+# Observables: ngc_frac, n_clusters, omega (steady means), D_eff (the
+# summary's, lag 5000), msd_beta, beta_long, t1_rate (T1 events per cell
+# per time unit in the steady window).  Runs without analysis/summary.txt
+# are left out.  Safe to run while the queue runs.
+set -e
+OUT=${1:?usage: tools/model_table.sh OUT DEST}
+DEST=${2:?usage: tools/model_table.sh OUT DEST}
+HERE=$(cd "$(dirname "$0")/.." && pwd)
+mkdir -p "$DEST"
+OBS="ngc_frac_mean n_clusters_mean omega_mean D_eff msd_beta beta_long t1_rate"
+
+# runs.csv
+{
+  printf 'sweep,id,P0,v0,seed,dt,cap,N'
+  for o in $OBS; do printf ',%s' "$o"; done; echo
+  for dir in "$OUT"/*/; do
+    s=$(basename "$dir")
+    [ -f "$dir/points.csv" ] || continue
+    sh "$HERE/tools/msd_plateau.sh" "$dir" 2>/dev/null | tail -n +2 \
+      | cut -d, -f1,11 > "$DEST/.beta_long.$$" || true
+    tail -n +2 "$dir/points.csv" | cut -d, -f1 | while read -r id; do
+      run=$dir/runs/$id
+      [ -f "$run/analysis/summary.txt" ] || continue
+      awk -v sweep="$s" -v id="$id" -v obs="$OBS" '
+        FILENAME ~ /params.txt$/ { p[$1] = $2 }
+        FILENAME ~ /summary.txt$/ { v[$1] = $2 }
+        FILENAME ~ /beta_long/ { split($0, f, ","); if (f[1] == id) v["beta_long"] = f[2] }
+        END {
+          printf "%s,%s,%s,%s,%s,%s,%s,%s", sweep, id, p["P0"] + 0, p["v0"] + 0,
+            p["seed"], p["dt"] + 0, p["cap"] + 0, p["N"]
+          n = split(obs, o, " ")
+          for (k = 1; k <= n; k++) printf ",%s", v[o[k]]
+          printf "\n"
+        }' "$run/params.txt" "$run/analysis/summary.txt" "$DEST/.beta_long.$$"
+    done
+    rm -f "$DEST/.beta_long.$$"
+  done
+} > "$DEST/runs.csv.tmp"
+mv "$DEST/runs.csv.tmp" "$DEST/runs.csv"
+
+# mean_table FILTER: rows of runs.csv whose sweep matches FILTER, grouped by
+# (P0, v0, dt, cap, N): n_seeds, then each observable's mean and sem.
+mean_table() {
+  awk -F, -v filter="$1" '
+    NR == 1 { nobs = NF - 8; for (k = 9; k <= NF; k++) name[k - 8] = $k; next }
+    $1 ~ filter {
+      key = $3 "," $4 "," $6 "," $7 "," $8
+      if (!(key in n)) order[++nk] = key
+      n[key]++
+      for (k = 1; k <= nobs; k++) {
+        x = $(k + 8) + 0
+        s[key, k] += x; q[key, k] += x * x
+      }
+    }
+    END {
+      printf "P0,v0,dt,cap,N,n_seeds"
+      for (k = 1; k <= nobs; k++) printf ",%s_mean,%s_sem", name[k], name[k]
+      printf "\n"
+      for (i = 1; i <= nk; i++) {
+        key = order[i]; m = n[key]
+        printf "%s,%d", key, m
+        for (k = 1; k <= nobs; k++) {
+          mu = s[key, k] / m
+          if (m > 1) {
+            var = (q[key, k] - m * mu * mu) / (m - 1); if (var < 0) var = 0
+            printf ",%.6g,%.6g", mu, sqrt(var / m)
+          } else printf ",%.6g,", mu
+        }
+        printf "\n"
+      }
+    }' "$DEST/runs.csv" | { read -r head; echo "$head"; sort -t, -k5,5n -k4,4n -k1,1n -k2,2n -k3,3gr; }
+}
+mean_table '^dt_' > "$DEST/dt_table.csv.tmp"
+mv "$DEST/dt_table.csv.tmp" "$DEST/dt_table.csv"
+mean_table '^cap_' > "$DEST/cap_table.csv.tmp"
+mv "$DEST/cap_table.csv.tmp" "$DEST/cap_table.csv"
+mean_table '^fss_' > "$DEST/fss_table.csv.tmp"
+mv "$DEST/fss_table.csv.tmp" "$DEST/fss_table.csv"
+
+# dt_verdicts.csv
+awk -F, '
+  NR == 1 { for (k = 7; k <= NF; k += 2) { nm = $k; sub(/_mean$/, "", nm); name[(k - 5) / 2] = nm }
+            nobs = (NF - 6) / 2; next }
+  { key = $1 "," $2; row[key, $3] = $0; keys[key] = 1 }
+  function cmp(a, b, o,   x, y, d, bound) {
+    split(a, x, ","); split(b, y, ",")
+    if (x[6] < 2 || y[6] < 2) return "missing,,,"
+    d = x[5 + 2 * o] - y[5 + 2 * o]; if (d < 0) d = -d
+    bound = 2 * sqrt(x[6 + 2 * o] ^ 2 + y[6 + 2 * o] ^ 2)
+    return sprintf("%s,%.4g,%.4g,%.4g", (d <= bound) ? "yes" : "no", y[5 + 2 * o], d, bound)
+  }
+  END {
+    print "P0,v0,observable,at_0.01,at_0.005,at_0.0025,converged_0.005_0.0025,diff_fine,bound_fine,same_at_0.01,diff_0.01,bound_0.01"
+    for (key in keys) for (o = 1; o <= nobs; o++) {
+      f = row[key, "0.0025"]; m = row[key, "0.005"]; c = row[key, "0.01"]
+      split(f, F, ","); split(m, M, ","); split(c, C, ",")
+      printf "%s,%s,%s,%s,%s", key, name[o], C[5 + 2 * o], M[5 + 2 * o], F[5 + 2 * o]
+      if (f == "" || m == "") printf ",missing,,"; else { r = cmp(f, m, o); split(r, R, ","); printf ",%s,%s,%s", R[1], R[3], R[4] }
+      if (f == "" || c == "") printf ",missing,,\n"; else { r = cmp(f, c, o); split(r, R, ","); printf ",%s,%s,%s\n", R[1], R[3], R[4] }
+    }
+  }' "$DEST/dt_table.csv" | { read -r head; echo "$head"; sort -t, -k3,3 -k1,1n -k2,2n; } \
+  > "$DEST/dt_verdicts.csv.tmp"
+mv "$DEST/dt_verdicts.csv.tmp" "$DEST/dt_verdicts.csv"
+echo "tools/model_table.sh: $(($(wc -l < "$DEST/runs.csv") - 1)) runs tabled into $DEST"
