@@ -57,7 +57,8 @@ TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 .PHONY: all test run bench bench-quick bench-compare fuzz twins plain \
         protocol-check shared python-test install uninstall clean FORCE \
         paper paper-sweeps paper-grid paper-fss convergence \
-        relax-cost diagram-budget diagram-budget-sweep diagram-budget-project lambda
+        relax-cost diagram-budget diagram-budget-sweep diagram-budget-project lambda \
+        model model-table
 
 all: afv libafv.a
 
@@ -279,6 +280,22 @@ tools/convergence_plot: tools/convergence_plot.c libafv.a afv.h afv_tool.h \
 convergence: afv tools/convergence_plot
 	sh tools/convergence.sh $(CONV_OUT)
 
+# The model study (doc/reproduction/model/README.md): make model MODEL_OUT=DIR
+# runs tools/model_sweeps.sh (about 15 CPU-hours; resumable, JOBS=K queues),
+# then tables and draws what has finished into doc/reproduction/model/.
+# make model-table tables and draws without running anything.
+MODEL_OUT ?= model
+
+tools/model_plot: tools/model_plot.c libafv.a afv.h afv_tool.h .build-flags
+	$(CC) $(CFLAGS) -I. -o $@ tools/model_plot.c libafv.a $(LDLIBS)
+
+model: afv tools/model_plot
+	sh tools/model_sweeps.sh $(MODEL_OUT)
+	sh tools/model_table.sh $(MODEL_OUT) doc/reproduction/model
+
+model-table: tools/model_plot
+	sh tools/model_table.sh $(MODEL_OUT) doc/reproduction/model
+
 # Cost of relaxing the authors' start against N (doc/performance.md,
 # "Relaxation: cost against N"): test/bench --relax-vs-400 relaxes the
 # square at each N of RELAX_NS and P0 = 4 and 8, with whole 400-cell
@@ -377,6 +394,7 @@ clean:
 	rm -f *.o cmd/*.o libafv.a libafv.so afv.pc afv test/run_tests test/bench \
 	  python/check_driver \
 	  test/protocol_check tools/convergence_plot tools/lambda_plot \
+	  tools/model_plot \
 	  .build-flags
 	rm -f test/twins reference/afv_plain
 	rm -rf fuzz/build python/__pycache__

@@ -118,4 +118,18 @@ awk -F, '
   }' "$DEST/dt_table.csv" | { read -r head; echo "$head"; sort -t, -k3,3 -k1,1n -k2,2n; } \
   > "$DEST/dt_verdicts.csv.tmp"
 mv "$DEST/dt_verdicts.csv.tmp" "$DEST/dt_verdicts.csv"
+# figures/: each observable against dt (tools/model_plot), the glass
+# states' observables at v0 0.4, the dispersal states' at the others
+PLOT=$HERE/tools/model_plot
+if [ -x "$PLOT" ] && [ "$(wc -l < "$DEST/dt_table.csv")" -gt 1 ]; then
+  mkdir -p "$DEST/figures"
+  for o in msd_beta beta_long D_eff t1_rate omega_mean; do
+    "$PLOT" "$DEST/dt_table.csv" dt "$o" v0=0.4 "$DEST/figures/dt_glass_$o.svg" \
+      "glass states (v0 0.4): $o against dt (mean, markers +- sem of 2 seeds)" || true
+  done
+  for o in ngc_frac_mean n_clusters_mean omega_mean; do
+    "$PLOT" "$DEST/dt_table.csv" dt "$o" 'v0!=0.4' "$DEST/figures/dt_dispersal_$o.svg" \
+      "dispersal states: $o against dt (mean, markers +- sem of 2 seeds)" || true
+  done
+fi
 echo "tools/model_table.sh: $(($(wc -l < "$DEST/runs.csv") - 1)) runs tabled into $DEST"
