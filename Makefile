@@ -289,11 +289,14 @@ MODEL_OUT ?= model
 tools/model_plot: tools/model_plot.c libafv.a afv.h afv_tool.h .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ tools/model_plot.c libafv.a $(LDLIBS)
 
-model: afv tools/model_plot
+tools/csd_exponent: tools/csd_exponent.c libafv.a afv.h afv_tool.h .build-flags
+	$(CC) $(CFLAGS) -I. -o $@ tools/csd_exponent.c libafv.a $(LDLIBS)
+
+model: afv tools/model_plot tools/csd_exponent
 	sh tools/model_sweeps.sh $(MODEL_OUT)
 	sh tools/model_table.sh $(MODEL_OUT) doc/reproduction/model
 
-model-table: tools/model_plot
+model-table: tools/model_plot tools/csd_exponent
 	sh tools/model_table.sh $(MODEL_OUT) doc/reproduction/model
 
 # Cost of relaxing the authors' start against N (doc/performance.md,
@@ -394,7 +397,7 @@ clean:
 	rm -f *.o cmd/*.o libafv.a libafv.so afv.pc afv test/run_tests test/bench \
 	  python/check_driver \
 	  test/protocol_check tools/convergence_plot tools/lambda_plot \
-	  tools/model_plot \
+	  tools/model_plot tools/csd_exponent \
 	  .build-flags
 	rm -f test/twins reference/afv_plain
 	rm -rf fuzz/build python/__pycache__

@@ -17,14 +17,15 @@
 #
 # Observables: ngc_frac, n_clusters, omega (steady means), D_eff (the
 # summary's, lag 5000), msd_beta, beta_long, t1_rate (T1 events per cell
-# per time unit in the steady window).  Runs without analysis/summary.txt
+# per time unit in the steady window), csd_exponent (each run's cluster
+# sizes fitted as afv paper fits Fig. 2(c): tools/csd_exponent).  Runs without analysis/summary.txt
 # are left out.  Safe to run while the queue runs.
 set -e
 OUT=${1:?usage: tools/model_table.sh OUT DEST}
 DEST=${2:?usage: tools/model_table.sh OUT DEST}
 HERE=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$DEST"
-OBS="ngc_frac_mean n_clusters_mean omega_mean D_eff msd_beta beta_long t1_rate"
+OBS="ngc_frac_mean n_clusters_mean omega_mean D_eff msd_beta beta_long t1_rate csd_exponent"
 
 # runs.csv
 {
@@ -38,11 +39,16 @@ OBS="ngc_frac_mean n_clusters_mean omega_mean D_eff msd_beta beta_long t1_rate"
     tail -n +2 "$dir/points.csv" | cut -d, -f1 | while read -r id; do
       run=$dir/runs/$id
       [ -f "$run/analysis/summary.txt" ] || continue
-      awk -v sweep="$s" -v id="$id" -v obs="$OBS" '
+      csd=nan
+      [ -x "$HERE/tools/csd_exponent" ] \
+        && csd=$("$HERE/tools/csd_exponent" "$run/analysis/csd.csv" \
+                   "$(awk '$1 == "N" { print $2 }' "$run/params.txt")")
+      awk -v csd="$csd" -v sweep="$s" -v id="$id" -v obs="$OBS" '
         FILENAME ~ /params.txt$/ { p[$1] = $2 }
         FILENAME ~ /summary.txt$/ { v[$1] = $2 }
         FILENAME ~ /beta_long/ { split($0, f, ","); if (f[1] == id) v["beta_long"] = f[2] }
         END {
+          v["csd_exponent"] = csd
           printf "%s,%s,%s,%s,%s,%s,%s,%s", sweep, id, p["P0"] + 0, p["v0"] + 0,
             p["seed"], p["dt"] + 0, p["cap"] + 0, p["N"]
           n = split(obs, o, " ")
@@ -64,9 +70,10 @@ mean_table() {
       key = $3 "," $4 "," $6 "," $7 "," $8
       if (!(key in n)) order[++nk] = key
       n[key]++
-      for (k = 1; k <= nobs; k++) {
+      for (k = 1; k <= nobs; k++) {    # a nan or empty value is left out
+        if ($(k + 8) !~ /^-?[0-9.]+([eE][-+]?[0-9]+)?$/) continue
         x = $(k + 8) + 0
-        s[key, k] += x; q[key, k] += x * x
+        c[key, k]++; s[key, k] += x; q[key, k] += x * x
       }
     }
     END {
@@ -74,9 +81,11 @@ mean_table() {
       for (k = 1; k <= nobs; k++) printf ",%s_mean,%s_sem", name[k], name[k]
       printf "\n"
       for (i = 1; i <= nk; i++) {
-        key = order[i]; m = n[key]
-        printf "%s,%d", key, m
+        key = order[i]
+        printf "%s,%d", key, n[key]
         for (k = 1; k <= nobs; k++) {
+          m = c[key, k]
+          if (m == 0) { printf ",nan,"; continue }
           mu = s[key, k] / m
           if (m > 1) {
             var = (q[key, k] - m * mu * mu) / (m - 1); if (var < 0) var = 0
@@ -127,7 +136,7 @@ if [ -x "$PLOT" ] && [ "$(wc -l < "$DEST/dt_table.csv")" -gt 1 ]; then
     "$PLOT" "$DEST/dt_table.csv" dt "$o" v0=0.4 "$DEST/figures/dt_glass_$o.svg" \
       "glass states (v0 0.4): $o against dt (mean, markers +- sem of 2 seeds)" || true
   done
-  for o in ngc_frac_mean n_clusters_mean omega_mean; do
+  for o in ngc_frac_mean n_clusters_mean omega_mean csd_exponent; do
     "$PLOT" "$DEST/dt_table.csv" dt "$o" 'v0!=0.4' "$DEST/figures/dt_dispersal_$o.svg" \
       "dispersal states: $o against dt (mean, markers +- sem of 2 seeds)" || true
   done
