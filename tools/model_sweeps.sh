@@ -73,16 +73,17 @@ sweep fss_1600 --N 1600 --P0 4,8 --v0 1.4,1.85,2.3 --seeds 2 --cap 0 $(at_dt 0.0
 sweep fss_6400 --N 6400 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at_dt 0.01)
 
 # The queue: one line "SWEEP ID" per job, in the order of use: the dt
-# table with seed 1 (point by point: job k of dt_G1, dt_G2, dt_G3 is the
-# same state at the three dt), then with seed 2; the cap grid's seed 1,
+# table's glass states with seed 1 (point by point: job k of dt_G1, dt_G2,
+# dt_G3 is the same state at the three dt), then seed 2, then the
+# dispersal states likewise; the cap grid's seed 1,
 # its dt check and the cap sequence; finite size; the cap grid's seed 2.
 jobs_of() { # SWEEP SEED: the ids of SWEEP's jobs with that seed
   awk -F, -v seed="$2" 'NR == 1 { for (c = 1; c <= NF; c++) if ($c == "seed") s = c; next }
                         $s == seed { print $1 }' "$OUT/$1/points.csv"
 }
 {
-  for seed in 1 2; do
-    for set in G D; do
+  for set in G D; do
+    for seed in 1 2; do
       for id in $(jobs_of dt_${set}1 $seed); do
         for i in 1 2 3; do echo "dt_$set$i $id"; done
       done
@@ -100,6 +101,6 @@ mv "$OUT/queue.txt.tmp" "$OUT/queue.txt"
 
 # Run the queue: make builds one job's summary (a finished job is skipped).
 xargs -P "$JOBS" -n 2 sh -c \
-  'nice -n 5 make -s -C "$0/$1" "runs/$2/analysis/summary.txt" || echo "job $1 $2 failed (see $0/$1/logs/$2.log)" >&2' \
+  'nice -n 0 make -s -C "$0/$1" "runs/$2/analysis/summary.txt" || echo "job $1 $2 failed (see $0/$1/logs/$2.log)" >&2' \
   "$OUT" < "$OUT/queue.txt"
 echo "tools/model_sweeps.sh: queue done"
