@@ -44,6 +44,13 @@ PRESETS = [  # name on the page, afv run's keys, relax_max_steps
     ("detach-dt-0.0025", {"P0": 4, "v0": 1.85, "dt": 0.0025}, FULL_RELAX),
 ]
 STEPS = 1000
+# Longer, against afv run with glibc's baseline libm (doc/web.md, "Same
+# numbers"): on a CPU with FMA, glibc's log is its FMA variant, whose last
+# bit differs from wasi-libc's (and from glibc's own baseline) for about
+# 1.3e-4 of the noise's inputs; afv run with that variant parts from the
+# page after a few thousand steps, afv run with the baseline does not.
+LONG_PRESET, LONG_STEPS = "detach-dt-0.01", 5000
+BASELINE_LIBM = {"GLIBC_TUNABLES": "glibc.cpu.hwcaps=-FMA"}
 # observables.csv's columns and the page's web_observe indices (OBS)
 COMPARED = [("energy", "energy"), ("ngc_frac", "giant"), ("omega", "omega"),
             ("n_clusters", "clusters")]
@@ -55,19 +62,29 @@ class Fail(Exception):
 
 
 # ---- afv run ---------------------------------------------------------------
+def afv_run(afv, tmp, name, keys, relax, steps, env=None):
+    """afv run of a preset, started (it runs while the browser works):
+    (process, directory, command)."""
+    out = os.path.join(tmp, "run-%s-%d" % (name, steps))
+    cmd = [afv, "run", "--N", "400", "--seed", "1", "--steps", str(steps),
+           "--relax_max_steps", str(relax), "--sample_every", str(STEPS),
+           "--frame_every", "0", "--checkpoint_every", "0",
+           "--svg_every", "0", "--quiet", "1", "--out", out]
+    for k, v in keys.items():
+        cmd += ["--" + k, repr(v)]
+    return (subprocess.Popen(cmd, env=dict(os.environ, **(env or {}))), out,
+            " ".join(cmd))
+
+
 def start_afv_runs(afv, tmp):
-    """afv run of every preset, started at once (they run while the browser
-    works); returns {name: (process, directory)}."""
+    """afv run of every preset, and the long one with the baseline libm:
+    {name: run}, the long one under name + " baseline"."""
     runs = {}
     for name, keys, relax in PRESETS:
-        out = os.path.join(tmp, "run-" + name)
-        cmd = [afv, "run", "--N", "400", "--seed", "1", "--steps", str(STEPS),
-               "--relax_max_steps", str(relax), "--sample_every", str(STEPS),
-               "--frame_every", "0", "--checkpoint_every", "0",
-               "--svg_every", "0", "--quiet", "1", "--out", out]
-        for k, v in keys.items():
-            cmd += ["--" + k, repr(v)]
-        runs[name] = (subprocess.Popen(cmd), out, " ".join(cmd))
+        runs[name] = afv_run(afv, tmp, name, keys, relax, STEPS)
+        if name == LONG_PRESET:
+            runs[name + " baseline"] = afv_run(afv, tmp, name, keys, relax,
+                                               LONG_STEPS, BASELINE_LIBM)
     return runs
 
 
@@ -241,7 +258,7 @@ def compare(name, when, page, row):
                                                     row[column]))
     if bad:
         raise Fail("%s, %s: %s" % (name, when, "; ".join(bad)))
-    print("  %-22s %-18s E %.17g  N_GC/N %.17g  Omega %.17g  clusters %d: "
+    print("  %-22s %s:\n    E %.17g  N_GC/N %.17g  Omega %.17g  clusters %d: "
           "the same bits as afv run" % (name, when, page["energy"],
                                         page["giant"], page["omega"],
                                         page["clusters"]))
@@ -266,6 +283,12 @@ def check_presets(browser, runs, out):
         rows = afv_rows(runs[name])
         compare(name, "after relaxation", after_relax, rows[0])
         compare(name, "after %d steps" % STEPS, after_steps, rows[STEPS])
+        if name == LONG_PRESET:
+            browser.js("afvPage.run(%d).then(() => 0)" % (LONG_STEPS - STEPS))
+            long = check_state(browser, name + " after %d steps" % LONG_STEPS)
+            compare(name, "after %d steps, afv run with glibc's baseline log"
+                    % LONG_STEPS, long, afv_rows(runs[name + " baseline"])[
+                        LONG_STEPS])
 
 
 def check_bad_input(browser):
@@ -315,11 +338,24 @@ def measure_fps(browser, steps_per_frame=10, seconds=4.0):
     return st["fps"]
 
 
+def doc_screenshot(browser, path, seconds=12.0):
+    """The picture of doc/web.md: the dispersed epithelial phase, running."""
+    browser.send("Emulation.setDeviceMetricsOverride", {
+        "width": 1100, "height": 960, "deviceScaleFactor": 1, "mobile": False})
+    browser.js("afvPage.preset('dispersed-epithelial')")
+    time.sleep(seconds)
+    check_state(browser, "the picture for the docs")
+    screenshot(browser, path)
+    browser.js("afvPage.pause()")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--afv", default="./afv")
     ap.add_argument("--web", default="web")
     ap.add_argument("--out", default="out/web")
+    ap.add_argument("--doc-screenshot", metavar="PNG",
+                    help="also write the picture of doc/web.md there")
     ap.add_argument("--chromium", default=shutil.which("chromium") or "chromium")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
@@ -339,6 +375,8 @@ def main():
         fps = measure_fps(browser)
         print("web_check: N 400, 10 steps per frame: %.0f frames/s (%.0f "
               "steps/s) in headless chromium" % (fps, 10 * fps))
+        if args.doc_screenshot:
+            doc_screenshot(browser, args.doc_screenshot)
         print("web_check: passed in %.0f s; screenshots in %s/"
               % (time.time() - t0, args.out))
         return 0
