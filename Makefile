@@ -198,7 +198,8 @@ bench-compare: test/bench
 # the page's arithmetic is the program's.  web/index.html and web/afv.js
 # are the page; python3 -m http.server -d web -b 127.0.0.1 serves it.
 WEB_CC      = clang
-WEB_CFLAGS  = --target=wasm32-wasi -O3 -std=c99 -fno-math-errno \
+WEB_CFLAGS  = --target=wasm32-wasi -O3 -std=c99 -pedantic -Wall -Wextra \
+              -fno-math-errno \
               -ffp-contract=off -DNDEBUG -mexec-model=reactor
 WEB_EXPORTS = web_reset web_relax_get web_scratch web_step web_bad_cell \
               web_bad_disp web_set web_observe web_shapes web_shape_data \

@@ -110,31 +110,38 @@ char *web_scratch(void)
 int web_step(int k)
 {
   int st = AFV_OK;
+  if (!sim) return AFV_EINVAL;
   while (k-- > 0 && (st = afv_sim_step(sim)) == AFV_OK) {}
   return st;
 }
 
-int    web_bad_cell(void) { return afv_sim_bad_cell(sim); }
-double web_bad_disp(void) { return afv_sim_bad_disp(sim); }
+int    web_bad_cell(void) { return sim ? afv_sim_bad_cell(sim) : -1; }
+double web_bad_disp(void) { return sim ? afv_sim_bad_disp(sim) : NAN; }
 
 /* New values of the keys the page changes while it runs: the model's
 ** (then the forces are recomputed: afv_sim_refresh) and the dynamics'
 ** (read afresh by every step).  Status as afv_sim_refresh. */
 int web_set(double P0, double v0, double Lambda, double dt, double cap)
 {
-  afv_params *p = afv_sim_params(sim);
-  afv_dyn *d = afv_sim_dyn(sim);
+  afv_params *p;
+  afv_dyn *d;
+  if (!sim) return AFV_EINVAL;
+  p = afv_sim_params(sim);
+  d = afv_sim_dyn(sim);
   p->P0 = P0; p->Lambda = Lambda; p->cap = cap;
   d->v0 = v0; d->dt = dt;
   return afv_sim_refresh(sim);
 }
 
-/* The numbers the page shows (observed[OBS_*]; NULL if the clusters
-** could not be computed): as afv run's observables.csv computes them. */
+/* The numbers the page shows (observed[OBS_*]; NULL before a tissue or
+** if the clusters could not be computed): as observables.csv has them. */
 double *web_observe(void)
 {
-  const afv_geom *g = afv_sim_geom(sim);
-  afv_params *p = afv_sim_params(sim);
+  const afv_geom *g;
+  afv_params *p;
+  if (!sim || !label) return NULL;
+  g = afv_sim_geom(sim);
+  p = afv_sim_params(sim);
   if (afv_order_parameters(g, afv_sim_positions(sim), p->l, afv_sim_box(sim),
                            order, label) != AFV_OK)
     return NULL;
