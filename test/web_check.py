@@ -341,7 +341,7 @@ def measure_fps(browser, steps_per_frame=10, seconds=4.0):
     st = browser.js("afvPage.state()")
     browser.js("afvPage.pause()")
     check_state(browser, "running at %d steps per frame" % steps_per_frame)
-    return st["fps"]
+    return st["fps"], st["perFrame"]
 
 
 def doc_screenshot(browser, path, seconds=12.0):
@@ -378,9 +378,13 @@ def main():
         check_presets(browser, runs, args.out)
         print("web_check: bad input:")
         check_bad_input(browser)
-        fps = measure_fps(browser)
+        fps, cost = measure_fps(browser)
         print("web_check: N 400, 10 steps per frame: %.0f frames/s (%.0f "
-              "steps/s) in headless chromium" % (fps, 10 * fps))
+              "steps/s) in headless chromium at load average %.1f; per "
+              "frame %.1f ms in the worker (steps, clusters, outlines) and "
+              "%.1f ms of the page's script (drawing, plots)" % (
+                  fps, 10 * fps, os.getloadavg()[0], cost["work"],
+                  cost["draw"]))
         if args.doc_screenshot:
             doc_screenshot(browser, args.doc_screenshot)
         print("web_check: passed in %.0f s; screenshots in %s/"

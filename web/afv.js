@@ -80,8 +80,10 @@ function workerMain() {
   };
   onmessage = (ev) => {
     const m = ev.data;
-    ready.then(() => send(Object.assign({type: m.cmd, id: m.id}, commands[m.cmd](m)),
-                          snapshot()))
+    ready.then(() => {
+      const t0 = performance.now(), answer = commands[m.cmd](m), snap = snapshot();
+      send(Object.assign({type: m.cmd, id: m.id, workMs: performance.now() - t0}, answer), snap);
+    })
       .catch((err) => postMessage({type: 'fatal', id: m.id, error: String(err)}));
   };
 }
@@ -89,7 +91,16 @@ function workerMain() {
 // ---- the page ----------------------------------------------------------
 function pageMain() {
   const $ = (id) => document.getElementById(id);
-  const worker = new Worker('afv.js');
+  const serveHint = 'open the page through a local server: make web, then ' +
+    'python3 -m http.server -d web -b 127.0.0.1 8000 and http://127.0.0.1:8000/';
+  let worker;
+  try {
+    worker = new Worker('afv.js');
+  } catch (err) {   // a file:// address: no worker
+    $('status').textContent = `The page cannot start its worker (${err.message}): ${serveHint}`;
+    $('status').className = 'bad';
+    return;
+  }
   worker.onerror = (ev) => { console.error('afv.js worker: ' + ev.message); setStatus('the worker failed: ' + ev.message, true); };
   const pending = new Map();   // request id -> resolve
   let nextId = 1;
@@ -292,6 +303,10 @@ function pageMain() {
     const t0 = performance.now();
     const m = await ask('reset', {params: p});
     $('start').disabled = $('step').disabled = false;
+    if (m.type === 'fatal') {
+      fail(`${m.error}: ${serveHint}`);
+      return m;
+    }
     if (m.status) {
       show(m);
       fail(m.status === AFV_EUNSTABLE
@@ -306,7 +321,17 @@ function pageMain() {
     setStatus(`relaxed: ${r.iterations} steps at v0 = 0, ${how} (${((performance.now() - t0) / 1000).toFixed(1)} s); v0 on at step 0`);
     return stepAnswer(m);
   };
-  const steps = async (k) => stepAnswer(await ask('run', {steps: k}));
+  // Time per animation frame, over the last second: the worker's (steps,
+  // clusters, outlines) and the page's (drawing and plots).
+  let workMs = 0, drawMs = 0, timed = 0, perFrame = {work: 0, draw: 0};
+  const steps = async (k) => {
+    const m = await ask('run', {steps: k}), t0 = performance.now();
+    const answer = stepAnswer(m);
+    workMs += m.workMs || 0;
+    drawMs += performance.now() - t0;
+    timed++;
+    return answer;
+  };
   const setLive = () => {
     clampAll();
     if (!broken) ask('set', {params}).then((m) => { if (m.status) fail(`these values cannot be used: ${m.error}`); });
@@ -319,7 +344,8 @@ function pageMain() {
     requestAnimationFrame(tick);
     if (now - fpsStart >= 1000) {
       fps = frames * 1000 / (now - fpsStart);
-      frames = 0;
+      if (timed) perFrame = {work: workMs / timed, draw: drawMs / timed};
+      frames = timed = workMs = drawMs = 0;
       fpsStart = now;
       $('r-fps').textContent = running ? `${fps.toFixed(0)} frames/s, ${(fps * params.spf).toFixed(0)} steps/s` : '-';
     }
@@ -366,7 +392,7 @@ function pageMain() {
     start: () => setRunning(true),
     // k steps now, the animation paused: resolves with the numbers after
     run: async (k) => { setRunning(false); while (busy) await new Promise((r) => setTimeout(r, 5)); return steps(k); },
-    state: () => ({obs: current && current.obs, broken, running, status: $('status').textContent, fps, history: history.length}),
+    state: () => ({obs: current && current.obs, broken, running, status: $('status').textContent, fps, perFrame, history: history.length}),
     obsIndex: OBS,
     ask,
   };
