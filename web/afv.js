@@ -357,12 +357,13 @@ function pageMain() {
 
   // ---- presets (the paper's Fig. 7(b) and the time-step pair) -------------
   const presets = {
-    'clustered-epithelial': {P0: 4, v0: 0.1, dt: 0.01},
-    'clustered-mesenchymal': {P0: 8.8, v0: 0.1, dt: 0.01},
-    'dispersed-epithelial': {P0: 4.4, v0: 2.6, dt: 0.01},
-    'dispersed-mesenchymal': {P0: 8.8, v0: 2.6, dt: 0.01},
-    'detach-dt-0.01': {P0: 4, v0: 1.85, dt: 0.01},
-    'detach-dt-0.0025': {P0: 4, v0: 1.85, dt: 0.0025},
+    'clustered-epithelial': {P0: 4, v0: 0.1, dt: 0.01, spf: 10},
+    'clustered-mesenchymal': {P0: 8.8, v0: 0.1, dt: 0.01, spf: 10},
+    'dispersed-epithelial': {P0: 4.4, v0: 2.6, dt: 0.01, spf: 10},
+    'dispersed-mesenchymal': {P0: 8.8, v0: 2.6, dt: 0.01, spf: 10},
+    // the pair advances the same time per frame, 0.2
+    'detach-dt-0.01': {P0: 4, v0: 1.85, dt: 0.01, spf: 20},
+    'detach-dt-0.0025': {P0: 4, v0: 1.85, dt: 0.0025, spf: 80},
   };
   const applyPreset = async (name, extra) => {
     const p = Object.assign({Lambda: 0.2, cap: 0, N: 400, seed: 1}, presets[name]);
