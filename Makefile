@@ -25,6 +25,9 @@
 #                   figures and claims table (see "Reproducing the paper")
 #   make lambda LAMBDA_OUT=DIR  the phase diagram at Lambda 0 and 0.5 and the
 #                   time step at Lambda 0 (doc/reproduction/lambda.md)
+#   make web        web/afv.wasm: the library as WebAssembly for the page
+#                   web/index.html (clang, lld, wasi-libc; doc/web.md)
+#   make test-web   the page in headless chromium against afv run
 #   make clean
 #
 # CC and CFLAGS may be overridden (make CC=clang, make CC=tcc).
@@ -58,7 +61,7 @@ TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
         protocol-check shared python-test install uninstall clean FORCE \
         paper paper-sweeps paper-grid paper-fss convergence \
         relax-cost diagram-budget diagram-budget-sweep diagram-budget-project lambda \
-        model model-table
+        model model-table web test-web
 
 all: afv libafv.a
 
@@ -150,6 +153,7 @@ test/run_tests: $(TEST_SRC) test/test.h libafv.a afv.h afv_internal.h \
 
 test: afv test/run_tests
 	./test/run_tests
+	@sh test/web_needs.sh $(WEB_CC)
 
 # The main job: afv run with its defaults (the paper's protocol and
 # parameters, 400 cells, P0 4.8, v0 0.5, 10000 steps; afv run --help), into
@@ -184,6 +188,49 @@ bench-compare: test/bench
 	  OMP_NUM_THREADS=1 ./test/bench --vs-400 $$s $$n || st=1; done; done; \
 	if [ "$(OPENMP)" = 1 ]; then for s in $(BENCH_STATES); do \
 	  ./test/bench --threads $$s 40000 || st=1; done; fi; exit $$st
+
+# ---- the page: the library as WebAssembly (doc/web.md) ---------------------
+# web/afv.wasm is the library's own sources (LIB_SRC, whatever they are
+# named) and the glue web/afv_web.c, compiled by clang for wasm32-wasi
+# against Debian's wasi-libc and linked by lld (wasm-ld) as a reactor (no
+# main; the page calls _initialize, then the glue).  -ffp-contract=off:
+# no a*b+c fused, as gcc's -std=c99 build of afv does not fuse either, so
+# the page's arithmetic is the program's.  web/index.html and web/afv.js
+# are the page; python3 -m http.server -d web -b 127.0.0.1 serves it.
+WEB_CC      = clang
+WEB_CFLAGS  = --target=wasm32-wasi -O3 -std=c99 -pedantic -Wall -Wextra \
+              -fno-math-errno \
+              -ffp-contract=off -DNDEBUG -mexec-model=reactor
+WEB_EXPORTS = web_reset web_relax_get web_scratch web_step web_bad_cell \
+              web_bad_disp web_set web_observe web_shapes web_shape_data \
+              afv_strerror
+WEB_LDFLAGS = $(addprefix -Wl$(comma)--export=,$(WEB_EXPORTS)) \
+              -Wl,--allow-undefined-file=web/imports.txt
+comma := ,
+
+web: web/afv.wasm
+
+# (web/.build-flags: as .build-flags, the wasm is rebuilt when they change)
+WEB_BUILD = $(WEB_CC) $(WEB_CFLAGS) $(WEB_LDFLAGS)
+
+web/.build-flags: FORCE
+	@printf '%s\n' '$(WEB_BUILD)' | cmp -s - $@ \
+	  || printf '%s\n' '$(WEB_BUILD)' > $@
+
+web/afv.wasm: $(LIB_SRC) web/afv_web.c web/imports.txt $(wildcard *.h) \
+              web/.build-flags
+	$(WEB_CC) $(WEB_CFLAGS) -I. -o $@.tmp web/afv_web.c $(LIB_SRC) \
+	  $(WEB_LDFLAGS)
+	mv $@.tmp $@
+
+# The page in a real browser (test/web_check.py): serves web/ on
+# 127.0.0.1, drives Debian's chromium headless through its DevTools
+# protocol, loads each preset, compares the page's numbers with afv run's,
+# writes a screenshot per preset into out/web/, measures the frame rate.
+test-web: afv web
+	$(PYTHON) test/web_check.py --afv ./afv --web web --out out/web
+# (make test prints one line about it: test/web_needs.sh names the Debian
+# packages it lacks, if any.)
 
 # ---- fuzzing: clang's libFuzzer -------------------------------------------
 # Every fuzz/fuzz_NAME.c is a harness (LLVMFuzzerTestOneInput), linked with
@@ -401,3 +448,4 @@ clean:
 	  .build-flags
 	rm -f test/twins reference/afv_plain
 	rm -rf fuzz/build python/__pycache__
+	rm -f web/afv.wasm web/.build-flags
