@@ -87,7 +87,7 @@ libafv.a: $(LIB_OBJ)
 # The program, in cmd/: main.c dispatches to the commands (cmd/cli.h lists
 # their files); they include the library's headers from the top level.
 CLI_SRC  = $(addprefix cmd/,main.c cli.c inspect.c run.c report.c sweep.c \
-           collect.c paper.c)
+           collect.c paper.c paper_data.c claims.c)
 CLI_OBJ  = $(CLI_SRC:.c=.o)
 
 afv: $(CLI_OBJ) libafv.a .build-flags
@@ -97,6 +97,7 @@ afv: $(CLI_OBJ) libafv.a .build-flags
 	$(CC) $(CFLAGS) -c -o $@ $<
 
 $(CLI_OBJ): cmd/cli.h
+cmd/paper.o cmd/paper_data.o cmd/claims.o: cmd/paper.h
 
 cmd/%.o: cmd/%.c afv.h afv_internal.h afv_tool.h cmd/cli.h .build-flags
 	$(CC) $(CFLAGS) -I. -c -o $@ $<

@@ -9,7 +9,8 @@
 **   report.c   analyze: a run's order parameters and plots
 **   sweep.c    sweep: a grid of runs and its runners (make, parallel, SLURM)
 **   collect.c  collect: a sweep's table, missing jobs, fits and figures
-**   paper.c    paper: the paper's figures and claims table (make paper)
+**   paper.c    paper: the paper's figures and claims table (make paper);
+**              paper_data.c its tables, claims.c its claim rules (paper.h)
 **
 ** Exit status of every command: 0 success, 1 a check failed (or jobs are
 ** missing, or the run analysed is unfinished), 2 bad input or options, 3 a

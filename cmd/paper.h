@@ -1,0 +1,123 @@
+/*
+** paper.h -- what the three files of `afv paper` share:
+**   paper_data.c  the sweeps' tables (CSV), the (P0, v0) plane of means,
+**                 a run's analysis files, the runs' integration
+**   claims.c      the claims table: each claim of the paper, its rule,
+**                 afv's value, the judgement
+**   paper.c       the figures, the finite-size table and the command
+** Not part of the library.
+*/
+#ifndef AFV_PAPER_H
+#define AFV_PAPER_H
+
+#include "cli.h"
+
+#include <stdio.h>
+
+/* The paper's thresholds (as afv collect): clustered if N_GC/N >= 0.99,
+** epithelial if Omega >= 0.5, glassy if D_eff < 1e-8; and collect's own
+** run-length-independent one, glassy if msd_beta < 0.5. */
+#define CLUSTER_LEVEL 0.99
+#define CONFLUENCY_LEVEL 0.5
+#define DEFF_GLASS_LEVEL 1e-8
+#define BETA_GLASS_LEVEL 0.5
+
+#define MAX_VALUES 64        /* distinct P0 (or v0, N) values of a sweep */
+#define CELL_MAX 64          /* longest field of a CSV file */
+#define PATH_LEN (RUN_PATH_MAX + 128)
+
+/* The giant cluster is left out of the power-law fit: sizes <= N/4 (at
+** v0* the giant cluster holds about 0.7 N). */
+#define CSD_FIT_FRACTION 0.25
+
+/* ---- CSV files (paper_data.c) ------------------------------------------- */
+typedef struct csv {
+  int ncol, nrow;
+  char (*name)[CELL_MAX];   /* ncol column names */
+  char (*cell)[CELL_MAX];   /* nrow x ncol fields */
+} csv;
+
+void csv_free(csv *t);
+/* Reads a CSV file with a header line ('#' lines skipped); 0 (message
+** printed) on failure. */
+int csv_read(const char *path, csv *t);
+/* The column named name, or -1. */
+int csv_col(const csv *t, const char *name);
+/* Number in row r, column c ("inf", "nan" as strtod reads them); NaN if
+** c < 0. */
+double csv_num(const csv *t, int r, int c);
+const char *csv_str(const csv *t, int r, int c);
+
+/* ---- the grid sweep: means on the (P0, v0) plane ------------------------- */
+enum { Q_NGC, Q_NCL, Q_OMEGA, Q_DEFF, Q_TAU, Q_T1, Q_BETA, N_Q };
+
+typedef struct plane {
+  int np, nv;                  /* distinct P0, v0 values */
+  double p0[MAX_VALUES], v0[MAX_VALUES];
+  double *mean[N_Q], *sem[N_Q];  /* [iv np + ip]; NaN where no job ended */
+  csv points;                  /* points.csv: id, P0, v0, seed (no rows
+                               ** when read from a table alone) */
+  char dir[RUN_PATH_MAX];      /* the sweep's folder ("" without runs) */
+} plane;
+
+/* OUT/grid: the design from points.csv, the means from table.csv; 0 with
+** a message on failure. */
+int plane_read(const char *out, plane *P);
+/* A table alone (afv collect's table.csv, e.g. a committed
+** grid_table.csv): the design is the table's rows, no run is read. */
+int plane_read_table(const char *path, plane *P);
+void plane_free(plane *P);
+/* A sweep's table.csv (afv collect) with one state point or more; else 0
+** and one line naming the file and what it lacks. */
+int table_read(const char *sweep_dir, csv *t);
+/* Adds v to the sorted set vals (n values, at most MAX_VALUES) if it is
+** not there yet. */
+void add_value(double *vals, int *n, double v);
+/* Mean (sem = 0) or standard error (sem = 1) of quantity q at (ip, iv). */
+double at(const plane *P, int q, int ip, int iv, int sem);
+int index_of(const double *vals, int n, double v);
+/* The value of vals nearest to v (the panels' state points on a coarser
+** grid than the paper's). */
+int nearest(const double *vals, int n, double v);
+
+/* The run folder (SWEEP/runs/ID) of the k-th job in points (points.csv of
+** the sweep in dir) whose keys[j] equal vals[j], j < nk; 0 if none. */
+int find_run(const csv *points, const char *dir, int nk,
+             const char *const *keys, const double *vals, int k, char *path);
+/* The run folder of the job at (P0, v0) of the grid with its k-th seed. */
+int run_dir(const plane *P, double p0, double v0, int k, char *path);
+/* A number from a run's analysis/summary.txt; NaN if missing. */
+double summary_value(const char *dir, const char *key);
+/* Column `name` of the CSV file DIR/analysis/FILE as a malloc'd array. */
+double *run_column(const char *dir, const char *file, const char *name,
+                   int *n);
+/* p(n) of the runs at (ip, iv) pooled over the seeds (the mean of their
+** csd.csv), index 1..ncell; *ncell from the sizes seen (0 if none). */
+double *pooled_csd(const plane *P, int ip, int iv, int *ncell);
+
+/* "afv 0.2.0, integrator euler, dt 0.01, exact force": how the grid's runs
+** were made (read_integration); every claim's note ends with it. */
+extern char paper_integration[320];
+void read_integration(const plane *P);
+
+/* 1 when OUT's sweeps are make paper's smoke scale: every figure and claim
+** is marked so. */
+extern int paper_smoke;
+
+/* ---- the claims table (claims.c) ---------------------------------------- */
+/* Where the claims' numbers come from: the plane, and where the runs are
+** gone (afv paper --claims-from) the earlier claims.csv for the claims a
+** table cannot give (the cluster-size exponents, from the runs' csd.csv). */
+typedef struct claim_source {
+  const plane *P;
+  int have_runs;               /* 1: P->dir's runs are read */
+  const char *previous;        /* an earlier claims.csv's path, or NULL */
+} claim_source;
+
+/* Judges every claim of the paper (the rule table of claims.c) and writes
+** PATH atomically; prints "N claims, Y agree, U undetermined" into
+** summary.  0 on a write error. */
+int claims_table(const claim_source *S, const char *path, char *summary,
+                 size_t len);
+
+#endif /* AFV_PAPER_H */
