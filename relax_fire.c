@@ -36,6 +36,9 @@
 **              FIRE_MAX_UPHILL uphill restarts in a row: FIRE cannot step
 **              down from there;
 **   neither    max_iter iterations.
+** Where more than half of a stall window's iterations were uphill
+** restarts at a max |F| above AFV_RELAX_KINK_FORCE, FIRE gives way to
+** steepest descent (descent_due), with the same cap and stops.
 ** Except when converged the tissue ends in the lowest-energy state seen;
 ** the forces and the geometry are those of the final positions. */
 #include "afv_internal.h"
@@ -63,6 +66,8 @@ typedef struct fire {
   double best_E, best_force, stall_E, stall_force;
   double dt, alpha;
   int n_up, n_down;     /* iterations in a row with P > 0, P <= 0 */
+  int restarts;         /* uphill restarts in the current stall window */
+  int descent;          /* 1: FIRE gave way to capped steepest descent */
 } fire;
 
 static int fire_alloc(fire *w, int n)
@@ -99,6 +104,7 @@ static int fire_adapt(afv_sim *s, fire *w, long iter)
     return 0;
   }
   w->n_up = 0;
+  w->restarts++;
   if (++w->n_down > FIRE_MAX_UPHILL) return 1;
   if (iter >= FIRE_DELAY) {
     if (w->dt * FIRE_DEC >= FIRE_DT_MIN) w->dt *= FIRE_DEC;
@@ -138,6 +144,44 @@ static void fire_move(afv_sim *s, fire *w)
   }
 }
 
+/* A step of steepest descent, each cell by dt mu F cut to FIRE_MAX_MOVE
+** l (descent_due says when). */
+static void descent_move(afv_sim *s, fire *w)
+{
+  double cap = FIRE_MAX_MOVE * s->par.l, step = s->dyn.dt * s->dyn.mu;
+  int i;
+  for (i = 0; i < s->n; i++) {
+    double dx = step * s->f[2*i], dy = step * s->f[2*i+1];
+    double len = hypot(dx, dy);
+    if (len > cap) {
+      dx *= cap / len;
+      dy *= cap / len;
+    }
+    w->move[2*i] = dx;
+    w->move[2*i+1] = dy;
+    s->r[2*i] += dx;
+    s->r[2*i+1] += dy;
+  }
+}
+
+/* At the end of a stall window: 1 if FIRE should give way to steepest
+** descent for good, because most of the window's iterations were uphill
+** restarts (the global power F.v <= 0).  That happens where a few cells'
+** forces reverse every step (kinks of E with |F| ~ 1000: at Lambda 0 and
+** P0 8.8, cells 0.2 l apart in the dense start) while the rest still
+** descend: each restart keeps FIRE's time step at its smallest, and its
+** moves, dt^2 F, become far shorter than the flow's dt F (FIRE stopped
+** at E 10574, max |F| 1041, where the flow reaches 2533.74).  Steepest
+** descent needs no power test.  Not at a kink of small force (at most
+** AFV_RELAX_KINK_FORCE), where FIRE's stall test stops as before. */
+static int descent_due(fire *w)
+{
+  int due = w->restarts > FIRE_STALL / 2
+            && w->best_force > AFV_RELAX_KINK_FORCE;
+  w->restarts = 0;
+  return due;
+}
+
 /* Remembers the state if its energy is the lowest so far. */
 static void keep_best(const afv_sim *s, fire *w, double max_force)
 {
@@ -174,11 +218,12 @@ int afv_relax_fire(afv_sim *s, double tol, long max_iter,
   w.stall_E = w.best_E;
   w.stall_force = w.best_force;
   while (!(rep->max_force <= tol) && rep->iterations < max_iter && !stop) {
-    if (fire_adapt(s, &w, rep->iterations)) {
+    if (!w.descent && fire_adapt(s, &w, rep->iterations)) {
       rep->refused = 1;
       break;
     }
-    fire_move(s, &w);
+    if (w.descent) descent_move(s, &w);
+    else fire_move(s, &w);
     if ((st = afv_sim_refresh(s)) != AFV_OK) break;
     rep->iterations++;
     rep->time += w.dt;
@@ -189,6 +234,7 @@ int afv_relax_fire(afv_sim *s, double tol, long max_iter,
       rep->at_kink = w.best_force <= AFV_RELAX_KINK_FORCE;
       rep->refused = !rep->at_kink;
     }
+    if (rep->iterations % FIRE_STALL == 0 && descent_due(&w)) w.descent = 1;
   }
   rep->converged = rep->max_force <= tol;
   if (!rep->converged && w.best_E < HUGE_VAL && st == AFV_OK) {

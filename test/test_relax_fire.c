@@ -8,6 +8,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define NCELLS 19
 
@@ -121,9 +122,52 @@ static void fire_stops_at_the_flows_kink(void)
   afv_sim_delete(s);
 }
 
+/* Lambda 0, P0 8.8 (> 2 pi): every cell's area and perimeter are largest
+** alone, so the relaxed state is N isolated disks, E = N kP (2 pi - P0)^2
+** (lambda.md), which the flow reaches.  From the authors' dense start
+** (100 cells, a square of side 0.3 L) a few cells 0.2 l apart have forces
+** that reverse every step (|F| ~ 1000); FIRE's power test then restarts
+** most steps and its step stays at its smallest (the code before: not
+** converged in 100000 steps, E 1047.7 at max |F| 37; 400 cells: stopped as
+** refused at E 10574).  It must reach the disks. */
+static void fire_relaxes_lambda0_to_isolated_disks(void)
+{
+  enum { N = 100 };
+  afv_box b = {1, 0, 0};
+  afv_params p;
+  afv_dyn d;
+  afv_protocol pr;
+  afv_relax_report rep;
+  double two_pi = 2 * 3.14159265358979323846, disks;
+  afv_sim *s = afv_sim_new();
+  CHECK(s != NULL, "no simulation");
+  if (!s) return;
+  afv_params_default(&p);
+  afv_dyn_default(&d);
+  p.Lambda = 0;
+  p.P0 = 8.8;
+  b.Lx = b.Ly = sqrt(N * two_pi / 2 / 0.5);
+  memset(&pr, 0, sizeof pr);
+  pr.start = AFV_START_SQUARE;
+  pr.side = AFV_AUTHORS_SQUARE * b.Lx;
+  pr.relax = AFV_RELAX_FIRE;
+  pr.relax_tol = 1e-6;
+  pr.relax_max_steps = 10000;
+  disks = N * p.KP * (two_pi - p.P0) * (two_pi - p.P0);
+  CHECK(afv_protocol_start(s, N, &p, &b, &d, &pr, &rep, NULL, NULL) == AFV_OK
+        && rep.converged, "FIRE at Lambda 0, P0 8.8: %ld steps, converged "
+        "%d, refused %d, E %.10g, max|F| %.3g", rep.iterations,
+        rep.converged, rep.refused, rep.energy, rep.max_force);
+  CHECK_CLOSE(rep.energy, disks, 1e-9, 0, "E of 100 isolated disks");
+  printf("  100 cells, Lambda 0, P0 8.8: FIRE %ld steps, E %.10g (disks "
+         "%.10g)\n", rep.iterations, rep.energy, disks);
+  afv_sim_delete(s);
+}
+
 void suite_relax_fire(void)
 {
   RUN(fire_stops_at_the_flows_kink);
   RUN(fire_converges_to_the_flows_minimum);
   RUN(fire_keeps_the_best_state);
+  RUN(fire_relaxes_lambda0_to_isolated_disks);
 }
