@@ -566,6 +566,11 @@ typedef struct afv_msd {
   double *msd;          /* plain MSD */
   double *msd_rel;      /* relative MSD */
   long   *samples;      /* (origin, cell) pairs averaged */
+  double *msd_se;       /* standard error of msd across the cells (each
+                        ** cell's mean over the origins one sample; the
+                        ** origins overlap, the cells do not; NaN: 1 cell) */
+  double *msd_rel_se;   /* the same for msd_rel */
+  double *per_cell;     /* private: each cell's sums while computing */
 } afv_msd;
 /* Makes a trajectory continuous: each frame-to-frame displacement becomes
 ** its minimum image.  A no-op on unwrapped trajectories whose cells move

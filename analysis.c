@@ -500,7 +500,7 @@ void afv_traj_unwrap(afv_traj *tr)
 void afv_msd_free(afv_msd *m)
 {
   free(m->lag); free(m->dt); free(m->msd); free(m->msd_rel);
-  free(m->samples);
+  free(m->samples); free(m->msd_se); free(m->msd_rel_se); free(m->per_cell);
   memset(m, 0, sizeof *m);
 }
 
@@ -523,14 +523,20 @@ static int make_lags(afv_msd *m, int maxlag)
   return AFV_OK;
 }
 
-static int msd_alloc(afv_msd *m)
+/* The lags' sums, and each cell's (plain, relative) for the standard
+** errors: 2 n nlags doubles. */
+static int msd_alloc(afv_msd *m, int n)
 {
   size_t k = (size_t)m->nlags + 1;
   m->dt = calloc(k, sizeof(double));
   m->msd = calloc(k, sizeof(double));
   m->msd_rel = calloc(k, sizeof(double));
   m->samples = calloc(k, sizeof(long));
-  return m->dt && m->msd && m->msd_rel && m->samples ? AFV_OK : AFV_ENOMEM;
+  m->msd_se = calloc(k, sizeof(double));
+  m->msd_rel_se = calloc(k, sizeof(double));
+  m->per_cell = calloc(2 * k * (size_t)n, sizeof(double));
+  return m->dt && m->msd && m->msd_rel && m->samples && m->msd_se
+         && m->msd_rel_se && m->per_cell ? AFV_OK : AFV_ENOMEM;
 }
 
 /* Contacting neighbours of every cell at one frame, in CSR form from the
@@ -561,6 +567,7 @@ static void msd_accumulate(afv_msd *m, int k, int n, const double *a,
                            const int *ns, const int *nb)
 {
   int i, s;
+  double *cell = m->per_cell + 2 * (size_t)k * n;
   for (i = 0; i < n; i++) {
     double dx = q[2*i] - a[2*i], dy = q[2*i+1] - a[2*i+1], mx = 0, my = 0;
     int deg = ns[i + 1] - ns[i];
@@ -569,25 +576,54 @@ static void msd_accumulate(afv_msd *m, int k, int n, const double *a,
       my += q[2*nb[s]+1] - a[2*nb[s]+1];
     }
     m->msd[k] += dx * dx + dy * dy;
+    cell[2*i] += dx * dx + dy * dy;
     if (deg > 0) {
       dx -= mx / deg;
       dy -= my / deg;
     }
     m->msd_rel[k] += dx * dx + dy * dy;
+    cell[2*i+1] += dx * dx + dy * dy;
   }
   m->dt[k] += n * (t1 - t0);
   m->samples[k] += n;
 }
 
-static void msd_normalise(afv_msd *m)
+/* The standard error of a lag's MSD across the n cells: each cell's mean
+** over the time origins (every cell has the same origins) is one sample;
+** se = sd of the n cell means / sqrt(n).  Across cells, not time origins:
+** a lag's origins overlap (at lag 5000 of a 9000-long window every
+** origin shares most of its path with the others), so they are not
+** independent samples; the cells are, up to their spatial correlation,
+** which this error leaves out (it is a lower bound where cells move
+** together).  NaN with one cell. */
+static double cell_se(const double *cell, int n, long origins, double mean,
+                      int which)
+{
+  double ss = 0;
+  int i;
+  if (n < 2 || origins < 1) return NAN;
+  for (i = 0; i < n; i++) {
+    double d = cell[2*i + which] / origins - mean;
+    ss += d * d;
+  }
+  return sqrt(ss / (n - 1) / n);
+}
+
+static void msd_normalise(afv_msd *m, int n)
 {
   int k;
-  for (k = 0; k < m->nlags; k++)
+  for (k = 0; k < m->nlags; k++) {
+    const double *cell = m->per_cell + 2 * (size_t)k * n;
     if (m->samples[k] > 0) {
       m->dt[k] /= m->samples[k];
       m->msd[k] /= m->samples[k];
       m->msd_rel[k] /= m->samples[k];
     }
+    m->msd_se[k] = cell_se(cell, n, m->samples[k] / n, m->msd[k], 0);
+    m->msd_rel_se[k] = cell_se(cell, n, m->samples[k] / n, m->msd_rel[k], 1);
+  }
+  free(m->per_cell);
+  m->per_cell = NULL;
 }
 
 /* ---- streaming over the frames ----------------------------------------- */
@@ -804,10 +840,10 @@ int afv_msd_compute(afv_msd *m, const afv_traj *tr, int first, double l)
   src.t = tr->t;
   src.mem = tr;
   if ((st = make_lags(m, tr->nframes - 1 - first)) == AFV_OK
-      && (st = msd_alloc(m)) == AFV_OK
+      && (st = msd_alloc(m, tr->n)) == AFV_OK
       && (st = stream_pass(NULL, m, &src, first, l,
                            tr->nframes - first)) == AFV_OK)
-    msd_normalise(m);
+    msd_normalise(m, tr->n);
   if (st != AFV_OK) afv_msd_free(m);
   return st;
 }
@@ -983,7 +1019,7 @@ static int analyze_src(afv_analysis *a, const frame_src *src, double l,
   a->first = 0;
   while (a->first < nf - 1 && t[a->first] < steady_from) a->first++;
   if (a->first < nf - 1 && ((st = make_lags(&a->msd, nf - 1 - a->first))
-                            != AFV_OK || (st = msd_alloc(&a->msd)) != AFV_OK))
+                            != AFV_OK || (st = msd_alloc(&a->msd, src->n)) != AFV_OK))
     a->msd.nlags = 0;
   W = ring_frames(ring_bytes, src->n, nf - a->first);
   if (st == AFV_OK)
@@ -993,7 +1029,7 @@ static int analyze_src(afv_analysis *a, const frame_src *src, double l,
     afv_analysis_free(a);
     return st;
   }
-  msd_normalise(&a->msd);
+  msd_normalise(&a->msd, src->n);
   m = nf - a->first;
   mean_sd(a->ngc_frac + a->first, m, &a->mean[0], &a->sd[0]);
   mean_sd(a->n_clusters + a->first, m, &a->mean[1], &a->sd[1]);
@@ -1098,10 +1134,11 @@ static void write_summary(FILE *fp, const afv_analysis *a)
 static void write_msd(FILE *fp, const afv_analysis *a)
 {
   int k;
-  fprintf(fp, "lag,msd,msd_rel,lag_frames,samples\n");
+  fprintf(fp, "lag,msd,msd_rel,lag_frames,samples,msd_se,msd_rel_se\n");
   for (k = 0; k < a->msd.nlags; k++)
-    fprintf(fp, "%.10g,%.10g,%.10g,%d,%ld\n", a->msd.dt[k], a->msd.msd[k],
-            a->msd.msd_rel[k], a->msd.lag[k], a->msd.samples[k]);
+    fprintf(fp, "%.10g,%.10g,%.10g,%d,%ld,%.6g,%.6g\n", a->msd.dt[k],
+            a->msd.msd[k], a->msd.msd_rel[k], a->msd.lag[k],
+            a->msd.samples[k], a->msd.msd_se[k], a->msd.msd_rel_se[k]);
 }
 
 static void write_csd(FILE *fp, const afv_analysis *a)

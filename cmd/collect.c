@@ -1178,6 +1178,35 @@ static int write_one(const char *dir, const char *name, table_writer fn,
   return 1;
 }
 
+/* A sweep whose jobs run with different cap values (PyAFV's contact cap
+** makes another model: doc/reproduction/convergence.md) is not one table
+** unless cap is a column of points.csv: 1, and one line naming the two
+** jobs' files, if their jobs/ID.conf disagree on cap (no key: cap 0).
+** A job without its conf file is left to the checks of each job. */
+static int mixes_cap(const sweep_table *T)
+{
+  char path[RUN_PATH_MAX + 64], why[128], first[FIELD_MAX + 192] = "";
+  const char *first_id = NULL, *cap;
+  kv_file F;
+  int j;
+  if (key_index(T, "cap") >= 0) return 0;
+  for (j = 0; j < T->njobs; j++) {
+    snprintf(path, sizeof path, "%s/jobs/%s.conf", T->dir, T->jobs[j].id);
+    if (kv_read(path, &F, why, sizeof why) != 1) continue;
+    if (!(cap = kv_get(&F, "cap"))) cap = "0";
+    if (!first_id) {
+      first_id = T->jobs[j].id;
+      snprintf(first, sizeof first, "%s", cap);
+    } else if (!same_value("cap", cap, first)) {
+      fprintf(stderr, "afv collect: %s: cap %s, but %s/jobs/%s.conf has cap "
+              "%s: a sweep mixing cap values is not one table (sweep cap as "
+              "a column of points.csv)\n", path, cap, T->dir, first_id, first);
+      return 1;
+    }
+  }
+  return 0;
+}
+
 /* Lists the jobs not tabled on stderr (the first 20; all in missing.txt);
 ** their count. */
 static int report_missing(const sweep_table *T)
@@ -1240,7 +1269,7 @@ int cmd_collect(int argc, char **argv)
   }
   if (!T.dir) return bad_input("collect: missing DIR (see afv collect --help)");
   if (strlen(T.dir) > RUN_PATH_MAX - 128) return bad_input("collect: DIR too long");
-  ok = read_points(&T) && make_points(&T);
+  ok = read_points(&T) && make_points(&T) && !mixes_cap(&T);
   if (ok) {
     missing = report_missing(&T);
     ok = write_one(T.dir, "table.csv", write_table, &T)

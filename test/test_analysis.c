@@ -409,6 +409,43 @@ static void msd_translation_and_unwrap(void)
   afv_traj_free(&tr);
 }
 
+/* The MSD's standard error is across cells: isolated cells moving
+** straight at speeds v_i = 0.01 (i + 1) have MSD_i(L) = (v_i L)^2 at every
+** time origin, so the error is L^2 sd(v_i^2) / sqrt(n), whatever the
+** number of origins (an error over all (origin, cell) samples would
+** shrink with it); relative = plain without contacts. */
+static void msd_standard_error_across_cells(void)
+{
+  enum { N = 12, NF = 30 };
+  afv_traj tr;
+  afv_msd m;
+  double mean = 0, ss = 0, worst = 0;
+  int f, i, k;
+  if (!test_traj_alloc(&tr, N, NF, test_open_box())) return;
+  for (i = 0; i < N; i++) {
+    double v2 = pow(0.01 * (i + 1), 2);
+    mean += v2 / N;
+  }
+  for (i = 0; i < N; i++) ss += pow(pow(0.01 * (i + 1), 2) - mean, 2);
+  for (f = 0; f < NF; f++) {
+    tr.t[f] = f;
+    for (i = 0; i < N; i++) {
+      tr.r[(size_t)f * 2 * N + 2 * i] = 5.0 * i + 0.01 * (i + 1) * f;
+      tr.r[(size_t)f * 2 * N + 2 * i + 1] = 0;
+    }
+  }
+  CHECK(afv_msd_compute(&m, &tr, 0, 1.0) == AFV_OK, "afv_msd_compute");
+  for (k = 0; k < m.nlags; k++) {
+    double L = m.lag[k], want = L * L * sqrt(ss / (N - 1) / N);
+    worst = fmax(worst, fabs(m.msd_se[k] - want) / want);
+    worst = fmax(worst, fabs(m.msd_rel_se[k] - want) / want);
+  }
+  CHECK(m.nlags > 3 && worst < 1e-9, "%d lags, standard error off by %.3g "
+        "(relative)", m.nlags, worst);
+  afv_msd_free(&m);
+  afv_traj_free(&tr);
+}
+
 /* Two cells in contact; cell 0 moves by (1, 0): each relative displacement
 ** is 1 in length, so relative MSD = 1 while plain MSD = 1/2. */
 static void msd_relative_by_hand(void)
@@ -1102,6 +1139,7 @@ void suite_analysis(void)
   RUN(t1_flicker_cancels);
   RUN(msd_translation_and_unwrap);
   RUN(msd_relative_by_hand);
+  RUN(msd_standard_error_across_cells);
   RUN(msd_random_walks);
   RUN(tau_ar1);
   RUN(meanfield_paper_point);

@@ -439,6 +439,55 @@ static void claims_from_carries_over(void)
   test_sh("rm -rf %s", dir);
 }
 
+/* tools/deff_estimators.sh on a made-up run: MSD_rel = 0.5 + 0.02 lag
+** (a plateau offset, then diffusion), D_0 = 0.4^2 / 0.2 = 0.8, D_s lag 100:
+** single 2.5 / 320, slope and fit 0.02 / 3.2 (the offset left out), the
+** per-step reading single x dt. */
+static void deff_estimators_side_by_side(void)
+{
+  static const int lags[] = {1, 2, 5, 10, 20, 50, 100};
+  char dir[128], line[512], text[4096];
+  double single, slope, fit, per_step, lag;
+  FILE *fp;
+  size_t m;
+  int k, got = 0;
+  if (access("tools/deff_estimators.sh", R_OK) != 0) {
+    SKIP("tools/deff_estimators.sh not here");
+    return;
+  }
+  snprintf(dir, sizeof dir, "/tmp/afv_deff_test.%ld", (long)getpid());
+  test_sh("rm -rf %s && mkdir -p %s/analysis", dir, dir);
+  put_file(dir, "params.txt", "# afv run parameters\nP0 4\nv0 0.4\nDr 0.1\n"
+           "dt 0.01\nseed 1\n");
+  put_file(dir, "analysis/summary.txt", "D_s_lag 100\n");
+  m = (size_t)snprintf(text, sizeof text, "lag,msd,msd_rel,lag_frames,"
+                       "samples,msd_se,msd_rel_se\n");
+  for (k = 0; k < 7; k++)
+    m += (size_t)snprintf(text + m, sizeof text - m, "%d,1,%g,%d,10,0,0.01\n",
+                          lags[k], 0.5 + 0.02 * lags[k], lags[k]);
+  put_file(dir, "analysis/msd.csv", text);
+  test_sh("sh tools/deff_estimators.sh %s > %s/out.csv", dir, dir);
+  snprintf(line, sizeof line, "%s/out.csv", dir);
+  if ((fp = fopen(line, "r"))) {
+    if (fgets(line, sizeof line, fp) && fgets(line, sizeof line, fp)) {
+      const char *f = strchr(line, ',');
+      for (k = 0; k < 4 && f; k++) f = strchr(f + 1, ',');   /* to lag */
+      got = f && sscanf(f + 1, "%lf,%*g,%*g,%*g,%lf,%lf,%lf,%lf", &lag,
+                        &single, &slope, &fit, &per_step) == 5;
+    }
+    fclose(fp);
+  }
+  CHECK(got, "no row from tools/deff_estimators.sh");
+  if (got) {
+    CHECK_CLOSE(lag, 100, 0, 1e-12, "lag");
+    CHECK_CLOSE(single, 2.5 / 320, 1e-5, 0, "single lag");
+    CHECK_CLOSE(slope, 0.02 / 3.2, 1e-5, 0, "slope over the last half");
+    CHECK_CLOSE(fit, 0.02 / 3.2, 1e-5, 0, "fit from lag/5");
+    CHECK_CLOSE(per_step, 2.5 / 320 * 0.01, 1e-5, 0, "per step");
+  }
+  test_sh("rm -rf %s", dir);
+}
+
 void suite_paper(void)
 {
   RUN(powerlaw_recovers_exponent);
@@ -451,4 +500,5 @@ void suite_paper(void)
   RUN(paper_partial_grid_not_measured);
   RUN(claim_rules_on_made_up_tables);
   RUN(claims_from_carries_over);
+  RUN(deff_estimators_side_by_side);
 }

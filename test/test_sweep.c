@@ -572,6 +572,25 @@ static void collect_verifies_jobs(void)
 }
 
 /* ---- the boundary fit -------------------------------------------------------- */
+/* A sweep whose jobs/ID.conf disagree on cap, cap not a column of
+** points.csv: refused (exit 2, one line naming both jobs and cap), nothing
+** written; with cap a column the same jobs are two state points. */
+static void collect_refuses_mixed_cap(void)
+{
+  shell("rm -rf %s/mc && mkdir -p %s/mc/jobs", base);
+  write_rel("mc/points.csv", "id,P0,seed\n0001,4,1\n0002,4,2\n");
+  write_rel("mc/jobs/0001.conf", "P0 4\ncap 0\n");
+  write_rel("mc/jobs/0002.conf", "P0 4\ncap 0.45\n");
+  CHECK(afv("collect %s/mc") == 2 && strstr(err_text, "jobs/0002.conf: cap "
+        "0.45, but") && strstr(err_text, "jobs/0001.conf has cap 0")
+        && count_lines(err_text) == 1, "mixed cap: '%s'", err_text);
+  CHECK(!exists("mc/table.csv") && !exists("mc/missing.txt")
+        && !exists("mc/figures"), "mixed cap: something written");
+  write_rel("mc/points.csv", "id,P0,cap,seed\n0001,4,0,1\n0002,4,0.45,1\n");
+  CHECK(afv("collect %s/mc") == 1 && exists("mc/table.csv"), "cap a column: "
+        "not tabled (jobs missing, exit 1): '%s'", err_text);
+}
+
 /* 25 points of v_s = 3 - 0.01 P0^2.5 over P0 in [4, 8.8] with Gaussian
 ** noise 0.01: the fit recovers v0*, c and alpha within twice their
 ** standard errors, and those are small; with 3 exact points it is exact,
@@ -819,6 +838,7 @@ void suite_sweep(void)
   RUN(sweep_value_too_long);
   RUN(collect_known_summaries);
   RUN(collect_verifies_jobs);
+  RUN(collect_refuses_mixed_cap);
   RUN(boundary_fit_recovers);
   RUN(crossing_interpolates);
   RUN(t1_rate_counts_changes);
