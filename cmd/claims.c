@@ -493,40 +493,45 @@ static void m_meanfield(const claim_ctx *X, const claim_rule *r, claim *c)
        "the rounding of 5.73)");
 }
 
-/* Omega = 0.5 along P0 at the lowest v0.  The error has two parts: the
-** seeds' standard errors of the two bracketing means carried through the
-** linear interpolation, and the grid gap: the grid says only that the
-** crossing lies between the bracketing P0, so half their spacing is added
-** in quadrature (a shape-free bound, the same half gap as tau_NGC's). */
+/* Omega = 0.5 along P0 at the lowest v0, as a bracket (the tau_NGC rule):
+** from the largest grid P0 whose mean Omega is resolved above 0.5 (mean -
+** 2 sem > 0.5) to the next P0 resolved below it (mean + 2 sem < 0.5); afv =
+** its midpoint, afv_err = its half width.  The grid says only that the
+** line lies in the bracket: half the gap is a bound, not a standard error,
+** so it is not doubled as a number's error is.  The linear interpolation
+** is given in the note, not judged. */
 static void m_omega_half(const claim_ctx *X, const claim_rule *r, claim *c)
 {
   const plane *P = X->P;
-  double row[MAX_VALUES], xc, sem_part = NAN, gap_part = NAN;
-  int ip;
+  double row[MAX_VALUES], xc = NAN;
+  int ip, above = -1, below = -1;
   (void)r;
-  for (ip = 0; ip < P->np; ip++) row[ip] = at(P, Q_OMEGA, ip, 0, 0);
+  for (ip = 0; ip < P->np; ip++) {
+    double m = at(P, Q_OMEGA, ip, 0, 0), e = at(P, Q_OMEGA, ip, 0, 1);
+    row[ip] = m;
+    if (!isfinite(e)) e = 0;                 /* one seed: no error known */
+    if (below < 0 && m - 2 * e > CONFLUENCY_LEVEL) above = ip;
+    if (above >= 0 && below < 0 && m + 2 * e < CONFLUENCY_LEVEL) below = ip;
+  }
   c->afv = c->afv_err = NAN;
-  if (afv_curve_cross(P->np, P->p0, row, CONFLUENCY_LEVEL, &xc)) {
-    for (ip = 0; ip + 1 < P->np; ip++)
-      if (P->p0[ip] <= xc && xc <= P->p0[ip + 1]) {
-        double w = P->p0[ip + 1] - P->p0[ip], t = (xc - P->p0[ip]) / w;
-        double sa = at(P, Q_OMEGA, ip, 0, 1), sb = at(P, Q_OMEGA, ip + 1, 0, 1);
-        double slope = (row[ip + 1] - row[ip]) / w;
-        sem_part = sqrt((1 - t) * (1 - t) * sa * sa + t * t * sb * sb)
-                   / fabs(slope);
-        gap_part = 0.5 * w;
-        break;
-      }
+  if (above >= 0 && below > above) {
+    c->afv = 0.5 * (P->p0[above] + P->p0[below]);
+    c->afv_err = 0.5 * (P->p0[below] - P->p0[above]);
+  }
+  if (!afv_curve_cross(P->np, P->p0, row, CONFLUENCY_LEVEL, &xc)) xc = NAN;
+  if (!isfinite(c->afv) && isfinite(xc)) {   /* crosses within the noise */
     c->afv = xc;
-    c->afv_err = sqrt(sem_part * sem_part + gap_part * gap_part);
+    snprintf(c->undetermined, sizeof c->undetermined, "the mean Omega "
+             "crosses 0.5 near P0 %.3g, but no grid P0 on either side is "
+             "resolved from 0.5 by 2 sem", xc);
   }
   NOTE(c, "paper: the mean-field P0* = 5.73 'provides a reasonable "
        "approximation for the phase boundary' Omega = 0.5 'in the limit of "
-       "v0 -> 0' (no measured value printed); afv: P0 where the mean Omega "
-       "falls below 0.5 at v0 = %g (the grid's lowest), linear "
-       "interpolation; error = the seeds' sem carried through it (%.2g) and "
-       "half the grid gap that holds the crossing (%.2g), in quadrature",
-       P->v0[0], sem_part, gap_part);
+       "v0 -> 0' (no measured value printed, no tolerance); afv: the bracket "
+       "at v0 = %g (the grid's lowest) between the largest P0 whose mean "
+       "Omega is above 0.5 by more than 2 sem and the next below it by more "
+       "than 2 sem, midpoint +- half width; linear interpolation puts the "
+       "line at %.3g", P->v0[0], xc);
 }
 
 /* A label at the grid point nearest the paper's (P0, v0). */
@@ -580,7 +585,7 @@ static const claim_rule rules[] = {
 {"csd_exponent_P0_8",        "-1.75",      -1.75,  0,     BY_NUMBER,   Q_NGC,   0,     8,   1.85, m_csd},
 {"tau_ngc_infinite_below_P0","5",           5,     0,     BY_BRACKET,  Q_TAU,   0,     0,   1,    m_tau},
 {"meanfield_P0_star",        "5.73",        5.73,  0.005, BY_NUMBER,   Q_OMEGA, 0,     0,   0,    m_meanfield},
-{"P0_omega_half_low_v0",     "5.73",        5.73,  0,     BY_NUMBER,   Q_OMEGA, 0,     0,   0,    m_omega_half},
+{"P0_omega_half_low_v0",     "5.73",        5.73,  0,     BY_BRACKET,  Q_OMEGA, 0,     0,   0,    m_omega_half},
 {"msd_beta_P0_4_v0_0.4",     "0",           0,     0,     LABEL_BELOW, Q_BETA,  0.5,   4,   0.4,  m_beta},
 {"msd_beta_P0_7.2_v0_0.4",   "1",           1,     0,     LABEL_ABOVE, Q_BETA,  0.5,   7.2, 0.4,  m_beta},
 {"msd_beta_P0_8_v0_0.4",     "1",           1,     0,     LABEL_ABOVE, Q_BETA,  0.5,   8,   0.4,  m_beta},
