@@ -280,7 +280,8 @@ static void paper_partial_grid_not_measured(void)
 ** v0 0.4, D_eff 1e-9 at (4, 0.4), tau_NGC infinite at P0 4 only.  The
 ** mutations each break one thing a rule must catch. */
 enum { TABLE_PAPER, TABLE_NOISY_BOUNDARY, TABLE_LABEL_IN_NOISE,
-       TABLE_OMEGA_FAR, TABLE_UNCROSSED_PAIR, TABLE_OMEGA_NOISE };
+       TABLE_OMEGA_FAR, TABLE_UNCROSSED_PAIR, TABLE_OMEGA_NOISE,
+       TABLE_OMEGA_NEXT_GAP };
 
 static double made_up_g(double s)
 {
@@ -291,7 +292,8 @@ static void made_up_table(const char *dir, int mutation)
 {
   static const double p0[5] = {4, 5, 6, 7, 8};
   static const double noisy[5] = {0.03, -0.03, 0.03, -0.03, 0.03};
-  double pc = mutation == TABLE_OMEGA_FAR ? 4.3 : 5.73;
+  double pc = mutation == TABLE_OMEGA_FAR ? 4.3
+              : mutation == TABLE_OMEGA_NEXT_GAP ? 6.2 : 5.73;
   char path[256];
   FILE *fp;
   int i, k;
@@ -394,6 +396,10 @@ static void claim_rules_on_made_up_tables(void)
   EXPECT_VERDICT(dir, "state_P0_4_v0_0.1_cluster", "undetermined");
   /* Omega's line at P0 4.3, a grid gap from 5.73: no */
   CHECK(made_up_claims(dir, TABLE_OMEGA_FAR), "omega far");
+  EXPECT_VERDICT(dir, "P0_omega_half_low_v0", "no");
+  /* Omega's line at 6.2, in the next gap (6 - 7) from 5.73's: the bracket
+  ** excludes 5.73 (a half gap doubled as a standard error would not) */
+  CHECK(made_up_claims(dir, TABLE_OMEGA_NEXT_GAP), "omega next gap");
   EXPECT_VERDICT(dir, "P0_omega_half_low_v0", "no");
   /* Omega's error larger than its value: undetermined */
   CHECK(made_up_claims(dir, TABLE_OMEGA_NOISE), "omega noise");
