@@ -57,7 +57,7 @@ LIB_SRC  = neighbours.c geom.c fastmath.c afv.c dynamics.c rng.c \
 LIB_OBJ  = $(LIB_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
-.PHONY: all test run bench bench-quick bench-compare fuzz twins plain \
+.PHONY: print-lib-sources all test run bench bench-quick bench-compare fuzz twins plain \
         protocol-check shared python-test install uninstall clean FORCE \
         paper paper-sweeps paper-grid paper-fss convergence \
         relax-cost diagram-budget diagram-budget-sweep diagram-budget-project lambda \
@@ -83,6 +83,11 @@ $(LIB_OBJ): afv_internal.h afv_tool.h fastmath.h rng.h
 
 libafv.a: $(LIB_OBJ)
 	$(AR) rcs $@ $(LIB_OBJ)
+
+# The library's sources, for scripts that build it their own way
+# (test/twins_mutants.sh): make -s print-lib-sources
+print-lib-sources:
+	@echo $(LIB_SRC)
 
 # The program, in cmd/: main.c dispatches to the commands (cmd/cli.h lists
 # their files); they include the library's headers from the top level.

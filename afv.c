@@ -90,7 +90,7 @@ void afv_params_default(afv_params *p)
   p->l = 1;
   p->KA = 1;
   p->KP = 1;
-  p->A0 = 3.14159265358979323846;
+  p->A0 = PI;
   p->P0 = 4.8;
   p->Lambda = 0.2;
   p->cap = 0;

@@ -44,8 +44,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define PI 3.14159265358979323846
-
 /* Sokal's automatic window for the integrated autocorrelation time: the
 ** smallest W with W >= TAU_WINDOW_C * tau(W).  c = 5 keeps the truncation
 ** bias below exp(-5) ~ 0.7% for an exponential decay while the variance,
@@ -76,21 +74,6 @@ struct afv_clusters_work {
   double *off;          /* offset of each cell from its union-find parent */
 };
 
-static int grow(void **ptr, int *cap, int need, size_t elem)
-{
-  void *q;
-  int nc;
-  if (need <= *cap) return AFV_OK;
-  if (need > INT_MAX / 2) return AFV_ENOMEM;   /* doubling would overflow */
-  nc = *cap > 0 ? *cap : 8;   /* small: growth runs in every test */
-  while (nc < need) nc *= 2;
-  q = realloc(*ptr, (size_t)nc * elem);
-  if (!q) return AFV_ENOMEM;
-  *ptr = q;
-  *cap = nc;
-  return AFV_OK;
-}
-
 /* Grows several arrays of one capacity; each gets its own copy of cap. */
 static int grow_cells(afv_clusters *c, int need)
 {
@@ -109,7 +92,7 @@ static int grow_cells(afv_clusters *c, int need)
   if (need <= cap) return AFV_OK;
   for (k = 0; k < 9; k++) {
     int cc = cap;
-    if (grow(arr[k], &cc, need, size[k])) return AFV_ENOMEM;
+    if (afv_grow(arr[k], &cc, need, size[k])) return AFV_ENOMEM;
     if (k == 8) c->work->cap_cells = cc;
   }
   return AFV_OK;
@@ -125,7 +108,7 @@ static int grow_pieces(afv_clusters *c, int need)
   if (need <= cap) return AFV_OK;
   for (k = 0; k < 3; k++) {
     int cc = cap;
-    if (grow(arr[k], &cc, need, sizeof(int))) return AFV_ENOMEM;
+    if (afv_grow(arr[k], &cc, need, sizeof(int))) return AFV_ENOMEM;
     if (k == 2) c->work->cap_pieces = cc;
   }
   return AFV_OK;
@@ -178,7 +161,8 @@ static int collect_pairs(afv_clusters *c, const afv_geom *g)
     for (k = g->piece_start[i]; k < g->piece_start[i] + g->n_pieces[i]; k++) {
       int j = g->pieces[k].nbr;
       if (!c->contact[k] || j < i) continue;   /* the lower index records it */
-      if (grow((void **)&c->pairs, &c->work->cap_pairs, m + 1, 2 * sizeof(int)))
+      if (afv_grow((void **)&c->pairs, &c->work->cap_pairs, m + 1,
+                   2 * sizeof(int)))
         return AFV_ENOMEM;
       c->pairs[2*m] = i;
       c->pairs[2*m+1] = j;
@@ -350,7 +334,7 @@ static int count_junctions(afv_clusters *c, const afv_geom *g,
     for (q = g->piece_start[i]; q < g->piece_start[i] + g->n_pieces[i]; q++) {
       double x, y;
       if (vfind(c->work->vparent, q) != q || (c->contact[q] & 2)) continue;
-      if (grow((void **)&c->junction, &c->work->cap_junctions, m + 1,
+      if (afv_grow((void **)&c->junction, &c->work->cap_junctions, m + 1,
                2 * sizeof(double)))
         return AFV_ENOMEM;
       x = r[2*i] + g->pieces[q].x;
@@ -515,7 +499,8 @@ static int make_lags(afv_msd *m, int maxlag)
     e += 1;
     if (L > maxlag) L = maxlag;
     if (L <= last) continue;
-    if (grow((void **)&m->lag, &cap, k + 1, sizeof(int))) return AFV_ENOMEM;
+    if (afv_grow((void **)&m->lag, &cap, k + 1, sizeof(int)))
+      return AFV_ENOMEM;
     m->lag[k++] = L;
     last = L;
   }
@@ -692,7 +677,7 @@ static held *held_alloc(int count, int n)
 /* The contacting neighbours of c into h. */
 static int hold_neighbours(held *h, const afv_clusters *c, int n)
 {
-  if (grow((void **)&h->nb, &h->cap_nb, 2 * c->n_pairs + 1, sizeof(int)))
+  if (afv_grow((void **)&h->nb, &h->cap_nb, 2 * c->n_pairs + 1, sizeof(int)))
     return AFV_ENOMEM;
   neighbour_csr(c, n, h->ns, h->nb);
   return AFV_OK;

@@ -529,7 +529,7 @@ int afv_init_cluster(int n, double a, const afv_box *b, double *r)
   /* the n nearest sites lie within radius sqrt(n / pi * sqrt(3)/2) + 2;
   ** site (i, j) is at distance^2 i^2 + ij + j^2 >= 3 j^2 / 4, so the rows
   ** that reach the disk have |j| <= J = 2R / sqrt(3) */
-  int R = (int)ceil(sqrt(n * 0.8660254037844386 / 3.14159265358979) + 2);
+  int R = (int)ceil(sqrt(n * 0.8660254037844386 / PI) + 2);
   int J = (int)ceil(2 * R / 1.7320508075688772);
   int m = 0, i, j, k;
   long maxd2 = 0;

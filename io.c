@@ -18,8 +18,7 @@
 ** len <= AFV_LINE_MAX.
 */
 #define _POSIX_C_SOURCE 200809L  /* stat: readers refuse directories, devices */
-#include "afv.h"
-#include "afv_tool.h"
+#include "afv_internal.h"
 
 #include <assert.h>
 #include <errno.h>
@@ -420,7 +419,6 @@ int afv_atomic_commit(FILE *fp, const char *tmp, const char *path)
 ** lines.  In both formats frames run forward: each step and time larger
 ** than the frame's before. */
 #define TRAJ_CHUNK 256          /* cells encoded per fwrite */
-#define TRAJ_TWO_PI 6.28318530717958647692
 
 /* The format assumes 8-byte doubles and 4-byte floats (IEEE on every
 ** machine afv builds on); a compile error otherwise. */
@@ -478,7 +476,7 @@ static float get_f32(const unsigned char *p)
 ** float32; a value out of range never reaches the conversion. */
 static float stored_angle(double theta)
 {
-  double a = remainder(theta, TRAJ_TWO_PI);
+  double a = remainder(theta, TWO_PI);
   return isfinite(a) ? (float)a : 0.0f;
 }
 

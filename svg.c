@@ -42,8 +42,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define PI 3.14159265358979323846
-
 /* Mark sizes: each is its size in units of l, but never thinner than MIN_PX
 ** pixels on the picture (at the default size of a 400-cell box, 16 px per
 ** l, a line of 0.035 l is half a pixel and a junction of 0.07 l one pixel:

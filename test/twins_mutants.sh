@@ -11,7 +11,10 @@
 set -eu
 CC="${1:-cc}"
 FLAGS="-O1 -std=c99 -I. -Itest"
-LIB="neighbours.c geom.c fastmath.c dynamics.c rng.c analysis.c svg.c io.c phase.c api.c fits.c relax_fire.c"
+# the library's sources but afv.c (each build brings its own), as the
+# Makefile lists them
+LIB="$(make -s --no-print-directory print-lib-sources | tr ' ' '\n' | grep -vx 'afv.c' | tr '\n' ' ')"
+[ -n "$LIB" ] || { echo "twins_mutants: make print-lib-sources gave nothing"; exit 1; }
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$tmp/reference"
