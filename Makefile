@@ -49,12 +49,19 @@ LDLIBS  += -fopenmp
 endif
 
 # The library, one file per idea (doc/reference.md has the reading order);
-# afv_internal.h, fastmath.h and rng.h are shared by its files only, and
-# afv_tool.h holds what only the program uses (line readers, checkpoints,
-# plots, fits): none of them is installed, afv.h is the API.
+# afv.h is the API and afv_config.h its constants (statuses, tolerances),
+# both installed; afv_internal.h, fastmath.h and rng.h are shared by its
+# files only, and afv_tool.h holds what the library does for the program
+# alone (line readers, checkpoints, line plots): none of these is installed.
 LIB_SRC  = neighbours.c geom.c fastmath.c afv.c dynamics.c rng.c \
-           analysis.c svg.c io.c phase.c api.c fits.c relax_fire.c
+           analysis.c svg.c io.c api.c relax_fire.c
 LIB_OBJ  = $(LIB_SRC:.c=.o)
+LIB_H    = afv.h afv_config.h afv_internal.h afv_tool.h fastmath.h rng.h
+# What the program computes from many runs, and the library does not:
+# phase diagrams and the paper's fits (cmd/fits.h); the tests and
+# tools/lambda_plot link them beside the library.
+FITS_SRC = cmd/phase.c cmd/fits.c
+FITS_OBJ = $(FITS_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
 .PHONY: print-lib-sources all test run bench bench-quick bench-compare fuzz twins plain \
@@ -79,9 +86,12 @@ BUILD_FLAGS = $(CC) $(CFLAGS) $(LDLIBS)
 
 FORCE:
 
-$(LIB_OBJ): afv_internal.h afv_tool.h fastmath.h rng.h
+$(LIB_OBJ): $(LIB_H)
 
-libafv.a: $(LIB_OBJ)
+# (rebuilt whole, and when the Makefile changes: ar would keep the members
+# of files no longer listed)
+libafv.a: $(LIB_OBJ) Makefile
+	rm -f $@
 	$(AR) rcs $@ $(LIB_OBJ)
 
 # The library's sources, for scripts that build it their own way
@@ -92,19 +102,19 @@ print-lib-sources:
 # The program, in cmd/: main.c dispatches to the commands (cmd/cli.h lists
 # their files); they include the library's headers from the top level.
 CLI_SRC  = $(addprefix cmd/,main.c cli.c inspect.c run.c report.c sweep.c \
-           collect.c paper.c paper_data.c claims.c)
+           collect.c paper.c paper_data.c claims.c) $(FITS_SRC)
 CLI_OBJ  = $(CLI_SRC:.c=.o)
 
 afv: $(CLI_OBJ) libafv.a .build-flags
 	$(CC) $(CFLAGS) -o $@ $(CLI_OBJ) libafv.a $(LDLIBS)
 
-%.o: %.c afv.h afv_internal.h afv_tool.h .build-flags
+%.o: %.c $(LIB_H) .build-flags
 	$(CC) $(CFLAGS) -c -o $@ $<
 
-$(CLI_OBJ): cmd/cli.h
+$(CLI_OBJ): cmd/cli.h cmd/fits.h
 cmd/paper.o cmd/paper_data.o cmd/claims.o: cmd/paper.h
 
-cmd/%.o: cmd/%.c afv.h afv_internal.h afv_tool.h cmd/cli.h .build-flags
+cmd/%.o: cmd/%.c $(LIB_H) cmd/cli.h cmd/fits.h .build-flags
 	$(CC) $(CFLAGS) -I. -c -o $@ $<
 
 # The git commit of the sources, when built from a git checkout ("-dirty"
@@ -119,7 +129,7 @@ AFV_COMMIT := $(shell git rev-parse --short=12 HEAD 2>/dev/null)$(shell \
 	@printf '%s\n' '$(AFV_COMMIT)' | cmp -s - $@ \
 	  || printf '%s\n' '$(AFV_COMMIT)' > $@
 
-cmd/cli.o: cmd/cli.c afv.h afv_internal.h afv_tool.h cmd/cli.h .build-flags \
+cmd/cli.o: cmd/cli.c $(LIB_H) cmd/cli.h .build-flags \
            .build-commit
 	$(CC) $(CFLAGS) -I. $(if $(AFV_COMMIT),-DAFV_COMMIT='"$(AFV_COMMIT)"') \
 	  -c -o $@ cmd/cli.c
@@ -129,7 +139,7 @@ cmd/cli.o: cmd/cli.c afv.h afv_internal.h afv_tool.h cmd/cli.h .build-flags \
 # keep their objects (and their speed) exactly as without it.
 PIC_OBJ  = $(LIB_SRC:.c=.pic.o)
 
-%.pic.o: %.c afv.h afv_internal.h afv_tool.h .build-flags
+%.pic.o: %.c $(LIB_H) .build-flags
 	$(CC) $(CFLAGS) -fPIC -c -o $@ $<
 
 # Its SONAME is libafv.so.MAJOR (AFV_VERSION_MAJOR in afv.h): a program
@@ -145,7 +155,7 @@ shared: libafv.so
 # and without: python/check_driver runs the same scenario through afv.h.
 PYTHON ?= python3
 
-python/check_driver: python/check_driver.c libafv.a afv.h .build-flags
+python/check_driver: python/check_driver.c libafv.a $(LIB_H) .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ python/check_driver.c libafv.a $(LDLIBS)
 
 python-test: afv libafv.so python/check_driver
@@ -153,9 +163,9 @@ python-test: afv libafv.so python/check_driver
 	$(PYTHON) python/test_afv.py --driver python/check_driver --afv ./afv \
 	  --no-numpy
 
-test/run_tests: $(TEST_SRC) test/test.h libafv.a afv.h afv_internal.h \
-                 afv_tool.h .build-flags
-	$(CC) $(CFLAGS) -I. -o $@ $(TEST_SRC) libafv.a $(LDLIBS)
+test/run_tests: $(TEST_SRC) test/test.h $(FITS_OBJ) libafv.a $(LIB_H) \
+                 cmd/fits.h .build-flags
+	$(CC) $(CFLAGS) -I. -o $@ $(TEST_SRC) $(FITS_OBJ) libafv.a $(LDLIBS)
 
 test: afv test/run_tests
 	./test/run_tests
@@ -175,7 +185,7 @@ run: afv
 # The benchmark (test/bench.c): one line per state and N, see its header.
 BENCH_STATES = random cluster
 
-test/bench: test/bench.c libafv.a afv.h afv_internal.h afv_tool.h .build-flags
+test/bench: test/bench.c libafv.a $(LIB_H) .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ test/bench.c libafv.a $(LDLIBS)
 
 bench: test/bench
@@ -252,9 +262,9 @@ FUZZ_CFLAGS  = -O1 -g -std=c99 -fno-omit-frame-pointer \
                -fsanitize=address,undefined -fno-sanitize-recover=all \
                -DAFV_LINES_BLOCK=61 -DAFV_LINE_MAX=3000
 FUZZ_NAMES   = $(patsubst fuzz/fuzz_%.c,%,$(wildcard fuzz/fuzz_*.c))
-FUZZ_OBJ     = $(patsubst %.c,fuzz/build/%.o,$(LIB_SRC) cmd/cli.c)
+FUZZ_OBJ     = $(patsubst %.c,fuzz/build/%.o,$(LIB_SRC) cmd/cli.c $(FITS_SRC))
 
-fuzz/build/%.o: %.c afv.h afv_internal.h afv_tool.h fastmath.h rng.h cmd/cli.h
+fuzz/build/%.o: %.c $(LIB_H) cmd/cli.h cmd/fits.h
 	@mkdir -p $(dir $@)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -I. -fsanitize=fuzzer-no-link -c -o $@ $<
 
@@ -264,7 +274,7 @@ fuzz/build/libafv_fuzz.a: $(FUZZ_OBJ)
 # (cmd/run.c: the config and collect harnesses include it; cmd/collect.c:
 # the collect harness)
 fuzz/build/fuzz_%: fuzz/fuzz_%.c fuzz/build/libafv_fuzz.a $(wildcard fuzz/*.h) \
-                   cmd/run.c cmd/collect.c cmd/cli.h afv.h afv_tool.h
+                   cmd/run.c cmd/collect.c cmd/cli.h $(LIB_H)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -I. -o $@ $< \
 	  fuzz/build/libafv_fuzz.a -lm
 
@@ -286,7 +296,7 @@ plain: reference/afv_plain
 # 1e-12, 100 Euler steps to 1e-9 l); then test/twins_mutants.sh shows that
 # one wrong sign in either makes it fail.
 test/twins: test/twins.c test/fixtures.c reference/afv_plain.c test/test.h \
-            libafv.a afv.h afv_internal.h .build-flags
+            libafv.a $(LIB_H) .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ test/twins.c test/fixtures.c libafv.a $(LDLIBS)
 
 twins: test/twins
@@ -326,7 +336,7 @@ paper-fss: paper-sweeps
 # resumable) and writes DIR/convergence.csv, verdicts.csv and figures/.
 CONV_OUT ?= convergence
 
-tools/convergence_plot: tools/convergence_plot.c libafv.a afv.h afv_tool.h \
+tools/convergence_plot: tools/convergence_plot.c libafv.a $(LIB_H) \
                         .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ tools/convergence_plot.c libafv.a $(LDLIBS)
 
@@ -397,8 +407,10 @@ diagram-budget-project: afv
 # doc/reproduction/grid_table.csv) and the dt check at Lambda = 0.
 LAMBDA_OUT ?= lambda
 
-tools/lambda_plot: tools/lambda_plot.c libafv.a afv.h .build-flags
-	$(CC) $(CFLAGS) -I. -o $@ tools/lambda_plot.c libafv.a $(LDLIBS)
+tools/lambda_plot: tools/lambda_plot.c $(FITS_OBJ) libafv.a $(LIB_H) \
+                   cmd/fits.h .build-flags
+	$(CC) $(CFLAGS) -I. -o $@ tools/lambda_plot.c $(FITS_OBJ) libafv.a \
+	  $(LDLIBS)
 
 lambda: afv tools/convergence_plot tools/lambda_plot
 	sh tools/lambda.sh $(LAMBDA_OUT)
@@ -408,7 +420,7 @@ lambda: afv tools/convergence_plot tools/lambda_plot
 # PROTOCOL_ARGS may shrink it (e.g. --N 100 --steps 2000).
 PROTOCOL_ARGS = --jobs 2
 
-test/protocol_check: test/protocol_check.c libafv.a afv.h .build-flags
+test/protocol_check: test/protocol_check.c libafv.a $(LIB_H) .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ test/protocol_check.c libafv.a $(LDLIBS)
 
 protocol-check: test/protocol_check
@@ -440,7 +452,7 @@ afv.pc: FORCE
 	  'Cflags: -I$${includedir}' > $@.tmp
 	@cmp -s $@.tmp $@ || mv $@.tmp $@; rm -f $@.tmp
 
-install: afv libafv.a libafv.so afv.pc doc/afv.1
+install: afv libafv.a libafv.so afv.pc doc/afv.1 afv.h afv_config.h
 	sh tools/install.sh install '$(DESTDIR)$(PREFIX)' $(VERSION) $(VERSION_MAJOR)
 
 uninstall:

@@ -68,6 +68,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* A macro's value as a string literal (the limits in the messages). */
+#define STR(x) STR_(x)
+#define STR_(x) #x
+
 const char *afv_strerror(int status)
 {
   switch (status) {
@@ -79,7 +83,8 @@ const char *afv_strerror(int status)
   case AFV_ECOINCIDENT: return "two cell centres coincide";
   case AFV_EIO: return "input/output error";
   case AFV_EFORMAT: return "malformed file";
-  case AFV_EUNSTABLE: return "unstable step (NaN force or a move > l/2)";
+  case AFV_EUNSTABLE: return "unstable step (a force or position not finite, or a move "
+                          "beyond " STR(AFV_RUNAWAY_MOVE) " l)";
   default: return "unknown error";
   }
 }
@@ -96,6 +101,21 @@ void afv_params_default(afv_params *p)
   p->cap = 0;
 }
 
+/* The moduli and targets of cell i (per-cell value if given). */
+typedef struct cell_targets {
+  double KA, KP, A0, P0;
+} cell_targets;
+
+static cell_targets targets_of(const afv_params *p, int i)
+{
+  cell_targets c;
+  c.KA = p->KA_i ? p->KA_i[i] : p->KA;
+  c.KP = p->KP_i ? p->KP_i[i] : p->KP;
+  c.A0 = p->A0_i ? p->A0_i[i] : p->A0;
+  c.P0 = p->P0_i ? p->P0_i[i] : p->P0;
+  return c;
+}
+
 /* 1 if every v[i] (i < n) is finite and >= lo; a NULL array passes. */
 static int array_at_least(const double *v, int n, double lo)
 {
@@ -104,6 +124,34 @@ static int array_at_least(const double *v, int n, double lo)
   for (i = 0; i < n; i++)
     if (!(isfinite(v[i]) && v[i] >= lo)) return 0;
   return 1;
+}
+
+/* The largest energy e_i a cell with these values can have: a cell lies
+** in its disk, 0 <= A_i <= pi l^2 and 0 <= P_i, L_i <= 2 pi l, so
+**     e_i <= KA dA^2 + KP dP^2 + |Lambda| 2 pi l,
+**     dA = max(|A0|, |pi l^2 - A0|),  dP = max(|P0|, |2 pi l - P0|).
+** Where this overflows, so may E and the forces (l = 1e300: l^2 = inf,
+** NaN forces; P0 = 1e300: E = inf). */
+static double energy_bound(const afv_params *p, int i)
+{
+  cell_targets c = targets_of(p, i);
+  double Amax = PI * p->l * p->l, Pmax = TWO_PI * p->l;
+  double dA = fmax(fabs(c.A0), fabs(Amax - c.A0));
+  double dP = fmax(fabs(c.P0), fabs(Pmax - c.P0));
+  return c.KA * dA * dA + c.KP * dP * dP + fabs(p->Lambda) * Pmax;
+}
+
+/* 1 if the energy of n cells (at least 1) stays AFV_PARAMS_HEADROOM below
+** overflow whatever their shapes: the sum of their energy_bound. */
+static int energy_bounded(const afv_params *p, int n)
+{
+  double sum = 0;
+  int i;
+  if (!(p->KA_i || p->KP_i || p->A0_i || p->P0_i))
+    sum = (n > 1 ? n : 1) * energy_bound(p, 0);
+  else
+    for (i = 0; i < n && isfinite(sum); i++) sum += energy_bound(p, i);
+  return isfinite(sum * AFV_PARAMS_HEADROOM);
 }
 
 int afv_params_check(const afv_params *p, int n)
@@ -118,6 +166,7 @@ int afv_params_check(const afv_params *p, int n)
         && array_at_least(p->A0_i, n, -HUGE_VAL)
         && array_at_least(p->P0_i, n, -HUGE_VAL)))
     return AFV_EINVAL;
+  if (!energy_bounded(p, n)) return AFV_EINVAL;
   return AFV_OK;
 }
 
@@ -127,21 +176,6 @@ static int box_check(const afv_box *b, double l)
   if (!(isfinite(b->Lx) && isfinite(b->Ly))) return AFV_EINVAL;
   if (b->Lx < 4 * l || b->Ly < 4 * l) return AFV_EBOX;
   return AFV_OK;
-}
-
-/* The moduli and targets of cell i (per-cell value if given). */
-typedef struct cell_targets {
-  double KA, KP, A0, P0;
-} cell_targets;
-
-static cell_targets targets_of(const afv_params *p, int i)
-{
-  cell_targets c;
-  c.KA = p->KA_i ? p->KA_i[i] : p->KA;
-  c.KP = p->KP_i ? p->KP_i[i] : p->KP;
-  c.A0 = p->A0_i ? p->A0_i[i] : p->A0;
-  c.P0 = p->P0_i ? p->P0_i[i] : p->P0;
-  return c;
 }
 
 double afv_cell_energy(const afv_params *p, int i, double A, double P, double L)
@@ -563,20 +597,12 @@ static double tension_scale(const afv_geom *g, int n, const afv_params *p)
 ** bisector turns over).  A central difference whose step reaches a kink
 ** differences across it, and one close to it needs steps much smaller
 ** than the distance to it, where the Taylor series converges.  So the
-** step for cell c is at most KINK_STEPS times smaller than c's distance
-** to its nearest kink: the error of the extrapolated difference, about
-** (h / delta)^4 times the force there, is then 1e-8 of it. */
-#define KINK_STEPS 100
-
-/* The finite-difference error is called resolved when the error is more
-** than UNRESOLVED_FACTOR times the difference's own uncertainty (both
-** steps' disagreement and rounding): only a resolved error can fail the
-** check. */
-#define UNRESOLVED_FACTOR 2
-
-/* The rounding of an energy, relative to its energy_magnitude: the shapes
-** are sums of a few dozen rounded terms. */
-#define ENERGY_ROUNDING AFV_SUM_ROUNDING
+** step for cell c is at most AFV_CHECK_KINK_STEPS times smaller than c's
+** distance to its nearest kink (afv_config.h).  The finite-difference
+** error is called resolved when it is more than AFV_CHECK_UNRESOLVED
+** times the difference's own uncertainty (both steps' disagreement and
+** rounding, the energy's relative rounding AFV_SUM_ROUNDING of its
+** energy_magnitude): only a resolved error can fail the check. */
 
 /* Distance of c (at the origin of the local centres x, cells 1 .. m-1)
 ** to its nearest kink: min over the others of d and |d - 2l|. */
@@ -607,20 +633,28 @@ static double kink_distance_global(int n, const double *r, const afv_box *b,
   return delta;
 }
 
+/* 1 if err is to replace max as the largest error: NaN is larger than
+** any number, and stays the largest once recorded. */
+static int exceeds(double err, double max)
+{
+  return !isnan(max) && !(err <= max);
+}
+
 /* Records the error of component q: fd, the extrapolated central
-** difference, and u, its uncertainty (see UNRESOLVED_FACTOR). */
+** difference, and u, its uncertainty (see KINKS).  A NaN
+** error (a NaN force) is resolved: a wrong force, never a pass. */
 static void check_record(afv_check_report *rep, int q, double fd, double f,
                          double u)
 {
   double err = fabs(fd - f);
-  int resolved = err > UNRESOLVED_FACTOR * u;
-  if (!(err <= rep->max_abs) || rep->worst_cell < 0) {  /* NaN counts */
+  int resolved = !(err <= AFV_CHECK_UNRESOLVED * u);
+  if (exceeds(err, rep->max_abs) || rep->worst_cell < 0) {
     rep->max_abs = err;
     rep->worst_cell = q / 2;
     rep->worst_comp = q % 2;
   }
-  if (resolved && !(err <= rep->max_resolved)) rep->max_resolved = err;
-  if (!resolved && !(err <= rep->max_unresolved)) {
+  if (resolved && exceeds(err, rep->max_resolved)) rep->max_resolved = err;
+  if (!resolved && exceeds(err, rep->max_unresolved)) {
     rep->max_unresolved = err;
     rep->unresolved_cell = q / 2;
   }
@@ -635,6 +669,8 @@ typedef struct fd_context {
   const double *r;
   const afv_params *p;
   const afv_box *b;
+  double reach;          /* size of the coordinates the energies are
+                         ** computed from (see check_component) */
 } fd_context;
 
 /* -(E(+s) - E(-s)) / 2s along component q; adds the energies'
@@ -658,15 +694,23 @@ static int central_difference(const fd_context *C, int q, double s,
 /* Component q checked with step s and s/2: the Richardson extrapolation
 ** (4 D(s/2) - D(s)) / 3 against f[q]; its uncertainty is the two steps'
 ** disagreement (an O(s^2) bound on an O(s^4) error) plus the rounding
-** of the energies, 3 eps_E / s in the extrapolation. */
+** of the energies, 3 eps_E / s in the extrapolation.  eps_E has two
+** parts: the energy's own sums (AFV_SUM_ROUNDING of its magnitude), and
+** the distances between centres, each rounded to AFV_COORD_ROUNDING of
+** the coordinates' size (C->reach), which move the energy by up to the
+** force times that much: where the step is only a few ulps of the
+** coordinates (a pair an ulp from detaching), the difference
+** cannot resolve the force, and says so instead of failing. */
 static int check_component(const fd_context *C, int q, double s,
                            const double *f, afv_check_report *rep)
 {
-  double D1, D2, mag = 0, u;
+  double D1, D2, mag = 0, u, F;
   int st = central_difference(C, q, s, &D1, &mag);
   if (st == AFV_OK) st = central_difference(C, q, 0.5 * s, &D2, &mag);
   if (st != AFV_OK) return st;
-  u = fabs(D1 - D2) + 3 * ENERGY_ROUNDING * (mag / 4) / s;
+  F = fmax(fabs(f[q]), fmax(fabs(D1), fabs(D2)));
+  u = fabs(D1 - D2) + 3 * (AFV_SUM_ROUNDING * (mag / 4)
+                           + F * AFV_COORD_ROUNDING * C->reach) / s;
   check_record(rep, q, D2 + (D2 - D1) / 3, f[q], u);
   return AFV_OK;
 }
@@ -684,6 +728,7 @@ int afv_force_check(int n, const double *r, const afv_params *p,
   memset(&T, 0, sizeof T);
   memset(rep, 0, sizeof *rep);
   rep->worst_cell = rep->unresolved_cell = -1;
+  if (!(h > 0 && isfinite(h))) return AFV_EINVAL;
   if ((st = afv_geometry(&g, n, r, p, b)) != AFV_OK) {
     afv_geom_free(&g);
     return st;
@@ -700,12 +745,15 @@ int afv_force_check(int n, const double *r, const afv_params *p,
   if (rr && n > 0) memcpy(rr, r, (size_t)(2 * n) * sizeof(double));
   C.local = local; C.n = n; C.T = &T; C.g = &g; C.rr = rr; C.r = r;
   C.p = p; C.b = b;
+  C.reach = 4 * p->l + 2 * h;             /* local: centres within it */
   for (c = 0; c < n && st == AFV_OK; c++) {
     double s;
     if (local && (st = local_build(&T, &g, r, p, b, c, h)) != AFV_OK) break;
     s = fmin(h, (local ? kink_distance(T.r, T.m, p->l)
-                 : kink_distance_global(n, r, b, c, p->l)) / KINK_STEPS);
+                 : kink_distance_global(n, r, b, c, p->l)) / AFV_CHECK_KINK_STEPS);
     s = fmax(s, DBL_MIN);   /* a kink 1e-320 l away: no step resolves it */
+    if (!local)             /* global: the coordinates of the whole box */
+      C.reach = fmax(fabs(r[2*c]), fabs(r[2*c+1])) + fmax(b->Lx, b->Ly);
     for (q = 2 * c; q < 2 * c + 2 && st == AFV_OK; q++)
       st = check_component(&C, q, s, f, rep);
   }
@@ -730,7 +778,11 @@ int afv_gradient_check(int n, const double *r, const afv_params *p,
   int st;
   memset(&g, 0, sizeof g);
   memset(rep, 0, sizeof *rep);
-  rep->worst_cell = -1;
+  rep->worst_cell = rep->unresolved_cell = -1;
+  if (!(h > 0 && isfinite(h))) {
+    free(f);
+    return AFV_EINVAL;
+  }
   if (!f) return AFV_ENOMEM;
   st = afv_compute(&g, n, r, p, b, f);
   afv_geom_free(&g);

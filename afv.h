@@ -17,8 +17,8 @@
 ** an afv_geom.  Library functions never exit: they return a status code.
 **
 ** Contents (in this order below)
-**   version, status codes              AFV_VERSION, AFV_OK .., afv_strerror
-**   tolerance                          AFV_CONTACT_TOL
+**   version, status codes              AFV_VERSION, afv_strerror
+**   status codes and tolerances        afv_config.h (AFV_OK, AFV_CONTACT_TOL, ..)
 **   parameters, boundary               afv_params, afv_box
 **   geometry, energy and forces        afv_geom, afv_geometry, afv_compute
 **   cell order                         afv_spatial_order
@@ -53,24 +53,13 @@
 #define AFV_VERSION_PATCH 0
 #define AFV_VERSION "0.4.0"
 
-/* ---- status codes ------------------------------------------------------ */
-#define AFV_OK           0  /* success */
-#define AFV_ENOMEM       1  /* an allocation failed */
-#define AFV_EINVAL       2  /* a parameter is out of range (l <= 0, NaN, ...) */
-#define AFV_EBOX         3  /* periodic box side smaller than 4l */
-#define AFV_ENONFINITE   4  /* a position is NaN or infinite */
-#define AFV_ECOINCIDENT  5  /* two centres coincide (d = 0): afv_geom_bad_pair */
-#define AFV_EIO          6  /* reading or writing a file failed */
-#define AFV_EFORMAT      7  /* a file is not in the documented format */
-#define AFV_EUNSTABLE    8  /* a force or position not finite, or a runaway
-                            ** move (AFV_RUNAWAY_MOVE): afv_sim_bad_cell */
+/* ---- status codes and tolerances (afv_config.h) ------------------------- */
+/* The status codes AFV_OK, AFV_ENOMEM, ..., AFV_EUNSTABLE and every
+** tolerance (AFV_CONTACT_TOL, AFV_MAX_STEP_DISP, AFV_RUNAWAY_MOVE,
+** AFV_RELAX_KINK_*, ...), each with its meaning: */
+#include "afv_config.h"
 
 const char *afv_strerror(int status);   /* one-line description of a status */
-
-/* ---- tolerance (relative to l; the library's others: afv_internal.h) --- */
-/* A straight edge shorter than AFV_CONTACT_TOL * l is geometry, not a
-** contact: it is kept in the boundary but not counted in afv_geom_contacts. */
-#define AFV_CONTACT_TOL 1e-9
 
 /* ---- parameters -------------------------------------------------------- */
 typedef struct afv_params {
@@ -228,23 +217,11 @@ int afv_force_check(int n, const double *r, const afv_params *p,
 ** generator (Philox4x32-10) keyed by the seed, so a run depends only on
 ** (seed, parameters), whatever the order cells are visited in. */
 
-/* afv_sim_step is the paper's Euler step, r_i += dt (mu F_i + v0_i n_i)
-** with the exact force, for every cell, however far it moves.  Near a
-** contact that breaks (Lambda > 0) the force diverges like
-** (2l - d)^(-1/2), and a finite step is what carries a pair over that
-** barrier: the results depend on dt (doc/reproduction/convergence.md).
-** A step in which some cell moves farther than AFV_MAX_STEP_DISP * l (the
-** forces change on the scale l, so Euler's method no longer follows the
-** continuous dynamics there) is a jump, counted (afv_sim_jumps), not
-** refused. */
-#define AFV_MAX_STEP_DISP 0.5
-/* afv_sim_step refuses a step only if a force or position is not finite, or
-** if it would move a cell farther than AFV_RUNAWAY_MOVE l: no force of
-** the model does that at sane parameters (the divergence at detachment
-** is cut off by the spacing of doubles near 2l: |F| < 1e7 at the paper's
-** parameters, a move of 1e5 l in dt = 0.01), but a modulus like
-** KA = 1e100 does, and positions that far off no longer resolve l. */
-#define AFV_RUNAWAY_MOVE 1e8
+/* afv_sim_step is the paper's Euler step, r_i += dt (mu F_i + v0_i n_i),
+** with the exact force however far a cell moves: a move beyond
+** AFV_MAX_STEP_DISP l is a jump, counted (afv_sim_jumps); only a move
+** beyond AFV_RUNAWAY_MOVE l or a force that is not finite is refused
+** (afv_config.h says why). */
 
 typedef struct afv_dyn {
   double mu;          /* mobility (inverse friction), > 0 */
@@ -343,18 +320,12 @@ double afv_sim_max_force(const afv_sim *s);
 ** steps (none of these flags: not reached).  Status AFV_OK in all these
 ** cases; an error only for a force that is not finite (AFV_EUNSTABLE) or
 ** as afv_compute.
-** Kink criterion (dynamics.c, KINKS), at the end of a window of
-** AFV_RELAX_WINDOW steps: every cell's mean force over the window (its
-** displacement / (window time mu)) is at most AFV_RELAX_KINK_DRIFT and at
-** most AFV_RELAX_KINK_CHATTER max_i |F_i| (the forces cancel over the
-** window: cells chatter across a kink), the window's mean energy changed
-** by at most AFV_RELAX_KINK_DROP sum_i |e_i| since the previous window,
-** and max_i |F_i| <= AFV_RELAX_KINK_FORCE. */
-#define AFV_RELAX_WINDOW      1000
-#define AFV_RELAX_KINK_DRIFT  1e-3   /* force units (KA l^3) */
-#define AFV_RELAX_KINK_CHATTER 0.1
-#define AFV_RELAX_KINK_DROP   1e-4
-#define AFV_RELAX_KINK_FORCE  5.0    /* force units (KA l^3) */
+** Kink criterion (dynamics.c, KINKS; the constants AFV_RELAX_WINDOW and
+** AFV_RELAX_KINK_* in afv_config.h), at the end of a window of
+** AFV_RELAX_WINDOW steps: every cell's mean force over the window is
+** small in absolute terms and against max_i |F_i| (the cells chatter
+** across a kink), the mean energy has stopped dropping, and max_i |F_i|
+** is moderate. */
 typedef struct afv_relax_report {
   long   iterations;   /* flow steps taken */
   double time;         /* iterations dt */

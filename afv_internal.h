@@ -3,93 +3,51 @@
 ** the structs behind afv.h's opaque afv_geom and afv_sim, the steps of the
 ** geometry and of the simulation, the OpenMP macros.  Included by the
 ** library's .c files, the white-box tests and the parts of the program
-** that need the internals; not installed (make install copies afv.h only).
-** It includes afv_tool.h, the program's part of the library.
+** that need the internals; not installed (make install copies afv.h and
+** afv_config.h only).  It does not include afv_tool.h, the part of the
+** library that serves the program alone: a file that uses it says so.
 */
 #ifndef AFV_INTERNAL_H
 #define AFV_INTERNAL_H
 
 #include "afv.h"
-#include "afv_tool.h"
 
 #include <float.h>
 #include <stddef.h>
+#include <stdint.h>
 
-/* ---- tolerances -------------------------------------------------------- */
-/* Every tolerance of the library, here and nowhere else (a literal such as
-** 1e-9 in a .c file is a bug); lengths are relative to l unless said.
-** (The one a user reads, AFV_CONTACT_TOL, the shortest edge that counts as
-** a contact, is public: afv.h.) */
+/* The tolerances of the library are in afv_config.h (through afv.h),
+** each with its meaning and the test that pins it. */
 
-/* geom.c, gap_angle: two kept parts of a cell's boundary that meet on the
-** circle may have a computed gap a hair below zero, which wraps around to
-** a full turn; a gap within AFV_ANGLE_TOL of 2 pi between two distinct
-** edges is taken as zero (a true gap that large would need every contact
-** edge of the cell shorter than about 1e-12 l). */
-#define AFV_ANGLE_TOL 1e-12
+/* ---- fast sin, cos and atan2 (fastmath.c); random streams (rng.c) ------ */
+/* The counter-clockwise angle from +x to the vector (x, y), in [0, 2 pi]
+** (2 pi only by rounding, for y a hair below 0): atan2(y, x) + (2 pi if
+** negative), within 8.9e-16 (measured), in plain arithmetic (fastmath.h);
+** NaN if both components are infinite. */
+double afv_angle(double y, double x);
+/* sin x and cos x to within 2.22e-16 of the C library's (measured), in
+** plain arithmetic without a branch (fastmath.h); |x| >= 1e6, inf and
+** NaN are passed to sin and cos. */
+void afv_sincos(double x, double *sin_x, double *cos_x);
 
-/* geom.c, clip_pairs and sliver_kept: two bisectors with |t_a.u_b| below
-** this are nearly parallel, and are clipped with care
-** (clip_near_parallel). */
-#define AFV_NEAR_PARALLEL 1e-6
-
-/* geom.c, clip_near_parallel: two nearly parallel neighbours whose
-** displacements differ by AFV_NEAR_PARALLEL_GAP |D_a| or more have lines
-** that meet 1e6 l away or farther: the nearer line hides the other. */
-#define AFV_NEAR_PARALLEL_GAP 1e-3
-
-/* geom.c, keep_parts: a part bounded by two junctions whose length came
-** out negative by at most this times |tau0| + |tau1| is a sliver of
-** length zero lost to rounding, not an empty part. */
-#define AFV_SLIVER_ROUNDING (8 * DBL_EPSILON)
-
-/* geom.c, clip_pruned: a neighbour whose bisector lies farther than the
-** cell's farthest vertex plus AFV_PRUNE_MARGIN l cannot cut the cell (the
-** margin covers the rounding of the vertices, so pruning keeps the bits). */
-#define AFV_PRUNE_MARGIN 1e-9
-
-/* neighbours.c, window_around and security_radius: a reach (the bins
-** around a point, the radius of security of a cut polygon) is widened by
-** AFV_REACH_MARGIN l to cover the rounding of the positions it is
-** computed from. */
-#define AFV_REACH_MARGIN 1e-9
-
-/* neighbours.c, NEAR: two centres closer than AFV_NEAR_IMAGE times the
-** longer box side take their displacement from the unwrapped centres
-** (wrapping rounds a centre to a multiple of eps L); the relative error
-** is then below eps / AFV_NEAR_IMAGE = 2.3e-10.  2^-20, exact. */
-#define AFV_NEAR_IMAGE 9.5367431640625e-07
-
-/* The relative rounding of a sum of a few dozen rounded terms: a cell's
-** area, perimeter or energy (afv.c, the finite-difference check's
-** uncertainty; geom.c, the asserted bounds of a shape). */
-#define AFV_SUM_ROUNDING (64 * DBL_EPSILON)
-
-/* svg.c and phase.c: a plotted range narrower than AFV_PLOT_SPAN_TOL
-** (times |lo| + 1 on a line plot's axis; absolute for a phase map's
-** colour scale) holds one value, and is widened around it. */
-#define AFV_PLOT_SPAN_TOL 1e-12
-
-/* svg.c: a tick within AFV_PLOT_TICK_TOL of a step from zero is labelled
-** 0, and the ticks run to the axis end plus that much of a step (the
-** rounding of lo + k step). */
-#define AFV_PLOT_TICK_TOL 1e-9
-
-/* svg.c, draw_arc: an arc within AFV_FULL_CIRCLE_TOL (radians) of 2 pi
-** is a full circle, drawn as two half arcs. */
-#define AFV_FULL_CIRCLE_TOL 1e-9
-
-/* phase.c, linear_fit: a least-squares determinant below AFV_FIT_SINGULAR
-** times sum u^2 + 1 is singular (u does not vary). */
-#define AFV_FIT_SINGULAR 1e-300
-
-/* phase.c, the dispersal boundary's exponent alpha: the golden-section
-** search stops when its bracket is narrower than AFV_FIT_ALPHA_TOL. */
-#define AFV_FIT_ALPHA_TOL 1e-13
-
-/* fits.c, collapse_grid: a grid of v0* and alpha runs to its end plus
-** AFV_GRID_END_TOL, so that rounding of lo + k step keeps the last point. */
-#define AFV_GRID_END_TOL 1e-12
+/* Philox4x32-10 (Salmon et al., SC'11; Random123): out = bijection of the
+** 128-bit counter ctr under the 64-bit key. */
+void afv_philox4x32(const uint32_t ctr[4], const uint32_t key[2],
+                    uint32_t out[4]);
+/* Streams: counter = (cell, step low 32 bits, step high 32 bits, purpose),
+** key = seed.  One call yields 2 uniforms with 53 random bits each. */
+enum { AFV_RNG_NOISE = 1, AFV_RNG_INIT_POS = 2, AFV_RNG_INIT_ANGLE = 3 };
+/* Two uniforms in (0, 1] (multiples of 2^-53) for (seed, cell, step, purpose). */
+void afv_rng_uniform2(unsigned long long seed, uint32_t cell,
+                      unsigned long long step, unsigned purpose, double u[2]);
+/* Two independent standard normals (Box-Muller: cosine and sine branch)
+** from the stream of counter `pair`. */
+void afv_rng_normal2(unsigned long long seed, uint32_t pair,
+                     unsigned long long step, unsigned purpose, double z[2]);
+/* The normal of `cell`: z[cell % 2] of afv_rng_normal2 for pair cell / 2
+** (the noise of cell i at step s in afv_sim_step). */
+double afv_rng_normal(unsigned long long seed, uint32_t cell,
+                      unsigned long long step, unsigned purpose);
 
 /* ---- OpenMP build (make OPENMP=1) ----------------------------------- */
 /* A per-cell loop over fewer than AFV_PARALLEL_MIN cells runs on the

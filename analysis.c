@@ -36,6 +36,7 @@
 ** increasing in (i, j), i < j (afv_t1_count merges two of them).
 */
 #include "afv_internal.h"
+#include "afv_tool.h"
 
 #include <assert.h>
 #include <errno.h>

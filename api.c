@@ -8,6 +8,7 @@
 ** call, a picture written to a file.
 */
 #include "afv_internal.h"
+#include "afv_tool.h"   /* afv_atomic_open: afv_svg_save writes atomically */
 
 #include <math.h>
 #include <stddef.h>

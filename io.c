@@ -19,6 +19,7 @@
 */
 #define _POSIX_C_SOURCE 200809L  /* stat: readers refuse directories, devices */
 #include "afv_internal.h"
+#include "afv_tool.h"
 
 #include <assert.h>
 #include <errno.h>

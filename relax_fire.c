@@ -18,14 +18,14 @@
 ** to FIRE_ALPHA0, every cell goes back half its last move and v = 0.  Then
 ** a semi-implicit Euler step: v += dt F, v = (1 - alpha) v + alpha |v|
 ** F/|F| (norms over the whole tissue), and each cell moves by dt v_i, cut
-** to FIRE_MAX_MOVE l if longer (the cap: a contact about to break has a
+** to AFV_FIRE_MAX_MOVE l if longer (the cap: a contact about to break has a
 ** force like (2l - d)^(-1/2), which would throw its cells far).
 **
 ** STOPS (the four of afv_relax_report):
 **   converged  max_i |F_i| <= tol;
 **   at_kink    the lowest energy seen has not dropped by more than
-**              FIRE_STALL_DROP of |E| over FIRE_STALL iterations while the
-**              max |F| of that state did not halve (a smooth minimum being
+**              AFV_FIRE_STALL_DROP of |E| over AFV_FIRE_STALL iterations
+**              while the max |F| of that state did not halve (a smooth minimum being
 **              approached halves it), and that max |F| is at most
 **              AFV_RELAX_KINK_FORCE: E
 **              has a kink there (a triple junction on a cell's circle, where
@@ -56,9 +56,7 @@
 #define FIRE_DEC 0.5
 #define FIRE_DELAY 20         /* N_delay */
 #define FIRE_MAX_UPHILL 2000  /* N_P<0 max */
-#define FIRE_MAX_MOVE 0.1     /* a cell's largest move in one step, in l */
-#define FIRE_STALL 1000       /* iterations over which the best E must drop */
-#define FIRE_STALL_DROP 1e-8  /* by this fraction of |E| */
+/* the largest move and the stall: AFV_FIRE_* (afv_config.h) */
 
 /* Per-cell velocities, last moves and the best state: 6n doubles. */
 typedef struct fire {
@@ -120,7 +118,7 @@ static int fire_adapt(afv_sim *s, fire *w, long iter)
 /* The semi-implicit Euler step with mixing, each cell's move capped. */
 static void fire_move(afv_sim *s, fire *w)
 {
-  double vn, fn, cap = FIRE_MAX_MOVE * s->par.l;
+  double vn, fn, cap = AFV_FIRE_MAX_MOVE * s->par.l;
   int i, k, m = 2 * s->n;
   for (k = 0; k < m; k++) w->v[k] += w->dt * s->f[k];
   vn = sqrt(dot(w->v, w->v, m));
@@ -196,7 +194,7 @@ static void keep_best(const afv_sim *s, fire *w, double max_force)
 ** however slow in E, halves it). */
 static int stalled(fire *w)
 {
-  int stop = w->stall_E - w->best_E <= FIRE_STALL_DROP * fabs(w->best_E)
+  int stop = w->stall_E - w->best_E <= AFV_FIRE_STALL_DROP * fabs(w->best_E)
              && !(w->best_force < 0.5 * w->stall_force);
   w->stall_E = w->best_E;
   w->stall_force = w->best_force;
@@ -230,7 +228,7 @@ int afv_relax_fire(afv_sim *s, double tol, long max_iter,
     rep->max_force = afv_sim_max_force(s);
     keep_best(s, &w, rep->max_force);
     if (mon) mon(ctx, rep->iterations, s->geom.energy, rep->max_force);
-    if (rep->iterations % FIRE_STALL == 0 && (stop = stalled(&w)) != 0) {
+    if (rep->iterations % AFV_FIRE_STALL == 0 && (stop = stalled(&w)) != 0) {
       rep->at_kink = w.best_force <= AFV_RELAX_KINK_FORCE;
       rep->refused = !rep->at_kink;
     }

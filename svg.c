@@ -37,6 +37,7 @@
 ** (tested).
 */
 #include "afv_internal.h"
+#include "afv_tool.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -61,6 +62,9 @@
 #define MAX_SHIFT   2        /* periodic images drawn: -2..2 boxes */
 #define MAX_IMAGES  25       /* (2 MAX_SHIFT + 1)^2 */
 #define COORD_LEN   40       /* longest printed coordinate, with its 0 */
+/* below this magnitude a coordinate with 17 decimals fits COORD_LEN (16
+** digits, the point, 17 decimals, the 0); at or above, %.17g */
+#define COORD_FIXED_MAX 1e15
 
 /* Writes text with &, <, > escaped. */
 static void put_text(FILE *out, const char *s)
@@ -90,7 +94,7 @@ typedef struct view {
 static const char *coord(char buf[COORD_LEN], const view *v, double x)
 {
   size_t k;
-  if (!(fabs(x) < 1e15)) {
+  if (!(fabs(x) < COORD_FIXED_MAX)) {
     snprintf(buf, COORD_LEN, "%.17g", x);
     return buf;
   }
@@ -173,8 +177,9 @@ static void set_view(view *v, int n, const double *r, const afv_params *p,
   v->line_w = mark_size(v, LINE_W, LINE_MIN_PX, LINE_CAP);
   v->junction_r = mark_size(v, JUNCTION_R, JUNCTION_MIN_PX, JUNCTION_CAP);
   v->centre_r = mark_size(v, CENTRE_R, CENTRE_MIN_PX, CENTRE_CAP);
-  /* a coordinate to 1e-4 l, and to 1/100 pixel on a magnified picture */
-  res = 1e-4 * v->l < 0.01 / v->px ? 1e-4 * v->l : 0.01 / v->px;
+  /* a coordinate to AFV_SVG_RESOLUTION l (1e-4 l), and to
+  ** AFV_SVG_RESOLUTION_PX (1/100) pixel on a magnified picture */
+  res = fmin(AFV_SVG_RESOLUTION * v->l, AFV_SVG_RESOLUTION_PX / v->px);
   v->dec = (int)ceil(-log10(res));
   if (v->dec < 0) v->dec = 0;
   if (v->dec > 17) v->dec = 17;

@@ -11,6 +11,8 @@
 **   collect.c  collect: a sweep's table, missing jobs, fits and figures
 **   paper.c    paper: the paper's figures and claims table (make paper);
 **              paper_data.c its tables, claims.c its claim rules (paper.h)
+**   phase.c,   phase diagrams and the paper's fits (fits.h): afv collect's
+**   fits.c     and afv paper's, not the library's
 **
 ** Exit status of every command: 0 success, 1 a check failed (or jobs are
 ** missing, or the run analysed is unfinished), 2 bad input or options, 3 a
@@ -22,6 +24,7 @@
 
 #include "afv.h"
 #include "afv_tool.h"
+#include "fits.h"
 
 #define EXIT_CHECK_FAILED 1
 #define EXIT_BAD_INPUT    2

@@ -22,7 +22,7 @@
 /* Values within a factor HEADROOM of the largest double are refused, as
 ** afv run refuses them: the energy and the forces are sums and products of
 ** the terms bounded below, and must stay finite. */
-#define HEADROOM 1e6
+#define HEADROOM AFV_PARAMS_HEADROOM
 
 static int huge(double x)
 {

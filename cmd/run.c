@@ -715,6 +715,21 @@ static int run_protocol(run_state *R, long relax_steps, afv_relax_report *rep,
   return st;
 }
 
+static int energy_computable(const afv_params *p, int n, char *err,
+                             size_t errlen);
+
+/* energy_computable for the configuration's model (the start refused its
+** parameters: afv_params_check's energy bound is energy_computable's). */
+static int start_energy_computable(const run_state *R, char *err,
+                                   size_t errlen)
+{
+  afv_params p;
+  afv_box b;
+  afv_dyn d;
+  cfg_model(&R->cfg, &R->cells, &p, &b, &d);
+  return energy_computable(&p, (int)R->cfg.N, err, errlen);
+}
+
 /* The start (positions and angles) and the simulation at it, unrelaxed;
 ** for init lattice, the spacing it got (start_spacing). */
 static int run_start(run_state *R, char *err, size_t errlen)
@@ -724,6 +739,8 @@ static int run_start(run_state *R, char *err, size_t errlen)
     afv_geom_bad_pair(afv_sim_geom(R->sim), &i, &j);
     afv_errorf(err, errlen, "cells %d and %d of the start have the same "
                "centre", i, j);
+  } else if (st == AFV_EINVAL && !start_energy_computable(R, err, errlen)) {
+    ;                 /* afv_params_check's bound, the key named */
   } else if (st != AFV_OK)
     afv_errorf(err, errlen, "start: %s", afv_strerror(st));
   else if (strcmp(R->cfg.init, "lattice") == 0)
@@ -812,22 +829,23 @@ static int huge(double x)
 /* 1 if no state can overflow the energy: each term's bound, summed over
 ** the cells, and their total are within the headroom.  Else names the key
 ** (the target A0 or P0 when the deviation alone overflows). */
-static int energy_computable(afv_sim *s, char *err, size_t errlen)
+static int energy_computable(const afv_params *p, int n, char *err,
+                             size_t errlen)
 {
   double sum[N_TERMS] = {0, 0, 0};
   int i, k, worst_cell[N_TERMS] = {0, 0, 0}, worst_k = 0;
   for (k = 0; k < N_TERMS; k++) {
     double worst = -1;
-    for (i = 0; i < afv_sim_n(s); i++) {
-      double dev2, b = term_bound(afv_sim_params(s), i, k, &dev2);
+    for (i = 0; i < n; i++) {
+      double dev2, b = term_bound(p, i, k, &dev2);
       if (huge(dev2)) {   /* A0 or P0 far out, or the cell's size */
         char label[96];
         double target;
-        term_modulus(afv_sim_params(s), i, k, &target);
+        term_modulus(p, i, k, &target);
         if (huge(target * target))
-          term_label(label, sizeof label, afv_sim_params(s), k, i, 1);
+          term_label(label, sizeof label, p, k, i, 1);
         else
-          snprintf(label, sizeof label, "l: %g", afv_sim_params(s)->l);
+          snprintf(label, sizeof label, "l: %g", p->l);
         afv_errorf(err, errlen, "%s: the %s cannot be computed: its squared "
                    "deviation reaches %g", label, term_name[k], dev2);
         return 0;
@@ -846,11 +864,11 @@ static int energy_computable(afv_sim *s, char *err, size_t errlen)
   if (k == N_TERMS) k = worst_k;
   {
     char label[96];
-    term_label(label, sizeof label, afv_sim_params(s), k, worst_cell[k], 0);
+    term_label(label, sizeof label, p, k, worst_cell[k], 0);
     afv_errorf(err, errlen, "%s: the %s can reach %g summed over the %d "
                "cells, beyond %g (the largest double over a margin of %g "
                "for the sums the run forms)", label, term_name[k], sum[k],
-               afv_sim_n(s), DBL_MAX / COMPUTE_HEADROOM, COMPUTE_HEADROOM);
+               n, DBL_MAX / COMPUTE_HEADROOM, COMPUTE_HEADROOM);
   }
   return 0;
 }
@@ -1002,7 +1020,8 @@ static int run_computable(const run_state *R, const char *where, char *err,
                           size_t errlen)
 {
   char what[512];
-  if (!energy_computable(R->sim, err, errlen)
+  if (!energy_computable(afv_sim_params(R->sim), afv_sim_n(R->sim), err,
+                         errlen)
       || !dynamics_computable(R->sim, R->cfg.steps, err, errlen))
     return 0;
   if (!state_finite(R->sim, what, sizeof what)) {

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
+#include <string.h>
 
 int test_failures_in_current;
 int test_skipped_current;
@@ -49,26 +50,36 @@ const char *test_shared_dir(void)
   return env && *env ? env : "../shared";
 }
 
-int main(void)
+/* The suites in the order they run. */
+static const struct { const char *name; void (*run)(void); } suites[] = {
+  {"core", suite_core}, {"cli", suite_cli}, {"dynamics", suite_dynamics},
+  {"analysis", suite_analysis}, {"perf", suite_perf},
+  {"pictures", suite_pictures}, {"readers", suite_readers},
+  {"runjob", suite_runjob}, {"reference", suite_reference},
+  {"sweep", suite_sweep}, {"geometry", suite_geometry},
+  {"protocol", suite_protocol}, {"docs", suite_docs}, {"api", suite_api},
+  {"integrator", suite_integrator}, {"paper", suite_paper},
+  {"relax_fire", suite_relax_fire}, {"invariants", suite_invariants}};
+
+/* test/run_tests: every suite; test/run_tests NAME...: those suites only
+** (e.g. core geometry, while changing the geometry). */
+int main(int argc, char **argv)
 {
-  suite_core();
-  suite_cli();
-  suite_dynamics();
-  suite_analysis();
-  suite_perf();
-  suite_pictures();
-  suite_readers();
-  suite_runjob();
-  suite_reference();
-  suite_sweep();
-  suite_geometry();
-  suite_protocol();
-  suite_docs();
-  suite_api();
-  suite_integrator();
-  suite_paper();
-  suite_relax_fire();
-  suite_invariants();
+  size_t k;
+  int a;
+  for (a = 1; a < argc; a++) {
+    for (k = 0; k < sizeof suites / sizeof suites[0]; k++)
+      if (strcmp(argv[a], suites[k].name) == 0) break;
+    if (k == sizeof suites / sizeof suites[0]) {
+      printf("run_tests: no suite %s\n", argv[a]);
+      return 2;
+    }
+  }
+  for (k = 0; k < sizeof suites / sizeof suites[0]; k++) {
+    int wanted = argc == 1;
+    for (a = 1; a < argc; a++) wanted |= !strcmp(argv[a], suites[k].name);
+    if (wanted) suites[k].run();
+  }
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;
 }

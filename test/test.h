@@ -45,6 +45,8 @@ const char *test_shared_dir(void);
 /* Shared fixtures (fixtures.c).  A fixed-seed splitmix64 stream, so every
 ** "random" configuration is the same on every run; uniforms in [0, 1). */
 #include "afv_internal.h"
+#include "afv_tool.h"    /* the tests test the program's parts too */
+#include "cmd/fits.h"
 void               test_rng_seed(unsigned long long s);
 unsigned long long test_rng_next(void);
 double             test_rng_uniform(void);

@@ -18,7 +18,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static char tmp[64];          /* the suite's directory: afv.h alone */
+static char tmp[64];          /* the suite's directory: the installed headers
+                              ** afv.h and afv_config.h alone */
 static int  have_cc;          /* 1 if `cc` runs */
 
 /* Writes text to tmp/name; 1 on success. */
@@ -108,6 +109,9 @@ static void test_afv_h_hides_internals(void)
     {"omp_macro.c", "int main(void) { return AFV_PARALLEL_MIN; }\n"},
     {"grid_type.c", "int main(void) { afv_grid g; g.nbx = 1; "
                     "return g.nbx; }\n"},
+    {"angle.c", "int main(void) { return (int)afv_angle(1, 1); }\n"},
+    {"rng.c", "int main(void) { return (int)afv_rng_normal(1, 0, 0, "
+              "AFV_RNG_NOISE); }\n"},
   };
   char text[512];
   size_t k;
@@ -135,9 +139,6 @@ static void test_afv_h_leaves_the_program_out(void)
     "int main(void) { afv_checkpoint c = {0}; return c.n; }\n",
     "int main(void) { return AFV_CKPT_BYTES_LINE + AFV_CELLS_MAX; }\n",
     "int main(void) { return afv_svg_plot(0, 0, 0, 0); }\n",
-    "int main(void) { double x; return afv_curve_cross(0, 0, 0, 0, &x); }\n",
-    "int main(void) { return (int)afv_angle(1, 1); }\n",
-    "int main(void) { return (int)afv_rng_normal(1, 0, 0, AFV_RNG_NOISE); }\n",
   };
   char text[512];
   size_t k;
@@ -152,6 +153,32 @@ static void test_afv_h_leaves_the_program_out(void)
     CHECK(syntax_check("tool.c", "tmp") != 0, "compiles against afv.h "
           "alone, which should leave it to afv_tool.h: %s", use[k]);
   }
+}
+
+/* The library is the model (issue 39): the program's phase diagrams and
+** fits (cmd/fits.h) are not in libafv.a, and afv_internal.h, which every
+** library file includes, does not bring in the program's afv_tool.h.
+** Fails on the tree before, where libafv.a held phase.o and fits.o and
+** afv_internal.h included afv_tool.h. */
+static void test_library_leaves_the_program_out(void)
+{
+  static const char *const fits[] = {"afv_curve_cross", "afv_boundary_fit",
+    "afv_svg_map", "afv_powerlaw_fit", "afv_curves_cross",
+    "afv_curves_cross_common", "afv_collapse_fit"};
+  size_t k;
+  if (test_sh("nm -g libafv.a >/dev/null 2>&1") != 0) {
+    SKIP("nm not found");
+    return;
+  }
+  for (k = 0; k < sizeof fits / sizeof fits[0]; k++)
+    CHECK(test_sh("nm -g libafv.a | grep -q ' T %s$'", fits[k]) != 0,
+          "libafv.a defines %s, the program's", fits[k]);
+  if (!have_cc) return;
+  CHECK(write_file("tool.c", "#include <afv_internal.h>\n"
+                   "int main(void) { afv_lines L; return (int)sizeof L; }\n"),
+        "cannot write tool.c");
+  CHECK(syntax_check("tool.c", ".") != 0, "afv_internal.h brings in "
+        "afv_tool.h (afv_lines)");
 }
 
 /* afv_clusters keeps its results public and its work space opaque: a
@@ -436,11 +463,12 @@ void suite_api(void)
     return;
   }
   have_cc = test_sh("cc --version >/dev/null 2>&1") == 0;
-  if (test_sh("cp afv.h '%s/afv.h'", tmp) != 0)
-    printf("  cannot copy afv.h into %s\n", tmp);
+  if (test_sh("cp afv.h afv_config.h '%s/'", tmp) != 0)
+    printf("  cannot copy afv.h and afv_config.h into %s\n", tmp);
   RUN(test_readme_example_needs_only_afv_h);
   RUN(test_readme_quench_needs_only_afv_h);
   RUN(test_afv_h_hides_internals);
+  RUN(test_library_leaves_the_program_out);
   RUN(test_afv_h_leaves_the_program_out);
   RUN(test_clusters_work_space_hidden);
   RUN(test_accessors_hand_out_the_fields);

@@ -1101,6 +1101,85 @@ static void test_coincident_and_nonfinite(void)
   afv_geom_free(&g);
 }
 
+/* Parameters whose energy overflows are refused by afv_params_check, so
+** afv_compute never returns AFV_OK with a NaN or infinite E or force
+** (before: l 1e300 gave NaN forces, P0 or A0 1e300 E = inf, with AFV_OK);
+** values far from the edge still compute. */
+static void test_params_refuse_overflow(void)
+{
+  double r[6] = {0, 0, 1.5, 0.3, 0.7, 1.4}, f[6], P0[3] = {4.8, 1e300, 4.8};
+  afv_params p;
+  afv_geom g = {0};
+  afv_box b = test_open_box();
+  int k;
+  struct { double *field, value; const char *name; } bad[5];
+  afv_params_default(&p);
+  bad[0].field = &p.l;      bad[0].value = 1e300;  bad[0].name = "l 1e300";
+  bad[1].field = &p.P0;     bad[1].value = 1e300;  bad[1].name = "P0 1e300";
+  bad[2].field = &p.A0;     bad[2].value = 1e300;  bad[2].name = "A0 1e300";
+  bad[3].field = &p.Lambda; bad[3].value = 1e308;  bad[3].name = "Lambda";
+  bad[4].field = &p.KA;     bad[4].value = 1e306;  bad[4].name = "KA 1e306";
+  for (k = 0; k < 5; k++) {
+    double keep = *bad[k].field;
+    *bad[k].field = bad[k].value;
+    CHECK(afv_params_check(&p, 3) == AFV_EINVAL, "%s accepted", bad[k].name);
+    CHECK(afv_compute(&g, 3, r, &p, &b, f) == AFV_EINVAL, "%s computed",
+          bad[k].name);
+    *bad[k].field = keep;
+  }
+  p.P0_i = P0;                                 /* one cell's P0 */
+  CHECK(afv_params_check(&p, 3) == AFV_EINVAL, "P0_i 1e300 accepted");
+  p.P0_i = NULL;
+  p.l = 1e50;                                  /* large, not overflowing */
+  for (k = 0; k < 6; k++) r[k] *= 1e50;
+  CHECK(afv_compute(&g, 3, r, &p, &b, f) == AFV_OK && isfinite(g.energy)
+        && all_finite(f, 6), "l 1e50: E %g", g.energy);
+  afv_geom_free(&g);
+}
+
+/* afv_gradient_check and afv_force_check refuse a step h that is not a
+** positive number (before: h <= 0 was accepted). */
+static void test_check_refuses_bad_step(void)
+{
+  double r[6] = {0, 0, 1.5, 0.3, 0.7, 1.4}, f[6] = {0};
+  double steps[4] = {0, -1e-6, NAN, INFINITY};
+  afv_params p;
+  afv_box b = test_open_box();
+  afv_check_report rep;
+  int k;
+  afv_params_default(&p);
+  for (k = 0; k < 4; k++) {
+    CHECK(afv_gradient_check(3, r, &p, &b, steps[k], &rep) == AFV_EINVAL,
+          "gradient check accepted h = %g", steps[k]);
+    CHECK(afv_force_check(3, r, &p, &b, steps[k], f, &rep) == AFV_EINVAL,
+          "force check accepted h = %g", steps[k]);
+  }
+}
+
+/* A NaN force component fails the check, wherever it is (before: the next
+** finite error replaced it as the largest, and the check passed). */
+static void test_force_check_catches_nan(void)
+{
+  double r[6] = {0, 0, 1.5, 0.3, 0.7, 1.4}, f[6];
+  afv_params p;
+  afv_box b = test_open_box();
+  afv_geom g = {0};
+  afv_check_report rep;
+  int q;
+  afv_params_default(&p);
+  for (q = 0; q < 6; q++) {
+    CHECK(afv_compute(&g, 3, r, &p, &b, f) == AFV_OK, "compute");
+    f[q] = NAN;
+    CHECK(afv_force_check(3, r, &p, &b, 1e-6, f, &rep) == AFV_OK, "status");
+    CHECK(isnan(rep.max_resolved) && isnan(rep.max_abs)
+          && rep.worst_cell == q / 2 && rep.worst_comp == q % 2,
+          "NaN at component %d: max resolved %g, max abs %g at cell %d "
+          "comp %d", q, rep.max_resolved, rep.max_abs, rep.worst_cell,
+          rep.worst_comp);
+  }
+  afv_geom_free(&g);
+}
+
 /* ========================================================================
 ** 7. Per-cell parameters and the contact cap
 ** ======================================================================== */
@@ -1400,6 +1479,9 @@ void suite_core(void)
   RUN(test_extreme_coordinates);
   RUN(test_repeatable);
   RUN(test_coincident_and_nonfinite);
+  RUN(test_params_refuse_overflow);
+  RUN(test_check_refuses_bad_step);
+  RUN(test_force_check_catches_nan);
   RUN(test_per_cell_parameters);
   RUN(test_contact_cap);
   RUN(test_matlab_golden);

@@ -672,6 +672,30 @@ static void test_check_still_fails(void)
   afv_geom_free(&g);
 }
 
+/* A pair a few ulps (and up to 1e-11) short of detaching: the analytic
+** force is right (test_pair_one_ulp_apart), and a step that is only ulps
+** of the coordinates cannot resolve it, so the check is inconclusive or
+** passes, never fails (before: FAIL at d = 1.9999999999999998 and at
+** 2 - 1e-11, 2 - 1e-13, 2 - 1e-14; afv_config.h, AFV_COORD_ROUNDING). */
+static void test_check_one_ulp_from_detaching(void)
+{
+  double short_by[] = {2.220446049250313e-16, 4.440892098500626e-16,
+                       1e-15, 1e-14, 1e-13, 1e-12, 1e-11};
+  afv_params p;
+  afv_box b = test_open_box();
+  afv_check_report rep;
+  size_t k;
+  afv_params_default(&p);
+  for (k = 0; k < sizeof short_by / sizeof short_by[0]; k++) {
+    double pair[4] = {0, 0, 2 - short_by[k], 0};
+    CHECK(afv_gradient_check(2, pair, &p, &b, 1e-6, &rep) == AFV_OK,
+          "status");
+    CHECK(rep.max_resolved <= 1e-6 * rep.tension_scale, "d = 2 - %g: "
+          "resolved error %.3e (tension scale %.3e): a right force FAILs",
+          short_by[k], rep.max_resolved, rep.tension_scale);
+  }
+}
+
 /* Runs "./afv ARGS" with POINTS file path substituted for %s: its exit
 ** status; its stdout and stderr are left in out_buf and err_buf. */
 static int afv_capture(const char *args, const char *path, char *out_buf,
@@ -788,5 +812,6 @@ void suite_geometry(void)
   RUN(test_cli_check_lattice_passes);
   RUN(test_check_near_kinks);
   RUN(test_check_still_fails);
+  RUN(test_check_one_ulp_from_detaching);
   RUN(test_eval_refuses_overflow);
 }

@@ -81,6 +81,7 @@ install_all() {
   link   "libafv.so.$VERSION" "lib/libafv.so.$MAJOR"
   link   "libafv.so.$MAJOR"   lib/libafv.so
   put    afv.h              include/afv.h
+  put    afv_config.h       include/afv_config.h
   put    afv.pc             lib/pkgconfig/afv.pc
   put    doc/afv.1          share/man/man1/afv.1
   put    python/afv.py      lib/python3/dist-packages/afv.py

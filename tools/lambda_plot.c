@@ -24,6 +24,7 @@
 */
 #include "afv.h"
 #include "afv_tool.h"   /* afv_svg_plot */
+#include "cmd/fits.h"   /* afv_curve_cross */
 
 #include <math.h>
 #include <stdio.h>

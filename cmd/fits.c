@@ -6,8 +6,7 @@
 ** Each works on plain arrays, so test/test_paper.c can feed it curves whose
 ** answer is known.
 */
-#include "afv.h"
-#include "afv_internal.h"
+#include "fits.h"
 
 #include <math.h>
 #include <stdlib.h>

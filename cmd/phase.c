@@ -4,8 +4,7 @@
 ** map of an order parameter over a (P0, v0) grid with its threshold
 ** contour.  Used by afv collect; no state, no files of its own.
 */
-#include "afv.h"
-#include "afv_internal.h"
+#include "fits.h"
 
 #include <math.h>
 #include <stdlib.h>
