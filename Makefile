@@ -349,11 +349,13 @@ convergence: afv tools/convergence_plot
 # make model-table tables and draws without running anything.
 MODEL_OUT ?= model
 
-tools/model_plot: tools/model_plot.c libafv.a afv.h afv_tool.h .build-flags
+tools/model_plot: tools/model_plot.c libafv.a $(LIB_H) .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ tools/model_plot.c libafv.a $(LDLIBS)
 
-tools/csd_exponent: tools/csd_exponent.c libafv.a afv.h afv_tool.h .build-flags
-	$(CC) $(CFLAGS) -I. -o $@ tools/csd_exponent.c libafv.a $(LDLIBS)
+tools/csd_exponent: tools/csd_exponent.c $(FITS_OBJ) libafv.a $(LIB_H) \
+                    cmd/fits.h .build-flags
+	$(CC) $(CFLAGS) -I. -o $@ tools/csd_exponent.c $(FITS_OBJ) libafv.a \
+	  $(LDLIBS)
 
 model: afv tools/model_plot tools/csd_exponent
 	sh tools/model_sweeps.sh $(MODEL_OUT)

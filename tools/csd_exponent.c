@@ -11,7 +11,7 @@
 ** on a file that is not afv analyze's csd.csv (header n,p).
 */
 #include "afv.h"
-#include "afv_tool.h"   /* afv_powerlaw_fit */
+#include "cmd/fits.h"   /* afv_powerlaw_fit */
 
 #include <math.h>
 #include <stdio.h>
