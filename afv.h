@@ -25,7 +25,7 @@
 **   gradient check                     afv_gradient_check, afv_force_check
 **   simulation                         afv_dyn, afv_sim, afv_sim_step,
 **                                      afv_relax, afv_relax_fire
-**   initial configurations             afv_init_cluster, afv_init_square, ..
+**   initial configurations             afv_init_cluster, afv_init_lattice, ..
 **   the paper's protocol               afv_protocol, afv_protocol_start
 **   files a user reads or writes       POINTS, trajectories, CELLS
 **   order parameters and analysis      afv_clusters, afv_t1, afv_msd,
@@ -360,39 +360,42 @@ int afv_relax_fire(afv_sim *s, double tol, long max_iter,
                    afv_relax_report *rep, afv_relax_monitor mon, void *ctx);
 
 /* ---- initial configurations -------------------------------------------- */
-/* Compact cluster: the n sites of a triangular lattice of spacing a nearest
+/* Each start shares its name with afv run's init key: init lattice,
+** init random, init cluster (the authors' start).  (Until 0.4.0:
+** afv_init_cluster was the lattice, afv_init_square the authors' start.) */
+/* A lattice patch: the n sites of a triangular lattice of spacing a nearest
 ** to the centre of the box (the origin in open space); a is reduced if the
 ** disk would not fit in the periodic box.  r has 2n entries.  Returns
 ** AFV_OK, or AFV_ENOMEM (temporary list of lattice sites). */
-int  afv_init_cluster(int n, double a, const afv_box *b, double *r);
+int  afv_init_lattice(int n, double a, const afv_box *b, double *r);
 /* Uniform random centres in [0, Lx) x [0, Ly) (open space: in a square of
 ** side side centred on the origin), from the streams of seed. */
 void afv_init_random(int n, unsigned long long seed, const afv_box *b,
                      double side, double *r);
-/* The authors' start (afv run's init cluster, with side 0.3 L): centres
-** uniform at random in a square of side `side` centred in the periodic
-** box (on the origin in open space), from the streams of seed (open
-** space: the same centres as afv_init_random). */
-void afv_init_square(int n, unsigned long long seed, const afv_box *b,
-                     double side, double *r);
+/* The authors' start (afv run's init cluster, with side 0.3 L): a
+** cluster of centres uniform at random in a square of side `side`
+** centred in the periodic box (on the origin in open space), from the
+** streams of seed (open space: the same centres as afv_init_random). */
+void afv_init_cluster(int n, unsigned long long seed, const afv_box *b,
+                      double side, double *r);
 /* Uniform random angles in [0, 2 pi) from the streams of seed. */
 void afv_init_angles(int n, unsigned long long seed, double *theta);
 
 /* ---- the paper's protocol (dynamics.c, PROTOCOL) ----------------------- */
 /* From a start to the active run, as the paper does it: the start, its
 ** relaxation at v0 = 0, then v0 switched on.  The authors' start is
-** AFV_START_SQUARE with side AFV_AUTHORS_SQUARE L (L the periodic box
+** AFV_START_CLUSTER with side AFV_AUTHORS_SQUARE L (L the periodic box
 ** side) and AFV_RELAX_FLOW. */
 #define AFV_AUTHORS_SQUARE 0.3
-enum { AFV_START_SQUARE,    /* afv_init_square(seed, side) */
-       AFV_START_LATTICE,   /* afv_init_cluster(spacing) */
+enum { AFV_START_CLUSTER,   /* afv_init_cluster(seed, side) */
+       AFV_START_LATTICE,   /* afv_init_lattice(spacing) */
        AFV_START_RANDOM,    /* afv_init_random(seed, side) */
        AFV_START_GIVEN };   /* the positions r */
 enum { AFV_RELAX_FLOW,      /* afv_relax: the paper's overdamped flow */
        AFV_RELAX_FIRE };    /* afv_relax_fire */
 typedef struct afv_protocol {
   int start;             /* AFV_START_* */
-  double side;           /* SQUARE, RANDOM (open space): the square's side */
+  double side;           /* CLUSTER, RANDOM (open space): the square's side */
   double spacing;        /* LATTICE: the spacing (reduced to fit the box) */
   const double *r;       /* GIVEN: 2n positions */
   const double *theta;   /* n angles, or NULL: afv_init_angles(d->seed) */

@@ -21,7 +21,7 @@
 ** rng.h.
 **
 ** Invariant of afv_sim between calls: f, geom and geom.energy describe r.
-** afv_init_cluster's disk of radius sqrt(n sqrt(3) / (2 pi)) + 2 holds
+** afv_init_lattice's disk of radius sqrt(n sqrt(3) / (2 pi)) + 2 holds
 ** at least n lattice sites (asserted).
 */
 #include "afv.h"
@@ -524,7 +524,7 @@ static int site_cmp(const void *pa, const void *pb)
   return (a->i > b->i) - (a->i < b->i);
 }
 
-int afv_init_cluster(int n, double a, const afv_box *b, double *r)
+int afv_init_lattice(int n, double a, const afv_box *b, double *r)
 {
   /* the n nearest sites lie within radius sqrt(n / pi * sqrt(3)/2) + 2;
   ** site (i, j) is at distance^2 i^2 + ij + j^2 >= 3 j^2 / 4, so the rows
@@ -598,8 +598,8 @@ void afv_init_random(int n, unsigned long long seed, const afv_box *b,
   }
 }
 
-void afv_init_square(int n, unsigned long long seed, const afv_box *b,
-                     double side, double *r)
+void afv_init_cluster(int n, unsigned long long seed, const afv_box *b,
+                      double side, double *r)
 {
   int periodic = b && b->periodic;
   uniform_square(n, seed, periodic ? 0.5 * b->Lx : 0,
@@ -619,7 +619,7 @@ void afv_init_angles(int n, unsigned long long seed, double *theta)
 /* ---- the paper's protocol ---------------------------------------------- */
 /* PROTOCOL.  The paper (Sec. Model) starts from one large connected
 ** cluster (the authors' code: centres uniform at random in a square of
-** side 0.3 L, AFV_START_SQUARE), relaxes it "at zero temperature" (the
+** side 0.3 L, AFV_START_CLUSTER), relaxes it "at zero temperature" (the
 ** flow at v0 = 0, afv_relax), then switches self-propulsion on.
 ** afv_protocol_start is that order in one place: afv run calls it, with
 ** the other starts (lattice, random, given) and FIRE as options.  v0 is
@@ -631,11 +631,11 @@ static int start_positions(int n, const afv_box *b, const afv_dyn *d,
                            const afv_protocol *pr, double *r)
 {
   switch (pr->start) {
-  case AFV_START_SQUARE:
-    afv_init_square(n, d->seed, b, pr->side, r);
+  case AFV_START_CLUSTER:
+    afv_init_cluster(n, d->seed, b, pr->side, r);
     return AFV_OK;
   case AFV_START_LATTICE:
-    return afv_init_cluster(n, pr->spacing, b, r);
+    return afv_init_lattice(n, pr->spacing, b, r);
   case AFV_START_RANDOM:
     afv_init_random(n, d->seed, b, pr->side, r);
     return AFV_OK;

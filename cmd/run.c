@@ -495,8 +495,16 @@ static void key_text(const run_cfg *c, const run_key *K, char *buf,
   }
 }
 
-/* Writes every key to path as KEY VALUE (reals in %.17g: they read back
-** exactly); cells is the value written for the cells key. */
+/* 1 for a key the run does not use, left out of params.txt: the lattice's
+** spacing unless init lattice.  (Read back, a missing key takes its
+** default; a params.txt of 0.4.0 that records it still resumes.) */
+static int key_unused(const run_cfg *c, const run_key *K)
+{
+  return strcmp(K->name, "spacing") == 0 && strcmp(c->init, "lattice") != 0;
+}
+
+/* Writes every key the run uses to path as KEY VALUE (reals in %.17g: they
+** read back exactly); cells is the value written for the cells key. */
 static int write_params_to(const char *path, const run_cfg *c,
                            const char *cells)
 {
@@ -510,6 +518,7 @@ static int write_params_to(const char *path, const run_cfg *c,
     const run_key *K = &run_keys[k];
     char value[RUN_PATH_MAX + 32];
     key_text(c, K, value, sizeof value);
+    if (key_unused(c, K)) continue;
     fprintf(fp, "%-16s %s\n", K->name, K->kind == K_PATH ? cells : value);
   }
   if (strcmp(c->box, "periodic") == 0)
@@ -671,7 +680,7 @@ static void cfg_protocol(const run_cfg *c, const afv_cells *cl,
   int i;
   memset(pr, 0, sizeof *pr);
   if (strcmp(c->init, "cluster") == 0) {
-    pr->start = AFV_START_SQUARE;
+    pr->start = AFV_START_CLUSTER;
     pr->side = AFV_AUTHORS_SQUARE * box_side(c);
   } else if (strcmp(c->init, "lattice") == 0) {
     pr->start = AFV_START_LATTICE;

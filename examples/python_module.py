@@ -23,7 +23,7 @@ for i in range(g.n):
 print("E %.6f" % g.energy)
 
 # a patch of 61 cells, the inner ones stiffer (P0 per cell)
-r = afv.init_cluster(61, a=1.7)
+r = afv.init_lattice(61, a=1.7)
 inner = [x * x + y * y < 9 for x, y in (tuple(p) for p in r)]
 params = afv.Params(P0=[4.0 if i else 6.0 for i in inner])
 o = afv.order_parameters(r, params)

@@ -21,7 +21,7 @@ os.makedirs(out, exist_ok=True)
 
 L = math.sqrt(100 * math.pi / 0.5)    # 100 cells at the paper's phi = 0.5
 box = (L, L)
-r = afv.init_square(100, 1, box)      # the authors' start: a random square
+r = afv.init_cluster(100, 1, box)      # the authors' start: a random square
 sim = afv.Simulation(r, afv.init_angles(100, 1), box=box,
                      params=afv.Params(P0=4.8), v0=0.2, seed=1)
 relax = sim.relax(tol=1e-4, max_iter=20000)

@@ -7,7 +7,7 @@ numpy arrays; without it, as lists.  Positions are N x 2 (rows x, y):
 given as an (N, 2) array, a list of pairs, or a flat list x0, y0, x1, ...
 
     import afv
-    r = afv.init_cluster(37)                   # 37 cells, a compact cluster
+    r = afv.init_lattice(37)                   # 37 cells, a compact cluster
     g = afv.compute(r, afv.Params(P0=5.2))     # shapes, energy and forces
     print(g.energy, g.area[0], g.forces[0])
     sim = afv.Simulation(r, v0=0.5, seed=1)
@@ -33,7 +33,7 @@ except ImportError:
     _np = None
 
 __all__ = ["AfvError", "Params", "Geometry", "Simulation", "compute",
-           "order_parameters", "draw", "init_cluster", "init_square",
+           "order_parameters", "draw", "init_lattice", "init_cluster",
            "init_random", "init_angles", "meanfield_p0", "library_path"]
 
 _DP, _IP = C.POINTER(C.c_double), C.POINTER(C.c_int)
@@ -100,8 +100,8 @@ _declare("afv_compute", C.c_int, _VP, C.c_int, _DP, _PP, _BP, _DP)
 _declare("afv_order_parameters", C.c_int, _VP, _DP, C.c_double, _BP, _DP, _IP)
 _declare("afv_svg_save", C.c_int, C.c_char_p, _VP, C.c_int, _DP, _DP, _PP,
          _BP, C.c_int)
-_declare("afv_init_cluster", C.c_int, C.c_int, C.c_double, _BP, _DP)
-_declare("afv_init_square", None, C.c_int, C.c_ulonglong, _BP, C.c_double, _DP)
+_declare("afv_init_lattice", C.c_int, C.c_int, C.c_double, _BP, _DP)
+_declare("afv_init_cluster", None, C.c_int, C.c_ulonglong, _BP, C.c_double, _DP)
 _declare("afv_init_random", None, C.c_int, C.c_ulonglong, _BP, C.c_double, _DP)
 _declare("afv_init_angles", None, C.c_int, C.c_ulonglong, _DP)
 _declare("afv_meanfield_p0", C.c_double, C.c_double, C.c_double, C.c_double)
@@ -387,25 +387,25 @@ def draw(path, r, theta=None, params=None, box=None, color_by_cluster=False):
 
 
 # ---- initial configurations -----------------------------------------------
-def init_cluster(n, a=1.0, box=None):
+def init_lattice(n, a=1.0, box=None):
     """n centres on a triangular lattice of spacing a (in l), nearest the
     centre of the box (the origin in open space)."""
     b = _box(box)
     out, ptr = _empty(2 * n)
-    _check(_lib.afv_init_cluster(n, a, C.byref(b), ptr), "afv_init_cluster")
+    _check(_lib.afv_init_lattice(n, a, C.byref(b), ptr), "afv_init_lattice")
     return _out(ptr, 2 * n, pairs=True)
 
 
-def init_square(n, seed, box=None, side=None):
+def init_cluster(n, seed, box=None, side=None):
     """The authors' start: n centres uniform in a square of side `side`
     (default 0.3 Lx in a periodic box) from the streams of seed."""
     b = _box(box)
     if side is None:
         if not b.periodic:
-            raise ValueError("init_square: give side in open space")
+            raise ValueError("init_cluster: give side in open space")
         side = 0.3 * b.Lx
     out, ptr = _empty(2 * n)
-    _lib.afv_init_square(n, seed, C.byref(b), side, ptr)
+    _lib.afv_init_cluster(n, seed, C.byref(b), side, ptr)
     return _out(ptr, 2 * n, pairs=True)
 
 

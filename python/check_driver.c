@@ -7,10 +7,10 @@
 **   check_driver OUTDIR     (writes OUTDIR/open.svg and OUTDIR/sim.svg)
 **
 ** Scenario (python/test_afv.py mirrors it call for call):
-**   open:  37 cells of afv_init_cluster (spacing 1.1), P0 per cell 4.5 or
+**   open:  37 cells of afv_init_lattice (spacing 1.1), P0 per cell 4.5 or
 **          5.5 (a mixture: even cells 4.5), Lambda 0.3: afv_compute's
 **          shapes, energy, forces; the order parameters; a picture.
-**   sim:   40 cells of afv_init_square (seed 7, side 3.6) in a periodic
+**   sim:   40 cells of afv_init_cluster (seed 7, side 3.6) in a periodic
 **          12 x 12 box, angles afv_init_angles(seed 7), dyn defaults with
 **          seed 11; afv_relax(tol 1e-4, 3000 steps); v0 = 0.5 for 30
 **          steps; v0 per cell (0.2 + 0.05 i) for 20 steps; P0 = 5.5 and
@@ -68,7 +68,7 @@ static void open_space(const char *dir)
   p.Lambda = 0.3;
   for (i = 0; i < N; i++) P0_i[i] = i % 2 ? 5.5 : 4.5;
   p.P0_i = P0_i;
-  if (!g || afv_init_cluster(N, 1.1, &box, r)
+  if (!g || afv_init_lattice(N, 1.1, &box, r)
       || afv_compute(g, N, r, &p, &box, f))
     exit(1);
   print_array("open.area", afv_geom_area(g), N);
@@ -102,7 +102,7 @@ static void simulation(const char *dir)
   afv_params_default(&p);
   afv_dyn_default(&d);
   d.seed = 11;
-  afv_init_square(N, 7, &box, 3.6, r);
+  afv_init_cluster(N, 7, &box, 3.6, r);
   afv_init_angles(N, 7, theta);
   if (!s || afv_sim_init(s, N, r, theta, &p, &box, &d)
       || afv_relax(s, 1e-4, 3000, &rep, NULL, NULL))

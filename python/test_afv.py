@@ -88,14 +88,14 @@ def read(path):
 
 # ---- the same scenarios through the module (check_driver.c's header) ------
 def open_scenario():
-    r = afv.init_cluster(37, 1.1)
+    r = afv.init_lattice(37, 1.1)
     p = afv.Params(Lambda=0.3, P0=[5.5 if i % 2 else 4.5 for i in range(37)])
     return r, p
 
 
 def sim_scenario():
     box = (12, 12)
-    r = afv.init_square(40, 7, box, 3.6)
+    r = afv.init_cluster(40, 7, box, 3.6)
     sim = afv.Simulation(r, afv.init_angles(40, 7), box=box, seed=11)
     rep = sim.relax(1e-4, 3000)
     sim.set(v0=0.5)
@@ -154,7 +154,7 @@ def pictures_are_the_c_librarys():
 @test
 def compute_agrees_with_afv_eval():
     # afv eval prints every number in %.17g, which reads back exactly
-    r = afv.init_square(60, 3, None, 7.0)
+    r = afv.init_cluster(60, 3, None, 7.0)
     points = os.path.join(tmp, "points.xy")
     with open(points, "w") as fp:
         for x, y in (flat(r)[2 * i:2 * i + 2] for i in range(60)):

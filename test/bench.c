@@ -15,7 +15,7 @@
 ** and afv run's defaults: the paper's Euler step with exact forces (no
 ** cap), see dynamics.c):
 **   random   afv_init_random centres, P0 = 4.8, v0 = 1;
-**   cluster  afv_init_cluster (spacing CLUSTER_SPACING), P0 = 4, v0 = 0.1;
+**   cluster  afv_init_lattice (spacing CLUSTER_SPACING), P0 = 4, v0 = 0.1;
 ** in both the cells are then numbered in afv_spatial_order.
 ** Both are first relaxed at v0 = 0 by afv_relax, as afv run does (to
 ** max |F| <= RELAX_TOL, or RELAX_BUDGET cell-steps but at least
@@ -173,7 +173,7 @@ static int make_state(afv_sim *s, int cluster, int n)
   afv_init_angles(n, SEED, th);
   p.P0 = cluster ? 4.0 : 4.8;
   st = AFV_OK;
-  if (cluster) st = afv_init_cluster(n, CLUSTER_SPACING, &b, r);
+  if (cluster) st = afv_init_lattice(n, CLUSTER_SPACING, &b, r);
   else afv_init_random(n, SEED, &b, 0, r);
   if (st == AFV_OK) st = afv_spatial_renumber(n, r, 1.0, &b);
   if (st == AFV_OK) st = afv_sim_init(s, n, r, th, &p, &b, &d);
@@ -371,7 +371,7 @@ static int relax_square(afv_sim *s, int n, double P0, unsigned long long seed,
   b.periodic = 1;
   b.Lx = b.Ly = sqrt(n * PI / PHI);
   memset(&pr, 0, sizeof pr);
-  pr.start = AFV_START_SQUARE;
+  pr.start = AFV_START_CLUSTER;
   pr.side = AFV_AUTHORS_SQUARE * b.Lx;
   pr.relax = AFV_RELAX_FLOW;
   pr.relax_tol = RELAX_TOL;

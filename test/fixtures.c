@@ -225,7 +225,7 @@ static int config_cluster(test_config *c)
 {
   int k;
   if (!config_alloc(c, "cluster", 200, test_open_box())) return -1;
-  if (afv_init_cluster(200, 1.7, &c->box, c->r) != AFV_OK) return -1;
+  if (afv_init_lattice(200, 1.7, &c->box, c->r) != AFV_OK) return -1;
   for (k = 0; k < 400; k++) c->r[k] += 0.1 * (2 * test_rng_uniform() - 1);
   return 1;
 }

@@ -11,9 +11,9 @@
 ** 1.85, 2.7}, 10^5 steps of dt = 0.01, the paper's other parameters, the
 ** paper's Euler step with the exact force (afv run's).
 **
-** For every P0: the lattice start (afv_init_cluster, spacing 1.8 l, afv
+** For every P0: the lattice start (afv_init_lattice, spacing 1.8 l, afv
 ** run's init lattice) relaxed, for its mean area A_lat.  For every seed:
-** the authors' start (afv run's init cluster: afv_init_square, side 0.3 L)
+** the authors' start (afv run's init cluster: afv_init_cluster, side 0.3 L)
 ** relaxed by afv_relax with afv run's defaults (tol 1e-6, 100000 steps).
 ** The relaxation FAILS if its mean area is not within 10% of A_lat, or if
 ** it neither converged (max |F| <= tol) nor stopped at a kink, or if it
@@ -106,8 +106,8 @@ static int relax(const plan *P, double P0, unsigned long long seed,
   int st;
   if (!r || !th) return AFV_ENOMEM;
   model(P, P0, seed, &p, &b, &d);
-  if (lattice) afv_init_cluster(P->N, 1.8, &b, r);
-  else afv_init_square(P->N, seed, &b, 0.3 * b.Lx, r);
+  if (lattice) afv_init_lattice(P->N, 1.8, &b, r);
+  else afv_init_cluster(P->N, seed, &b, 0.3 * b.Lx, r);
   afv_init_angles(P->N, seed, th);
   st = afv_sim_init(s, P->N, r, th, &p, &b, &d);
   if (st == AFV_OK) st = afv_relax(s, 1e-6, 100000, rep, NULL, NULL);

@@ -893,7 +893,7 @@ static int smoke_run(double P0, double *ngc_min, double *om_min,
   memset(&s, 0, sizeof s);
   *ngc_min = *om_min = 2;
   *om_max = -1;
-  st = afv_init_cluster(N, 1.8, &b, r);
+  st = afv_init_lattice(N, 1.8, &b, r);
   if (st == AFV_OK) st = afv_sim_init(&s, N, r, NULL, &p, &b, &d);
   if (st == AFV_OK) st = afv_relax(&s, 1e-6, 100000, &rep, NULL, NULL);
   for (k = 0; st == AFV_OK && k <= 3000; k++) {

@@ -338,6 +338,8 @@ static void test_run_help_defaults_true(void)
     if (!strcmp(K->name, "steps") || !strcmp(K->name, "relax_max_steps")
         || !strcmp(K->name, "quiet"))
       continue;                               /* set by the run above */
+    if (!strcmp(K->name, "spacing"))
+      continue;          /* init lattice's only: not in this run's params */
     snprintf(pat, sizeof pat, "\n%s ", K->name);
     at = strstr(params, pat);
     CHECK(at && sscanf(at + strlen(pat), " %1099s", value) == 1,

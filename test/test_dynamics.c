@@ -149,7 +149,7 @@ static void cluster_system(int n, afv_box *b, afv_params *p, double *r)
   afv_params_default(p);
   p->P0 = 4;
   if (b->periodic) b->Lx = b->Ly = sqrt(n * PI / 0.5);
-  afv_init_cluster(n, 1.8, b, r);
+  afv_init_lattice(n, 1.8, b, r);
 }
 
 /* ---- the integrator ---------------------------------------------------- */
@@ -519,7 +519,7 @@ static void test_cluster_start(void)
   double r[2 * N], dmin = 1e9, cx = 0, cy = 0, rmax = 0, L;
   int i, j;
   b.Lx = b.Ly = L = sqrt(N * PI / 0.5);
-  CHECK(afv_init_cluster(N, 1.8, &b, r) == AFV_OK, "init");
+  CHECK(afv_init_lattice(N, 1.8, &b, r) == AFV_OK, "init");
   for (i = 0; i < N; i++) {
     cx += r[2*i] / N;
     cy += r[2*i+1] / N;
@@ -540,7 +540,7 @@ static void test_cluster_start(void)
   /* a box too small for spacing 1.8: the spacing shrinks, nothing overlaps
   ** its periodic image */
   b.Lx = b.Ly = 30;
-  afv_init_cluster(N, 1.8, &b, r);
+  afv_init_lattice(N, 1.8, &b, r);
   for (i = 0; i < N; i++)
     CHECK(hypot(r[2*i] - 15, r[2*i+1] - 15) < 15, "cell %d outside", i);
 }
@@ -557,7 +557,7 @@ static void test_large_cluster_start(void)
   double *r = malloc(2 * N * sizeof(double));
   int i, st, far = 0;
   memset(&g, 0, sizeof g);
-  CHECK(r && afv_init_cluster(N, 1.8, &b, r) == AFV_OK, "init");
+  CHECK(r && afv_init_lattice(N, 1.8, &b, r) == AFV_OK, "init");
   st = r ? afv_neighbours(&g, N, r, 1.0, &b) : AFV_ENOMEM;
   CHECK(st == AFV_OK, "neighbours: %s (cells %d, %d)", afv_strerror(st),
         g.bad_i, g.bad_j);

@@ -46,8 +46,8 @@ static int relaxed_start(int n, double P0, int lattice,
   int ok;
   paper_model(n, P0, &p, &b, &d);
   d.seed = seed;
-  if (lattice) afv_init_cluster(n, 1.8, &b, r);
-  else afv_init_square(n, seed, &b, 0.3 * b.Lx, r);
+  if (lattice) afv_init_lattice(n, 1.8, &b, r);
+  else afv_init_cluster(n, seed, &b, 0.3 * b.Lx, r);
   memset(s, 0, sizeof *s);
   ok = afv_sim_init(s, n, r, NULL, &p, &b, &d) == AFV_OK
        && afv_relax(s, 1e-6, 100000, rep, NULL, NULL) == AFV_OK;
@@ -135,10 +135,10 @@ static int protocol_by_hand(afv_sim *s, int n, const afv_params *p,
   double *r = malloc((size_t)(2 * n) * sizeof(double));
   double *th = malloc((size_t)n * sizeof(double));
   int st = AFV_OK;
-  if (pr->start == AFV_START_SQUARE)
-    afv_init_square(n, d->seed, b, pr->side, r);
+  if (pr->start == AFV_START_CLUSTER)
+    afv_init_cluster(n, d->seed, b, pr->side, r);
   else if (pr->start == AFV_START_LATTICE)
-    st = afv_init_cluster(n, pr->spacing, b, r);
+    st = afv_init_lattice(n, pr->spacing, b, r);
   else if (pr->start == AFV_START_RANDOM)
     afv_init_random(n, d->seed, b, pr->side, r);
   else memcpy(r, pr->r, (size_t)(2 * n) * sizeof(double));
@@ -164,7 +164,7 @@ static int protocol_by_hand(afv_sim *s, int n, const afv_params *p,
 static void test_protocol_start_is_the_papers_order(void)
 {
   enum { N = 60 };
-  static const int starts[4] = {AFV_START_SQUARE, AFV_START_LATTICE,
+  static const int starts[4] = {AFV_START_CLUSTER, AFV_START_LATTICE,
                                 AFV_START_RANDOM, AFV_START_GIVEN};
   afv_params p;
   afv_box b;
@@ -246,11 +246,11 @@ static void test_generated_start_numbered_in_space(void)
   if (!s) return;
   paper_model(N, 4, &p, &b, &d);
   memset(&pr, 0, sizeof pr);
-  pr.start = AFV_START_SQUARE;
+  pr.start = AFV_START_CLUSTER;
   pr.side = AFV_AUTHORS_SQUARE * b.Lx;
   CHECK(afv_protocol_start(s, N, &p, &b, &d, &pr, NULL, NULL, NULL)
         == AFV_OK, "refused");
-  afv_init_square(N, d.seed, &b, pr.side, drawn);
+  afv_init_cluster(N, d.seed, &b, pr.side, drawn);
   for (i = 0; i < N; i++) {
     const double *r = afv_sim_positions(s);
     if (i + 1 < N) {
@@ -382,6 +382,38 @@ static void test_run_relaxation_reports(void)
   free(log);
 }
 
+/* params.txt records the keys the run uses: init cluster has no spacing,
+** init lattice has it (0.4.0 wrote spacing 1.8 for every run).  A run
+** whose params.txt records it as 0.4.0 did still resumes, to the bytes of
+** one straight run. */
+static void test_params_leave_unused_keys_out(void)
+{
+  const char *fast = "--N 30 --frame_every 5 --checkpoint_every 5 "
+                     "--svg_every 0 --quiet";
+  const char *files[3] = {"trajectory.dat", "observables.csv",
+                          "checkpoint.txt"};
+  int k;
+  CHECK(test_sh("./afv run %s --steps 10 --out %s/sq", fast, tmp) == 0
+        && test_sh("grep -q '^spacing ' %s/sq/params.txt", tmp) != 0,
+        "init cluster: params.txt records the lattice's spacing");
+  CHECK(test_sh("./afv run %s --steps 0 --init lattice --out %s/lat", fast,
+                tmp) == 0
+        && test_sh("grep -q '^spacing ' %s/lat/params.txt", tmp) == 0,
+        "init lattice: params.txt lacks its spacing");
+  /* the run as 0.4.0 recorded it, then resumed for 10 more steps */
+  CHECK(test_sh("sed -i 's/^init .*/&\\nspacing          1.8/' "
+                "%s/sq/params.txt && grep -q '^spacing ' %s/sq/params.txt",
+                tmp, tmp) == 0, "could not write a 0.4.0 params.txt");
+  CHECK(test_sh("./afv run --resume %s/sq --steps 10 --quiet", tmp) == 0,
+        "a params.txt with an unused spacing does not resume");
+  CHECK(test_sh("./afv run %s --steps 20 --out %s/straight", fast, tmp) == 0,
+        "the straight run failed");
+  for (k = 0; k < 3; k++)
+    CHECK(test_sh("cmp -s %s/sq/%s %s/straight/%s", tmp, files[k], tmp,
+                  files[k]) == 0, "%s: resumed differs from straight",
+          files[k]);
+}
+
 void suite_protocol(void)
 {
   char cmd[128];
@@ -395,6 +427,7 @@ void suite_protocol(void)
   }
   RUN(test_run_starts);
   RUN(test_run_relaxation_reports);
+  RUN(test_params_leave_unused_keys_out);
   snprintf(cmd, sizeof cmd, "rm -rf %s", tmp);
   if (system(cmd) != 0) printf("  could not remove %s\n", tmp);
 }

@@ -32,7 +32,7 @@ static afv_sim *patch(double P0)
   afv_params_default(&p);
   afv_dyn_default(&d);
   p.P0 = P0;
-  if (!s || afv_init_cluster(NCELLS, 1.8, &b, r) != AFV_OK
+  if (!s || afv_init_lattice(NCELLS, 1.8, &b, r) != AFV_OK
       || afv_sim_init(s, NCELLS, r, theta, &p, &b, &d) != AFV_OK) {
     afv_sim_delete(s);
     return NULL;
@@ -104,7 +104,7 @@ static void fire_stops_at_the_flows_kink(void)
   afv_params_default(&p);
   p.P0 = 6;
   b.Lx = b.Ly = sqrt(N * 3.14159265358979323846 / 0.5);
-  afv_init_cluster(N, 1.8, &b, r);
+  afv_init_lattice(N, 1.8, &b, r);
   afv_dyn_default(&d);
   CHECK(afv_sim_init(s, N, r, NULL, &p, &b, &d) == AFV_OK
         && afv_relax(s, 1e-6, 100000, &flow, NULL, NULL) == AFV_OK
