@@ -167,8 +167,22 @@ test/run_tests: $(TEST_SRC) test/test.h $(FITS_OBJ) libafv.a $(LIB_H) \
                  cmd/fits.h .build-flags
 	$(CC) $(CFLAGS) -I. -o $@ $(TEST_SRC) $(FITS_OBJ) libafv.a $(LDLIBS)
 
-test: afv test/run_tests
+# The asserts of the library (its invariants, its functions'
+# preconditions) are compiled out by -DNDEBUG; make test also runs the
+# invariants suite in a build that keeps them: the library and the tests
+# compiled again with -UNDEBUG into test/assert/.
+ASSERT_OBJ = $(patsubst %.c,test/assert/%.o,$(LIB_SRC) $(FITS_SRC))
+
+test/assert/%.o: %.c $(LIB_H) cmd/fits.h .build-flags
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -UNDEBUG -I. -c -o $@ $<
+
+test/run_tests_assert: $(TEST_SRC) test/test.h $(ASSERT_OBJ) .build-flags
+	$(CC) $(CFLAGS) -UNDEBUG -I. -o $@ $(TEST_SRC) $(ASSERT_OBJ) $(LDLIBS)
+
+test: afv test/run_tests test/run_tests_assert
 	./test/run_tests
+	./test/run_tests_assert invariants
 	@sh test/web_needs.sh $(WEB_CC)
 
 # The main job: afv run with its defaults (the paper's protocol and
@@ -466,6 +480,7 @@ clean:
 	  test/protocol_check tools/convergence_plot tools/lambda_plot \
 	  tools/model_plot tools/csd_exponent \
 	  .build-flags
-	rm -f test/twins reference/afv_plain
+	rm -f test/twins reference/afv_plain test/run_tests_assert
+	rm -rf test/assert
 	rm -rf fuzz/build python/__pycache__
 	rm -f web/afv.wasm web/.build-flags

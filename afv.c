@@ -8,52 +8,73 @@
 ** (The paper's equations are numbered (1) energy_eq_first, (2) its
 ** simplified form, (3) eq:energy, (4) the equation of motion, (5) eq:abp.)
 **
-** FORCES.  By the chain rule, with wA = 2 KA (A_i - A0), wP = 2 KP (P_i - P0)
-** and wL = Lambda,
-**     G_ij := de_i/dr_j = wA dA_i/dr_j + wP dP_i/dr_j + wL dL_i/dr_j.
-** Cell i's shape depends on r_i and on its neighbours j (|r_j - r_i| < 2l).
-** Translating all of them together translates the shape, so
-**     de_i/dr_i = - sum_j G_ij,
-** and the force on j,  F_j = -dE/dr_j = -de_j/dr_j - sum_i G_ij, becomes
-**     F_j = sum_{i in nbr(j)} (G_ji - G_ij).                           (F)
-** Every cell computes its G_ij on its own ("gather" form): no cell writes
-** another's force, and sum_j F_j = 0 exactly in exact arithmetic.
+** FORCES.  One derivation; the force code cites its labels.
 **
-** It remains to differentiate A_i, P_i, L_i with respect to a neighbour r_j
-** (r_i fixed, cell frame centred on r_i, D = r_j - r_i, d = |D|, u = D/d,
-** t = (-u_y, u_x) the counter-clockwise direction along the edge ij, which
-** lies on the bisector line x.u = d/2).  Moving r_j moves only that line.
-**
-** Area (Reynolds transport).  The bisector is |x - r_j| = |x - r_i|; moving
-** r_j by dr moves its point x along u by (r_j - x).dr / d.  Integrating this
-** normal velocity over the edge (length ell, midpoint m):
-**     dA_i/dr_j = (ell / d) (D - m).                                    (A)
-** The arcs and the other edges do not move, so they add nothing.
-**
-** Perimeter and arc length.  Both are sums of piece lengths between the
-** vertices; moving one vertex V by dV changes the piece arriving at V by
-** t_in.dV and the piece leaving V by -t_out.dV (t_in, t_out its unit
-** tangents there; an arc keeps its circle, an edge's length is |V_b - V_a|).
-** So, for every vertex V that moves with r_j,
-**     dP_i += (dV/dr_j)^T (t_in - t_out),
-**     dL_i += (dV/dr_j)^T (t_in if an arc arrives, - t_out if one leaves).
-** Two kinds of vertex move with r_j:
-**
-** (1) Arc end: V = D/2 + sigma (s/d) R D on the circle, s = sqrt(l^2 - d^2/4)
-**     the half-chord, R the rotation by +90 degrees, sigma = -1 where the
-**     edge starts (the arc arrives), +1 where it ends.  Differentiating,
-**       (dV/dD)^T w = w/2 + sigma (s/d) R^T w - sigma l^2/(d s) (t.w) u.  (V1)
-**     The last term diverges like 1/s ~ (2l - d)^(-1/2) as the contact is
-**     about to break: the exact force does too (integrably).  The optional
-**     cap replaces 2s = sqrt(4l^2 - d^2) by max(2s, delta) there only.
-** (2) Triple junction V of cells i, j, k: the circumcentre, on the lines ij
-**     and ik.  Moving r_j slides V along line ik (direction e = t_k, which
-**     does not move) by alpha, where |V - r_j|^2 = |V - r_i|^2 requires
-**     alpha (r_i - r_j).e = (V - r_j).dr, hence
-**       (dV/dr_j)^T w = (V - D_j) (e.w) / (-D_j . e),   e = t_k,      (V2)
-**     and the same with j and k exchanged for the motion with r_k.
-**     At a triple junction both pieces are edges, so only P changes.
-** Every formula is checked against central differences of E in the tests.
+** (E) Chain rule of Eq. (3): with wA = 2 KA (A_i - A0), wP = 2 KP (P_i -
+**     P0) and wL = Lambda,
+**         G_ij := de_i/dr_j = wA dA_i/dr_j + wP dP_i/dr_j + wL dL_i/dr_j.
+** (F) Cell i's shape depends on r_i and on its neighbours j (|r_j - r_i| <
+**     2l); translating all of them translates the shape, so de_i/dr_i =
+**     - sum_j G_ij, and the force on j, F_j = -de_j/dr_j - sum_i G_ij, is
+**         F_j = sum_{i in nbr(j)} (G_ji - G_ij).
+**     Every cell computes its G_ij on its own ("gather" form): no cell
+**     writes another's force, and sum_j F_j = 0 in exact arithmetic.
+** (G) The frame of the pair, seen from cell i (centred on r_i): D = r_j -
+**     r_i = d u, t = u turned by +90 degrees (counter-clockwise along the
+**     edge ij), h = d/2; the edge lies on the bisector line x.u = h, its
+**     points x = h u + tau t (afv_piece.tau: tau0 at its start, tau1 =
+**     tau0 + ell at its end).  A move of r_j is dD = dd u + d dphi t (dd
+**     away from r_i, dphi turning about it), so
+**         G_ij = a u + (b / d) t,   a = de_i/dd,   b = de_i/dphi.
+**     a and b are sums of bounded terms from the vertices' tau (to
+**     relative precision, from the clipping); b / d is formed once per
+**     pair from both cells' b (gather_forces), so nearly coincident
+**     centres keep their digits (at d = 1e-16 l the vector form of these
+**     formulas lost 39%, and 1e159 with the wrong sign below d^2 = 0).
+** (N) Moving r_j moves only its line: h -> h + dd/2, u -> u + dphi t,
+**     t -> t - dphi u, so the point of the line at tau moves by
+**         dx = (dd/2 - tau dphi) u + h dphi t,
+**     along the outward normal u by dd/2 - tau dphi.
+** (A) Area: only the edge moves, A_i grows by the normal motion (N)
+**     integrated over it:
+**         a += wA ell / 2,           b -= wA ell (tau0 + tau1) / 2.
+** Perimeter and arc length are sums of piece lengths between vertices; a
+** vertex V moving by dV lengthens the piece arriving at V by t_in.dV and
+** the piece leaving it by -t_out.dV (t_in, t_out their unit tangents at
+** V; an arc keeps its circle).  So dP_i = (t_in - t_out).dV, and dL_i =
+** t_in.dV if an arc arrives, -t_out.dV if one leaves.  Two kinds of
+** vertex move with r_j:
+** (V1) Arc end, on the circle |x| = l at tau = sigma s, s = sqrt(l^2 - h^2)
+**     the half-chord, sigma = -1 at the edge's start (an arc arrives),
+**     +1 at its end (an arc leaves).  Moving away, tau = sigma s moves by
+**     -sigma h dd / (2s), so dV = (dd/2) u - sigma (h/(2s)) dd t; turning,
+**     V turns with the line about r_i, along the circle, dV = dphi R V.
+**     The circle's tangent at V is R V / l, the edge's is t; so, per end,
+**         a += (wP (l - h) + wL l) / (2s),
+**         b += -sigma (wP (l - h) + wL l)
+**     (+ where the arc arrives, - where it leaves).  The 1/s diverges as
+**     (2l - d)^(-1/2) as the contact is about to break: the exact force
+**     does too (integrably).
+** (V1c) The cap (afv_params.cap = delta > 0, PyAFV's contact truncation):
+**     where 2s < delta, a uses the arc end's velocity along the edge with
+**     2s replaced by delta (arc_end_radial); the force is then not
+**     -grad E.
+** (V2) Triple junction V of edge j (leaving V, V at tau0_j) and edge k
+**     (arriving, V at tau1_k), c = u_j x u_k, q = u_j.u_k.  Moving r_j
+**     slides V along line k (which does not move): V = V + sg t_k, with
+**     V.u_j = h_j kept, i.e. by (N) sg (t_k.u_j) = dd/2 - tau0_j dphi,
+**     t_k.u_j = -c; only P changes, by (t_k - t_j).t_k sg = (1 - q) sg.
+**     With m = wP (1 - q) / c (= wP c / (1 + q), the same value without
+**     the cancellation in 1 - q where q >= 0):
+**         a_j -= m / 2,   b_j += tau0_j m,
+**     and the same for r_k moving V along line j (t_j.u_k = c, and
+**     (t_k - t_j).t_j = q - 1):
+**         a_k -= m / 2,   b_k += tau1_k m.
+** For two cells alone the b of both arc ends cancel exactly and b of the
+** edge is 0 exactly (tau0 = -tau1), so the pair force is a u to rounding
+** for any d > 0: the closed form of test_core.c holds from d = 1e-16 l to
+** 2l (test_geometry.c).  Every formula is checked against central
+** differences of E in the tests (afv_gradient_check, below).
 **
 ** Invariants (asserted where relied on, in a build without -DNDEBUG): every
 ** edge piece of a cell belongs to one of its own neighbour slots (its G is
@@ -83,14 +104,16 @@ const char *afv_strerror(int status)
   case AFV_ECOINCIDENT: return "two cell centres coincide";
   case AFV_EIO: return "input/output error";
   case AFV_EFORMAT: return "malformed file";
-  case AFV_EUNSTABLE: return "unstable step (a force or position not finite, or a move "
-                          "beyond " STR(AFV_RUNAWAY_MOVE) " l)";
+  case AFV_EUNSTABLE:
+    return "unstable step (a force or position not finite, or a move "
+           "beyond " STR(AFV_RUNAWAY_MOVE) " l)";
   default: return "unknown error";
   }
 }
 
 void afv_params_default(afv_params *p)
 {
+  assert(p != NULL);
   memset(p, 0, sizeof *p);
   p->l = 1;
   p->KA = 1;
@@ -156,6 +179,7 @@ static int energy_bounded(const afv_params *p, int n)
 
 int afv_params_check(const afv_params *p, int n)
 {
+  assert(p != NULL);
   if (!(isfinite(p->l) && p->l > 0)) return AFV_EINVAL;
   if (!(isfinite(p->KA) && p->KA >= 0 && isfinite(p->KP) && p->KP >= 0))
     return AFV_EINVAL;
@@ -180,49 +204,14 @@ static int box_check(const afv_box *b, double l)
 
 double afv_cell_energy(const afv_params *p, int i, double A, double P, double L)
 {
+  assert(p != NULL && i >= 0);
   cell_targets c = targets_of(p, i);
   /* e_i, the term of cell i in Eq. (3) of the paper */
   return c.KA * (A - c.A0) * (A - c.A0) + c.KP * (P - c.P0) * (P - c.P0)
        + p->Lambda * L;
 }
 
-/* ---- shape derivatives -------------------------------------------------- */
-/* NEARLY COINCIDENT CENTRES.  The formulas (A), (V1), (V2) above are right
-** but, evaluated as vectors, lose everything for small d: (V1) holds terms
-** s/d and l^2/(d s) that cancel to h/(2s), and the midpoint m of (A) is
-** formed from vertices of size l, so D - m is off by eps l, which (A)
-** divides by d.  At d = 1e-16 l the pair force came out 39% wrong, and
-** with d^2 below the smallest double, 1e159 with the wrong sign.
-** So each slot's derivative is split along u and t:
-**     G_ij = a u + (b / d) t,   a = de_i/dd,   b = de_i/dphi,
-** a for r_j moving away (the bisector moves out by half as much), b for
-** r_j turning about r_i by the angle phi (the bisector line turns about
-** r_i, the cell centre, by phi: x.u = h with u -> u + phi t).  a and b are
-** sums of bounded terms, computed from each vertex's position tau along
-** its edge (afv_piece.tau, from the clipping, relative precision), and
-** b / d is formed once per pair, from both cells' b (gather_forces).
-** Per piece:
-**   edge ell = tau1 - tau0 (A):  a += wA ell / 2,
-**                                b -= wA ell (tau0 + tau1) / 2;
-**   arc end (V1), s the half-chord, the end at tau = -+s:
-**                                a += (wP (l - h) + wL l) / (2 s),
-**                                b += +-(wP (l - h) + wL l)
-**     (+ where the arc arrives, at the edge's start; - where it leaves): the
-**     arc ends turn with the line, along the circle, so L keeps its length
-**     and P changes only through the edge;
-**   triple junction V of edges j (leaving V, V at tau0_j) and k (arriving,
-**     V at tau1_k), c = u_j x u_k, q = u_j.u_k, m = wP (1 - q) / c:
-**                                a_j -= m / 2,  b_j += tau0_j m,
-**                                a_k -= m / 2,  b_k += tau1_k m
-**     (V slides along the other line; m = wP c / (1 + q) where q >= 0,
-**     the same value without the cancellation in 1 - q).
-** For two cells alone the b of both arc ends cancel exactly and b of the
-** edge is 0 exactly (tau0 = -tau1), so the pair force is a u to rounding
-** for any d > 0: the closed form of test_core.c holds from d = 1e-16 l
-** to 2l (test_geometry.c).  With the cap, a uses (V1) as before: the
-** l^2/(d s) term with max(2s, delta) for 2s; (V1) as printed is only
-** ill-conditioned at small d, where the cap changes nothing. */
-
+/* ---- shape derivatives (the header's (G) .. (V2)) ---------------------- */
 /* The edge of neighbour slot s, seen from its cell. */
 typedef struct edge {
   double ux, uy;       /* u = D / d */
@@ -253,9 +242,9 @@ static void area_terms(const afv_piece *pc, double wA, double *ab)
 }
 
 /* (V1): a of one arc end of edge E (the same at both ends), the end of an
-** arc of length arc; the b terms are +-arc_turn (see above).
-** THE CAP is PyAFV's contact truncation delta, so that the two codes give
-** the same forces (test_geometry.c, golden data of PyAFV 0.4.16): where
+** arc of length arc; the b terms are -+arc_turn (the header's (V1)).
+** (V1c) THE CAP is PyAFV's contact truncation delta, so that the two codes
+** give the same forces (test_geometry.c, golden data of PyAFV 0.4.16): where
 ** 2s < delta, the arc end's velocity along the edge, l^2/(d s) per unit
 ** change of d, becomes l^2/(d delta/2), i.e. it gains
 **     Delta = (l^2/d) (2/delta - 1/s)        (per unit change of d),
@@ -270,46 +259,49 @@ static double arc_end_radial(const edge *E, double l, double cap, double wA,
 {
   double s = E->s, h = E->h, excess;
   if (!(s > 0)) return 0;              /* a chord of length 0 makes no edge */
-  if (2 * s >= cap)                    /* exact gradient, (V1) */
+  if (2 * s >= cap)                    /* (V1): a += (wP (l-h) + wL l) / 2s */
     return (wP * (l - h) + wL * l) * (0.5 / s);
-  /* capped: (dV/dD)^T w along u with l^2/(d s) -> l^2/(d cap/2), where
-  ** -sigma t.w = (wP (h - l) + wL h) / l and w.u = (wP + wL) s / l at
-  ** either end */
-  excess = l * l / (2 * h) * (1 / s - 2 / cap);        /* -Delta */
-  return (wP + wL) * s / (2 * l)
+  /* (V1c), in the vector form of the arc end's velocity that PyAFV
+  ** differentiates, V = D/2 + sigma (s/d) R D: its part along u for a
+  ** weight w = wP (t_in - t_out) + wL (arc tangent) is w.u/2 + sigma
+  ** (s/d - l^2/(d s)) t.w, with l^2/(d s) -> l^2/(d cap/2); at either
+  ** end -sigma t.w = (wP (h - l) + wL h) / l and w.u = (wP + wL) s / l */
+  excess = l * l / (2 * h) * (1 / s - 2 / cap);        /* (V1c): -Delta */
+  return (wP + wL) * s / (2 * l)                       /* (V1c): w.u / 2 */
          + (wP * (h - l) + wL * h) / l * (l * l - s * 0.5 * cap)
-           / (2 * h * 0.5 * cap)
+           / (2 * h * 0.5 * cap)                       /* (V1c): capped */
          + wA * 0.5 * s * excess * sin(arc / l);       /* the chord's area */
 }
 
 static double arc_turn(const edge *E, double l, double wP, double wL)
 {
-  return wP * (l - E->h) + wL * l;              /* (V1): b at an arc end */
+  return wP * (l - E->h) + wL * l;    /* (V1): b = -sigma (wP (l-h) + wL l) */
 }
 
-/* (V2): the triple junction of edge E (leaving the vertex, which lies at
-** tau_e along it) and the previous edge K (arriving, at tau_k along it):
-** a and b of both slots (abe, abk). */
+/* (V2): the triple junction of edge E (the header's j: leaving the vertex,
+** which lies at tau_e = tau0_j along it) and the previous edge K (k:
+** arriving, at tau_k = tau1_k along it): a and b of both slots (abe, abk). */
 static void junction_terms(const edge *E, const edge *K, double tau_e,
                            double tau_k, double wP, double *abe, double *abk)
 {
-  double c = E->ux * K->uy - E->uy * K->ux;   /* u_E x u_K */
-  double q = E->ux * K->ux + E->uy * K->uy;   /* u_E . u_K */
+  double c = E->ux * K->uy - E->uy * K->ux;   /* (V2): c = u_j x u_k */
+  double q = E->ux * K->ux + E->uy * K->uy;   /* (V2): q = u_j . u_k */
   double m;
   if (c == 0) return;                 /* parallel lines make no vertex */
-  m = q >= 0 ? wP * c / (1 + q) : wP * (1 - q) / c;   /* (V2) */
-  abe[0] -= 0.5 * m;
-  abe[1] += tau_e * m;
-  abk[0] -= 0.5 * m;
-  abk[1] += tau_k * m;
+  m = q >= 0 ? wP * c / (1 + q) : wP * (1 - q) / c;   /* (V2): m */
+  abe[0] -= 0.5 * m;                          /* (V2): a_j -= m / 2 */
+  abe[1] += tau_e * m;                        /* (V2): b_j += tau0_j m */
+  abk[0] -= 0.5 * m;                          /* (V2): a_k -= m / 2 */
+  abk[1] += tau_k * m;                        /* (V2): b_k += tau1_k m */
 }
 
-/* One pass over the pieces in boundary order, accumulating a and b per
-** slot in grad (grad[2s] = a, grad[2s+1] = b).  The edge of the previous
-** piece is carried along (K). */
+/* One pass over the pieces in boundary order, accumulating (G)'s a and b
+** per slot in grad (grad[2s] = a, grad[2s+1] = b).  The edge of the
+** previous piece is carried along (K). */
 void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
                              double wA, double wP, double wL, double *grad)
 {
+  assert(g != NULL && grad != NULL && i >= 0 && i < g->n);
   const afv_piece *pieces = g->pieces + g->piece_start[i];
   int np = g->n_pieces[i], k;
   const afv_piece *prev;
@@ -332,7 +324,7 @@ void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
     area_terms(pc, wA, ab);                   /* (A) */
     if (prev->nbr == AFV_ARC) {               /* (V1): an arc arrives */
       ab[0] += arc_end_radial(&E, l, cap, wA, wP, wL, prev->length);
-      ab[1] += arc_turn(&E, l, wP, wL);
+      ab[1] += arc_turn(&E, l, wP, wL);       /* (V1): sigma = -1 */
     } else {                                  /* (V2): junction (i,k,j) */
       junction_terms(&E, &K, pc->tau, prev->tau + prev->length, wP, ab,
                      grad + 2 * prev->slot);
@@ -340,7 +332,7 @@ void afv_cell_shape_gradient(const afv_geom *g, int i, double l, double cap,
     if (next_arc) {                           /* (V1): an arc leaves */
       ab[0] += arc_end_radial(&E, l, cap, wA, wP, wL,
                               pieces[k + 1 < np ? k + 1 : 0].length);
-      ab[1] -= arc_turn(&E, l, wP, wL);
+      ab[1] -= arc_turn(&E, l, wP, wL);       /* (V1): sigma = +1 */
     }
     K = E;
     prev = pc;
@@ -366,11 +358,11 @@ static void gather_forces(const afv_geom *g, int n, double *f)
       int t = g->nbr_rev[s];
       /* the lists are symmetric (neighbours.c): every slot has its reverse */
       const double *e = g->edge + 4 * s;
-      double a = g->grad[2*s] + g->grad[2*t];
-      double bt = (g->grad[2*s+1] + g->grad[2*t+1]) / (e[2] + e[2]);
+      double a = g->grad[2*s] + g->grad[2*t];             /* (G): a's */
+      double bt = (g->grad[2*s+1] + g->grad[2*t+1]) / (e[2] + e[2]); /* b/d */
       assert(g->nbr_rev[t] == s && g->nbr[t] == j);
-      fx += a * e[0] - bt * e[1];             /* (F): F_j += G_js - G_rev(s) */
-      fy += a * e[1] + bt * e[0];
+      fx += a * e[0] - bt * e[1];       /* (F): F_j += G_js - G_rev(s), */
+      fy += a * e[1] + bt * e[0];       /* (G): = a u + (b / d) t */
     }
     f[2*j] = fx;
     f[2*j+1] = fy;
@@ -397,7 +389,7 @@ static void shape_all(afv_geom *g, int n, const afv_params *p, int gradient)
     cell_targets c = targets_of(p, i);
     afv_cell_shape(g, i, p->l);
     if (!gradient) continue;
-    /* the chain rule of Eq. (3): wA = de_i/dA_i, wP = de_i/dP_i, wL */
+    /* (E): wA = de_i/dA_i, wP = de_i/dP_i, wL = de_i/dL_i */
     afv_cell_shape_gradient(g, i, p->l, p->cap, 2 * c.KA * (g->area[i] - c.A0),
                             2 * c.KP * (g->perim[i] - c.P0), p->Lambda,
                             g->grad);
@@ -418,6 +410,7 @@ static double total_energy(const afv_geom *g, int n, const afv_params *p)
 int afv_geometry(afv_geom *g, int n, const double *r, const afv_params *p,
                  const afv_box *b)
 {
+  assert(g != NULL && p != NULL && (r != NULL || n <= 0));
   int st;
   if ((st = check_inputs(n, p, b)) != AFV_OK) return st;
   if ((st = afv_geometry_prepare(g, n, r, p->l, b)) != AFV_OK) return st;
@@ -429,6 +422,7 @@ int afv_geometry(afv_geom *g, int n, const double *r, const afv_params *p,
 int afv_compute(afv_geom *g, int n, const double *r, const afv_params *p,
                 const afv_box *b, double *f)
 {
+  assert(g != NULL && p != NULL && (r != NULL || n <= 0));
   int st;
   if (!f) return afv_geometry(g, n, r, p, b);
   if ((st = check_inputs(n, p, b)) != AFV_OK) return st;
@@ -719,6 +713,7 @@ int afv_force_check(int n, const double *r, const afv_params *p,
                     const afv_box *b, double h, const double *f,
                     afv_check_report *rep)
 {
+  assert(p != NULL && rep != NULL && (n <= 0 || (r != NULL && f != NULL)));
   afv_geom g;
   local_tissue T;
   fd_context C;
@@ -773,6 +768,7 @@ int afv_force_check(int n, const double *r, const afv_params *p,
 int afv_gradient_check(int n, const double *r, const afv_params *p,
                        const afv_box *b, double h, afv_check_report *rep)
 {
+  assert(p != NULL && rep != NULL && (r != NULL || n <= 0));
   afv_geom g;
   double *f = malloc((size_t)(2 * n + 1) * sizeof(double));
   int st;

@@ -400,6 +400,7 @@ static int pairs_increasing(const int *p, int m)
 int afv_clusters_compute(afv_clusters *c, const afv_geom *g, const double *r,
                          double l, const afv_box *b)
 {
+  assert(c != NULL && g != NULL && (r != NULL || g->n == 0));
   int n = g->n, k, st;
   int npieces = n > 0 ? g->piece_start[n - 1] + g->n_pieces[n - 1] : 0;
   if (!(l > 0)) return AFV_EINVAL;
@@ -427,6 +428,7 @@ void afv_t1_free(afv_t1 *t)
 
 int afv_t1_start(afv_t1 *t, const afv_clusters *c)
 {
+  assert(t != NULL && c != NULL);
   int *p = NULL;
   if (c->n_pairs > 0) {
     p = malloc((size_t)c->n_pairs * 2 * sizeof(int));
@@ -449,6 +451,7 @@ static int pair_cmp(const int *a, const int *b)
 /* |C(t) sym-diff C(0)| / 2 by a merge of the two sorted lists. */
 double afv_t1_count(const afv_t1 *t, const afv_clusters *c)
 {
+  assert(t != NULL && c != NULL);
   int a = 0, b = 0;
   long diff = 0;
   assert(pairs_increasing(t->pairs0, t->n_pairs0));
@@ -814,6 +817,7 @@ static int long_lags(afv_msd *m, const frame_src *src, int first, double l,
 
 int afv_msd_compute(afv_msd *m, const afv_traj *tr, int first, double l)
 {
+  assert(m != NULL && tr != NULL);
   frame_src src;
   int st;
   memset(m, 0, sizeof *m);
@@ -1050,6 +1054,7 @@ int afv_analyze_ring(afv_analysis *a, const afv_traj *tr, afv_traj_file *f,
 int afv_analyze(afv_analysis *a, const afv_traj *tr, double l, double v0,
                 double Dr, double steady_from, double lag)
 {
+  assert(a != NULL && tr != NULL);
   return afv_analyze_ring(a, tr, NULL, l, v0, Dr, steady_from, lag,
                           AFV_ANALYSIS_RING_BYTES, NULL, 0);
 }
@@ -1058,6 +1063,7 @@ int afv_analyze_file(afv_analysis *a, afv_traj_file *f, double l, double v0,
                      double Dr, double steady_from, double lag, char *err,
                      size_t errlen)
 {
+  assert(a != NULL && f != NULL);
   return afv_analyze_ring(a, NULL, f, l, v0, Dr, steady_from, lag,
                           AFV_ANALYSIS_RING_BYTES, err, errlen);
 }

@@ -10,6 +10,7 @@
 #include "afv_internal.h"
 #include "afv_tool.h"   /* afv_atomic_open: afv_svg_save writes atomically */
 
+#include <assert.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -189,6 +190,7 @@ int afv_relax_report_get(const afv_relax_report *rep, const char *name,
 int afv_order_parameters(const afv_geom *g, const double *r, double l,
                          const afv_box *b, double *values, int *label)
 {
+  assert(g != NULL && values != NULL);
   afv_clusters c = {0};
   int st = afv_clusters_compute(&c, g, r, l, b);
   if (st == AFV_OK) {
@@ -207,6 +209,7 @@ int afv_svg_save(const char *path, const afv_geom *g, int n, const double *r,
                  const double *theta, const afv_params *p, const afv_box *b,
                  int color_by_cluster)
 {
+  assert(path != NULL && g != NULL);
   char tmp[4096];
   afv_draw_opts o = {0};
   FILE *fp;

@@ -221,6 +221,7 @@ static int euler_step(afv_sim *s)
 
 int afv_sim_step(afv_sim *s)
 {
+  assert(s != NULL);
   unsigned long long seed = s->dyn.seed, step = (unsigned long long)s->step;
   int i, pairs, st;
   if ((st = euler_step(s)) != AFV_OK) return st;
@@ -237,6 +238,7 @@ int afv_sim_step(afv_sim *s)
 /* ---- the simulation ---------------------------------------------------- */
 void afv_dyn_default(afv_dyn *d)
 {
+  assert(d != NULL);
   memset(d, 0, sizeof *d);
   d->mu = 1;
   d->v0 = 0;
@@ -279,6 +281,7 @@ void afv_sim_free(afv_sim *s)
 int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
                  const afv_params *p, const afv_box *b, const afv_dyn *d)
 {
+  assert(s != NULL && p != NULL && d != NULL && (r != NULL || n <= 0));
   double *next;
   int st;
   afv_sim_free(s);
@@ -325,6 +328,7 @@ int afv_sim_init(afv_sim *s, int n, const double *r, const double *theta,
 
 int afv_sim_refresh(afv_sim *s)
 {
+  assert(s != NULL);
   if (afv_params_check(&s->par, s->n) != AFV_OK
       || dyn_check(&s->dyn, s->n) != AFV_OK)
     return AFV_EINVAL;
@@ -334,6 +338,7 @@ int afv_sim_refresh(afv_sim *s)
 
 double afv_sim_max_force(const afv_sim *s)
 {
+  assert(s != NULL);
   double m2 = 0;
   int i;
   for (i = 0; i < s->n; i++) {
@@ -459,6 +464,7 @@ static int window_shows_kink(const afv_sim *s, afv_relax_report *rep,
 int afv_relax(afv_sim *s, double tol, long max_iter, afv_relax_report *rep,
               afv_relax_monitor mon, void *ctx)
 {
+  assert(s != NULL && rep != NULL);
   afv_dyn saved = s->dyn;
   long long jumps = s->jumps;
   window W;
@@ -526,6 +532,7 @@ static int site_cmp(const void *pa, const void *pb)
 
 int afv_init_lattice(int n, double a, const afv_box *b, double *r)
 {
+  assert(r != NULL || n <= 0);
   /* the n nearest sites lie within radius sqrt(n / pi * sqrt(3)/2) + 2;
   ** site (i, j) is at distance^2 i^2 + ij + j^2 >= 3 j^2 / 4, so the rows
   ** that reach the disk have |j| <= J = 2R / sqrt(3) */
@@ -585,6 +592,7 @@ static void uniform_square(int n, unsigned long long seed, double cx,
 void afv_init_random(int n, unsigned long long seed, const afv_box *b,
                      double side, double *r)
 {
+  assert(r != NULL || n <= 0);
   int i;
   if (!(b && b->periodic)) {
     uniform_square(n, seed, 0, 0, side, r);
@@ -601,6 +609,7 @@ void afv_init_random(int n, unsigned long long seed, const afv_box *b,
 void afv_init_cluster(int n, unsigned long long seed, const afv_box *b,
                       double side, double *r)
 {
+  assert(r != NULL || n <= 0);
   int periodic = b && b->periodic;
   uniform_square(n, seed, periodic ? 0.5 * b->Lx : 0,
                  periodic ? 0.5 * b->Ly : 0, side, r);
@@ -608,6 +617,7 @@ void afv_init_cluster(int n, unsigned long long seed, const afv_box *b,
 
 void afv_init_angles(int n, unsigned long long seed, double *theta)
 {
+  assert(theta != NULL || n <= 0);
   int i;
   for (i = 0; i < n; i++) {
     double u[2];
@@ -663,6 +673,7 @@ int afv_protocol_start(afv_sim *s, int n, const afv_params *p,
                        const afv_protocol *pr, afv_relax_report *rep,
                        afv_relax_monitor mon, void *ctx)
 {
+  assert(s != NULL && p != NULL && d != NULL && pr != NULL);
   double *r, *theta;
   afv_relax_report none;
   int st;

@@ -43,6 +43,7 @@
 ** the forces and the geometry are those of the final positions. */
 #include "afv_internal.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -204,6 +205,7 @@ static int stalled(fire *w)
 int afv_relax_fire(afv_sim *s, double tol, long max_iter,
                    afv_relax_report *rep, afv_relax_monitor mon, void *ctx)
 {
+  assert(s != NULL && rep != NULL);
   fire w;
   int st = AFV_OK, stop = 0;
   memset(rep, 0, sizeof *rep);

@@ -39,6 +39,7 @@
 #include "afv_internal.h"
 #include "afv_tool.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -661,6 +662,7 @@ int afv_svg_draw(FILE *out, const afv_geom *g, int n, const double *r,
                  const double *theta, const afv_params *p, const afv_box *b,
                  const afv_draw_opts *o)
 {
+  assert(out != NULL && g != NULL && p != NULL && (r != NULL || n <= 0));
   char cb[4][COORD_LEN], (*fill)[8] = NULL;
   afv_clusters c;
   legend lg;
@@ -697,6 +699,7 @@ int afv_svg_draw(FILE *out, const afv_geom *g, int n, const double *r,
 int afv_svg_write(FILE *out, const afv_geom *g, int n, const double *r,
                   const double *theta, const afv_params *p, const afv_box *b)
 {
+  assert(out != NULL && g != NULL && p != NULL && (r != NULL || n <= 0));
   return afv_svg_draw(out, g, n, r, theta, p, b, NULL);
 }
 
