@@ -1,9 +1,12 @@
 /*
 ** afv_config.h -- the constants of afv in one place: the status codes and
 ** every tolerance of the library, each with what it means geometrically
-** and the test that pins it (fails when the value is made much larger or
-** smaller).  A numeric tolerance written anywhere else in the library is
-** a bug.  Included by afv.h, installed beside it.
+** and the test that pins it: the test that fails when the value is
+** mutated as said (measured: test/run_tests of the suites named, -O1
+** -DNDEBUG).  "Not pinned" says the mutation passes the whole suite: a
+** fixture that needs the value is owed.  A numeric tolerance written
+** anywhere else in the library is a bug.  Included by afv.h, installed
+** beside it.
 **
 ** Lengths are in units of l unless said.  API (kept across versions): the
 ** status codes, AFV_CONTACT_TOL, AFV_MAX_STEP_DISP, AFV_RUNAWAY_MOVE and
@@ -42,7 +45,7 @@
 ** contact: it stays in the boundary (areas and perimeters add up) but is
 ** not counted in afv_geom_contacts, the clusters or Omega.  (Two cells
 ** whose bisector meets a third's exactly on the circle share an edge of
-** length 0 up to rounding, ~1e-16 l.)  Pinned by test_core.c
+** length 0 up to rounding, ~1e-16 l.)  Pinned (0) by test_core.c
 ** test_tiny_edge_is_no_contact and test_analysis.c omega_degenerate_vertex. */
 #define AFV_CONTACT_TOL 1e-9
 
@@ -51,63 +54,60 @@
 ** may have a computed gap a hair below zero, which wraps around to a full
 ** turn; a gap within AFV_ANGLE_TOL (radians) of 2 pi between two distinct
 ** edges is taken as zero (a true gap that large would need every contact
-** edge of the cell shorter than about 1e-12 l).  Pinned by test_core.c
-** test_junctions_on_the_circle, test_four_cocircular. */
+** edge of the cell shorter than about 1e-12 l).  Not pinned (0 passes). */
 #define AFV_ANGLE_TOL 1e-12
 
 /* clip_pairs and sliver_kept: two bisectors whose directions t_a, u_b have
 ** |t_a.u_b| below this are nearly parallel (they meet farther than about
-** 1e6 |D| away), and are clipped by clip_near_parallel.  Pinned by
-** test_geometry.c test_coincident_named (its nearly parallel pair). */
+** 1e6 |D| away), and are clipped by clip_near_parallel.  Pinned (0) by
+** test_geometry.c test_near_pair_in_tissue, test_fuzz_cases and
+** test_check_near_kinks. */
 #define AFV_NEAR_PARALLEL 1e-6
 
 /* clip_near_parallel: two nearly parallel neighbours whose displacements
 ** differ by AFV_NEAR_PARALLEL_GAP |D_a| or more have lines that meet 1e6 l
-** away or farther: the nearer line hides the other.  Pinned by
-** test_geometry.c test_coincident_named. */
+** away or farther: the nearer line hides the other.  Not pinned (0.9
+** passes). */
 #define AFV_NEAR_PARALLEL_GAP 1e-3
 
 /* keep_parts: a part bounded by two junctions whose length came out
 ** negative by at most this times |tau0| + |tau1| is a sliver of length
-** zero lost to rounding, not an empty part.  Pinned by test_geometry.c
-** test_coincident_named (the sliver cells). */
+** zero lost to rounding, not an empty part.  Not pinned (0 passes). */
 #define AFV_SLIVER_ROUNDING (8 * DBL_EPSILON)
 
 /* clip_pruned: a neighbour whose bisector lies farther than the cell's
 ** farthest vertex plus AFV_PRUNE_MARGIN l cannot cut the cell (the margin
 ** covers the rounding of the vertices, so pruning keeps the bits).
-** Pinned by test_geometry.c test_fuzz_cases (pruned against unpruned). */
+** Not pinned (-1e-6 passes). */
 #define AFV_PRUNE_MARGIN 1e-9
 
 /* ---- 4. the neighbour search (neighbours.c) ------------------------------ */
 /* window_around and security_radius: a reach (the bins around a point, the
 ** radius of security of a cut polygon) is widened by AFV_REACH_MARGIN l to
-** cover the rounding of the positions it is computed from.  Pinned by
-** test_core.c test_cell_list_vs_all_pairs and test_perf.c's search of
-** afv_cells_around against all cells. */
+** cover the rounding of the positions it is computed from.  Not pinned
+** (-1e-6 passes core, geometry and perf). */
 #define AFV_REACH_MARGIN 1e-9
 
 /* NEAR: two centres closer than AFV_NEAR_IMAGE times the longer box side
 ** take their displacement from the unwrapped centres (wrapping rounds a
 ** centre to a multiple of eps L); the relative error is then below
-** eps / AFV_NEAR_IMAGE = 2.3e-10.  2^-20, exact.  Pinned by
-** test_geometry.c test_pair_force_at_any_separation (periodic pairs down
-** to d = 1e-16 l). */
+** eps / AFV_NEAR_IMAGE = 2.3e-10.  2^-20, exact.  Pinned (0) by
+** test_core.c test_coincident_and_nonfinite and test_geometry.c
+** test_pair_force_periodic, test_coincident_named, test_fuzz_cases. */
 #define AFV_NEAR_IMAGE 9.5367431640625e-07
 
 /* ---- 5. rounding, the parameters' range, the finite-difference check ----- */
 /* The relative rounding of a sum of a few dozen rounded terms: a cell's
 ** area, perimeter or energy (afv.c, the finite-difference check's
-** uncertainty; geom.c, the asserted bounds of a shape).  Pinned by
-** test_core.c test_gradient_random (too small: rounding of exact forces
-** is taken for an error). */
+** uncertainty; geom.c, the asserted bounds of a shape).  Not pinned (0
+** passes core and geometry). */
 #define AFV_SUM_ROUNDING (64 * DBL_EPSILON)
 
 /* afv.c, check_component: a distance between two centres formed from
 ** coordinates of size R is rounded to AFV_COORD_ROUNDING R, and moves the
 ** energy by up to the force times that; a step of a few ulps of the
 ** coordinates (a pair one ulp from detaching) cannot resolve the force.
-** Pinned by test_geometry.c test_check_one_ulp_from_detaching. */
+** Pinned (0) by test_geometry.c test_check_one_ulp_from_detaching. */
 #define AFV_COORD_ROUNDING DBL_EPSILON
 
 /* afv_params_check refuses parameters for which the largest energy of the
@@ -115,21 +115,22 @@
 ** energy_bound) times AFV_PARAMS_HEADROOM overflows: the forces are the
 ** energy's terms times the shape's derivatives (a few l, a few
 ** neighbours) and must stay finite too.  afv eval and afv check name the
-** key by the same bound.  Pinned by test_core.c test_params_refuse_overflow
-** and test_geometry.c test_eval_refuses_overflow. */
+** key by the same bound.  Pinned (1) by test_core.c
+** test_params_refuse_overflow and test_geometry.c
+** test_eval_refuses_overflow. */
 #define AFV_PARAMS_HEADROOM 1e6
 
 /* afv.c, KINKS: the finite-difference step for a cell is at most
 ** 1/AFV_CHECK_KINK_STEPS of its distance to the nearest kink of the energy
 ** (a pair at d = 2l or d = 0): the extrapolated difference's error, about
-** (step / distance)^4 times the force, is then 1e-8 of it.  Pinned by
-** test_core.c test_gradient_near_detachment. */
+** (step / distance)^4 times the force, is then 1e-8 of it.  Pinned (1)
+** by test_geometry.c test_check_near_kinks and test_check_still_fails. */
 #define AFV_CHECK_KINK_STEPS 100
 
 /* afv.c, check_record: an error is resolved (a wrong force, which fails
 ** the check) when it exceeds AFV_CHECK_UNRESOLVED times the difference's
 ** own uncertainty (its two steps' disagreement and the rounding); within
-** it, finite differences cannot tell (inconclusive).  Pinned by
+** it, finite differences cannot tell (inconclusive).  Pinned (1e12) by
 ** test_geometry.c test_check_still_fails (a force 1e-3 off near
 ** detaching is resolved). */
 #define AFV_CHECK_UNRESOLVED 2
@@ -143,8 +144,8 @@
 ** A step in which some cell moves farther than AFV_MAX_STEP_DISP l (the
 ** forces change on the scale l, so Euler's method no longer follows the
 ** continuous dynamics there) is a jump, counted (afv_sim_jumps), not
-** refused.  Pinned by test_docs.c (afv run --help quotes it) and
-** test_dynamics.c's jump counts. */
+** refused.  Not pinned (0.25 passes docs and dynamics: the help quotes
+** the macro itself). */
 #define AFV_MAX_STEP_DISP 0.5
 
 /* afv_sim_step refuses a step only if a force or position is not finite, or
@@ -152,8 +153,8 @@
 ** model does that at sane parameters (the divergence at detachment is cut
 ** off by the spacing of doubles near 2l: |F| < 1e7 at the paper's
 ** parameters, a move of 1e5 l in dt = 0.01), but a modulus like KA =
-** 1e100 does, and positions that far off no longer resolve l.  Pinned by
-** test_dynamics.c test_sim_refuses_unstable_step. */
+** 1e100 does, and positions that far off no longer resolve l.  Pinned
+** (1e30) by test_dynamics.c test_run_unstable_exit. */
 #define AFV_RUNAWAY_MOVE 1e8
 
 /* afv_relax's kink criterion (dynamics.c, KINKS), at the end of a window of
@@ -163,8 +164,10 @@
 ** window: cells chatter across a kink, where the energy's slope jumps),
 ** the window's mean energy changed by at most AFV_RELAX_KINK_DROP
 ** sum_i |e_i| since the previous window, and max_i |F_i| <=
-** AFV_RELAX_KINK_FORCE.  Pinned by test_dynamics.c test_relax_stops_at_kink
-** and test_protocol.c (no kink claimed outside the criterion). */
+** AFV_RELAX_KINK_FORCE.  AFV_RELAX_KINK_FORCE is pinned (0) by
+** test_dynamics.c test_relax_stops_at_kink and test_protocol.c
+** test_protocol_reduced, test_run_relaxation_reports; the others were
+** not mutated. */
 #define AFV_RELAX_WINDOW      1000
 #define AFV_RELAX_KINK_DRIFT  1e-3   /* force units (KA l^3) */
 #define AFV_RELAX_KINK_CHATTER 0.1
@@ -175,7 +178,8 @@
 ** in one step (the forces change on the scale l); the search has stalled
 ** when its lowest energy did not drop by AFV_FIRE_STALL_DROP |E| over
 ** AFV_FIRE_STALL iterations (a minimum within rounding, or a kink).
-** Pinned by test_relax_fire.c. */
+** Not pinned (AFV_FIRE_MAX_MOVE 10 and AFV_FIRE_STALL_DROP 0.5 pass
+** test_relax_fire.c). */
 #define AFV_FIRE_MAX_MOVE   0.1
 #define AFV_FIRE_STALL      1000
 #define AFV_FIRE_STALL_DROP 1e-8
@@ -183,25 +187,25 @@
 /* ---- 7. pictures (svg.c) --------------------------------------------------- */
 /* draw_arc: an arc within AFV_FULL_CIRCLE_TOL (radians) of 2 pi is a full
 ** circle (an isolated cell), drawn as two half arcs (one SVG arc command
-** cannot draw a whole circle).  Pinned by test_analysis.c
-** svg_counts_match_geometry. */
+** cannot draw a whole circle).  Not pinned (-1 passes analysis and
+** pictures). */
 #define AFV_FULL_CIRCLE_TOL 1e-9
 
 /* A plotted range narrower than AFV_PLOT_SPAN_TOL (times |lo| + 1 on a
 ** line plot's axis; absolute for a phase map's colour scale) holds one
-** value, and is widened around it.  Pinned by test_pictures.c
-** plot_points_inside_frame. */
+** value, and is widened around it.  Not pinned (0 passes analysis and
+** pictures). */
 #define AFV_PLOT_SPAN_TOL 1e-12
 
 /* A tick within AFV_PLOT_TICK_TOL of a step from zero is labelled 0, and
 ** the ticks run to the axis end plus that much of a step (the rounding of
-** lo + k step).  Pinned by test_analysis.c svg_plot_well_formed. */
+** lo + k step).  Not pinned (0 passes analysis and pictures). */
 #define AFV_PLOT_TICK_TOL 1e-9
 
 /* A drawn coordinate is printed to AFV_SVG_RESOLUTION l, or to
 ** AFV_SVG_RESOLUTION_PX pixels on a magnified picture, whichever is
 ** finer: far below what an eye or a renderer resolves, far above the
-** doubles' rounding.  Pinned by test_pictures.c draw_coordinates_at_1e5. */
+** doubles' rounding.  Not pinned (AFV_SVG_RESOLUTION 1 passes pictures). */
 #define AFV_SVG_RESOLUTION    1e-4
 #define AFV_SVG_RESOLUTION_PX 0.01
 

@@ -17,18 +17,18 @@
 
 /* ---- tolerances of the fits ---------------------------------------------- */
 /* phase.c, linear_fit: a least-squares determinant below AFV_FIT_SINGULAR
-** times sum u^2 + 1 is singular (u does not vary).  Pinned by
-** test_sweep.c's boundary fit of 3 points. */
+** times sum u^2 + 1 is singular (u does not vary).  Exercised (not
+** mutated) by test_sweep.c's boundary fit of 3 points. */
 #define AFV_FIT_SINGULAR 1e-300
 
 /* phase.c, the dispersal boundary's exponent alpha: the golden-section
 ** search stops when its bracket is narrower than AFV_FIT_ALPHA_TOL.
-** Pinned by test_sweep.c's boundary fit (recovers alpha). */
+** Exercised (not mutated) by test_sweep.c's boundary fit. */
 #define AFV_FIT_ALPHA_TOL 1e-13
 
 /* fits.c, collapse_grid: a grid of v0* and alpha runs to its end plus
 ** AFV_GRID_END_TOL, so that rounding of lo + k step keeps the last point.
-** Pinned by test_paper.c collapse_recovers. */
+** Exercised (not mutated) by test_paper.c collapse_recovers. */
 #define AFV_GRID_END_TOL 1e-12
 
 /* ---- 1. phase diagrams (phase.c) ---------------------------------------- */
