@@ -143,11 +143,11 @@ static void fire_move(afv_sim *s, fire *w)
   }
 }
 
-/* A step of steepest descent, each cell by dt mu F cut to FIRE_MAX_MOVE
+/* A step of steepest descent, each cell by dt mu F cut to AFV_FIRE_MAX_MOVE
 ** l (descent_due says when). */
 static void descent_move(afv_sim *s, fire *w)
 {
-  double cap = FIRE_MAX_MOVE * s->par.l, step = s->dyn.dt * s->dyn.mu;
+  double cap = AFV_FIRE_MAX_MOVE * s->par.l, step = s->dyn.dt * s->dyn.mu;
   int i;
   for (i = 0; i < s->n; i++) {
     double dx = step * s->f[2*i], dy = step * s->f[2*i+1];
@@ -175,7 +175,7 @@ static void descent_move(afv_sim *s, fire *w)
 ** AFV_RELAX_KINK_FORCE), where FIRE's stall test stops as before. */
 static int descent_due(fire *w)
 {
-  int due = w->restarts > FIRE_STALL / 2
+  int due = w->restarts > AFV_FIRE_STALL / 2
             && w->best_force > AFV_RELAX_KINK_FORCE;
   w->restarts = 0;
   return due;
@@ -234,7 +234,7 @@ int afv_relax_fire(afv_sim *s, double tol, long max_iter,
       rep->at_kink = w.best_force <= AFV_RELAX_KINK_FORCE;
       rep->refused = !rep->at_kink;
     }
-    if (rep->iterations % FIRE_STALL == 0 && descent_due(&w)) w.descent = 1;
+    if (rep->iterations % AFV_FIRE_STALL == 0 && descent_due(&w)) w.descent = 1;
   }
   rep->converged = rep->max_force <= tol;
   if (!rep->converged && w.best_E < HUGE_VAL && st == AFV_OK) {

@@ -148,7 +148,7 @@ static void fire_relaxes_lambda0_to_isolated_disks(void)
   p.P0 = 8.8;
   b.Lx = b.Ly = sqrt(N * two_pi / 2 / 0.5);
   memset(&pr, 0, sizeof pr);
-  pr.start = AFV_START_SQUARE;
+  pr.start = AFV_START_CLUSTER;
   pr.side = AFV_AUTHORS_SQUARE * b.Lx;
   pr.relax = AFV_RELAX_FIRE;
   pr.relax_tol = 1e-6;

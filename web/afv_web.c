@@ -79,7 +79,7 @@ int web_reset(int n, double P0, double v0, double Lambda, double dt,
   d.v0 = v0; d.dt = dt; d.Dr = Dr;
   d.seed = (unsigned long long)seed_hi << 32 | (unsigned long long)seed_lo;
   memset(&pr, 0, sizeof pr);
-  pr.start = AFV_START_SQUARE;
+  pr.start = AFV_START_CLUSTER;
   pr.side = AFV_AUTHORS_SQUARE * b.Lx;
   pr.relax = AFV_RELAX_FLOW;
   pr.relax_tol = WEB_RELAX_TOL;
