@@ -86,8 +86,9 @@ libafv.a: $(LIB_OBJ)
 
 # The program, in cmd/: main.c dispatches to the commands (cmd/cli.h lists
 # their files); they include the library's headers from the top level.
-CLI_SRC  = $(addprefix cmd/,main.c cli.c inspect.c run.c report.c sweep.c \
-           collect.c paper.c paper_data.c claims.c)
+CLI_SRC  = $(addprefix cmd/,main.c cli.c inspect.c run.c run_config.c \
+           run_compute.c run_dir.c run_resume.c report.c sweep.c collect.c \
+           paper.c paper_data.c claims.c)
 CLI_OBJ  = $(CLI_SRC:.c=.o)
 
 afv: $(CLI_OBJ) libafv.a .build-flags
@@ -98,6 +99,7 @@ afv: $(CLI_OBJ) libafv.a .build-flags
 
 $(CLI_OBJ): cmd/cli.h
 cmd/paper.o cmd/paper_data.o cmd/claims.o: cmd/paper.h
+$(filter cmd/run%,$(CLI_OBJ)): cmd/run.h
 
 cmd/%.o: cmd/%.c afv.h afv_internal.h afv_tool.h cmd/cli.h .build-flags
 	$(CC) $(CFLAGS) -I. -c -o $@ $<
@@ -256,10 +258,11 @@ fuzz/build/%.o: %.c afv.h afv_internal.h afv_tool.h fastmath.h rng.h cmd/cli.h
 fuzz/build/libafv_fuzz.a: $(FUZZ_OBJ)
 	$(AR) rcs $@ $(FUZZ_OBJ)
 
-# (cmd/run.c: the config and collect harnesses include it; cmd/collect.c:
+# (cmd/run*.c: the config and collect harnesses include them; cmd/collect.c:
 # the collect harness)
 fuzz/build/fuzz_%: fuzz/fuzz_%.c fuzz/build/libafv_fuzz.a $(wildcard fuzz/*.h) \
-                   cmd/run.c cmd/collect.c cmd/cli.h afv.h afv_tool.h
+                   $(wildcard cmd/run*.c) cmd/run.h cmd/collect.c cmd/cli.h \
+                   afv.h afv_tool.h
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -I. -o $@ $< \
 	  fuzz/build/libafv_fuzz.a -lm
 

@@ -5,7 +5,8 @@
 **   main.c     the dispatcher: afv COMMAND ... -> cmd_COMMAND
 **   cli.c      option parsing and messages shared by the commands
 **   inspect.c  eval, check, draw, meanfield: one configuration
-**   run.c      run: the simulation job (run directory, outputs, resume)
+**   run*.c     run: the simulation job (run directory, outputs, resume;
+**              cmd/run.h lists its files)
 **   report.c   analyze: a run's order parameters and plots
 **   sweep.c    sweep: a grid of runs and its runners (make, parallel, SLURM)
 **   collect.c  collect: a sweep's table, missing jobs, fits and figures
@@ -103,7 +104,7 @@ void print_wrapped(const char *text);
 int double_option(int argc, char **argv, int *k, const char *name,
                   double *out, int *bad);
 
-/* ---- run.c: the keys of afv run, for afv sweep -------------------------- */
+/* ---- run_config.c: the keys of afv run, for afv sweep ------------------ */
 /* 1 if NAME is a key of afv run and TEXT a value it accepts; else 0 and
 ** err says why ("KEY: 'TEXT' is not ...", or "unknown key"). */
 int run_key_check(const char *name, const char *text, char *err,
@@ -114,7 +115,7 @@ int run_key_check(const char *name, const char *text, char *err,
 int run_config_write(const char *path, int n, const char *const *names,
                      const char *const *values, char *err, size_t errlen);
 
-/* ---- run.c: tolerant readers of a run directory ------------------------- */
+/* ---- run_config.c, run_dir.c: readers of a run directory --------------- */
 /* The value of key in the params.txt at path, if it is a whole finite
 ** number (the last one, if the key repeats): 1 if found, 0 if not, -1 if
 ** the file cannot be read.  Lines are read whole (afv_lines). */

@@ -3,12 +3,16 @@
 ** cut at its first NUL byte, is a sweep's points.csv and the summary.txt
 ** of its job 0001, whose run (params.txt P0 4, v0 0.5, seed 1, 20 steps
 ** with a frame every 10; a checkpoint at step 20; final.svg) is made once.
-** collect (collect.c, included with run.c for run_key_check) must exit 0,
+** collect (collect.c, included with the files of afv run for run_key_check) must exit 0,
 ** 1 or 2; on 2 it wrote no table; on 0 or 1 its table has the header of
 ** afv collect and no state point without a verified job, and exit 0
 ** means every job of points.csv was verified (missing.txt lists none).
 */
-#include "../cmd/run.c"
+#include "../cmd/run.c"          /* afv run, all its files */
+#include "../cmd/run_config.c"
+#include "../cmd/run_compute.c"
+#include "../cmd/run_dir.c"
+#include "../cmd/run_resume.c"
 #include "../cmd/collect.c"
 #include "reader_fuzz.h"
 
