@@ -12,6 +12,8 @@
 #include <stddef.h>
 #include <string.h>
 #include <dirent.h>
+#include <fcntl.h>
+#include <sys/file.h>   /* flock: not POSIX, but in every libc afv meets */
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <time.h>
@@ -122,7 +124,7 @@ static int analyze_plots(const char *dir, const afv_analysis *a,
   int (*const draw[3])(FILE *, const afv_analysis *) = {
     afv_svg_msd, afv_svg_series, afv_svg_csd
   };
-  char path[RUN_PATH_MAX + 64], tmp[RUN_PATH_MAX + 96];
+  char path[RUN_PATH_MAX + 96], tmp[RUN_PATH_MAX + 160];
   int k;
   for (k = 0; k < 3; k++) {
     FILE *fp;
@@ -152,9 +154,9 @@ static int analyze_plots(const char *dir, const afv_analysis *a,
   return 0;
 }
 
-/* Removes the files in the staging folder dir (left by an analyze that was
-** killed or failed), and dir itself if rmdir_too. */
-static void stage_clear(const char *dir, int rmdir_too)
+/* Removes the files in the staging folder dir, this process's own (made
+** by stage_make, written by this process), and dir itself. */
+static void stage_clear(const char *dir)
 {
   char path[RUN_PATH_MAX + 320];
   DIR *d = opendir(dir);
@@ -165,7 +167,7 @@ static void stage_clear(const char *dir, int rmdir_too)
       remove(path);
     }
   if (d) closedir(d);
-  if (rmdir_too) rmdir(dir);
+  rmdir(dir);
 }
 
 /* Moves every file of the staging folder into out, summary.txt last (the
@@ -176,11 +178,6 @@ static int stage_commit(const char *stage, const char *out)
   DIR *d;
   struct dirent *e;
   int last;
-  if (mkdir(out, 0777) != 0 && errno != EEXIST) {
-    fprintf(stderr, "afv analyze: cannot create %s: %s\n", out,
-            strerror(errno));
-    return EXIT_BAD_INPUT;
-  }
   for (last = 0; last < 2; last++) {
     if (!(d = opendir(stage))) break;
     while ((e = readdir(d)))
@@ -201,31 +198,74 @@ static int stage_commit(const char *stage, const char *out)
   return 0;
 }
 
-/* Writes the analysis into DIR/analysis.tmp/, then, once every file is
-** written, moves them into DIR/analysis/: a full disk or any other write
-** error leaves DIR/analysis/ as it was. */
+/* The staging folder of this analysis: a new directory
+** DIR/analysis.tmp.PID.XXXXXX (mkdtemp: a name no one has, created
+** exclusively, never through a link), so two analyses of one run never
+** share one and a user's analysis.tmp/ (or a link there) is never
+** emptied or removed.  1, or 0 with a message. */
+static int stage_make(const char *dir, char *stage, size_t len)
+{
+  snprintf(stage, len, "%s/analysis.tmp.%ld.XXXXXX", dir, (long)getpid());
+  if (mkdtemp(stage)) return 1;
+  fprintf(stderr, "afv analyze: cannot create %s: %s\n", stage,
+          strerror(errno));
+  return 0;
+}
+
+/* Opens DIR/analysis/ (created if missing; a directory, never a link) and
+** holds an exclusive flock on it until *fd is closed: two analyses of one
+** run commit one after the other, so analysis/ holds one analysis whole.
+** Where the file system has no flock for directories (NFS), the analysis
+** goes on unlocked.  1, or 0 with a message. */
+static int analysis_lock(const char *out, int *fd)
+{
+  struct stat sb;
+  if (mkdir(out, 0777) != 0 && errno != EEXIST) {
+    fprintf(stderr, "afv analyze: cannot create %s: %s\n", out,
+            strerror(errno));
+    return 0;
+  }
+  if (lstat(out, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+    fprintf(stderr, "afv analyze: %s: not a directory (a link, or a file; "
+            "afv writes only into its own analysis/)\n", out);
+    return 0;
+  }
+  if ((*fd = open(out, O_RDONLY | O_DIRECTORY | O_NOFOLLOW)) < 0) {
+    fprintf(stderr, "afv analyze: %s: cannot open: %s\n", out,
+            strerror(errno));
+    return 0;
+  }
+  while (flock(*fd, LOCK_EX) != 0 && errno == EINTR) {}
+  return 1;
+}
+
+/* Writes the analysis into its own staging folder (stage_make), then,
+** once every file is written, moves them into DIR/analysis/ under its
+** lock: a full disk or any other write error leaves DIR/analysis/ as it
+** was, and a second analysis at the same time waits for the first's
+** commit. */
 static int analyze_write(const char *dir, const afv_analysis *a)
 {
-  char out[RUN_PATH_MAX + 32], stage[RUN_PATH_MAX + 32];
+  char out[RUN_PATH_MAX + 32], stage[RUN_PATH_MAX + 64];
   char err[RUN_PATH_MAX + 128];
+  int lock = -1, st;
   snprintf(out, sizeof out, "%s/analysis", dir);
-  snprintf(stage, sizeof stage, "%s/analysis.tmp", dir);
-  stage_clear(stage, 0);
-  if (mkdir(stage, 0777) != 0 && errno != EEXIST) {
-    fprintf(stderr, "afv analyze: cannot create %s: %s\n", stage,
-            strerror(errno));
-    return EXIT_BAD_INPUT;
-  }
+  if (!stage_make(dir, stage, sizeof stage)) return EXIT_BAD_INPUT;
   if (analyze_plots(stage, a, out) != 0) {
-    stage_clear(stage, 1);
+    stage_clear(stage);
     return EXIT_BAD_INPUT;
   }
   if (afv_analysis_write(a, stage, err, sizeof err) != AFV_OK) {
-    stage_clear(stage, 1);
+    stage_clear(stage);
     fprintf(stderr, "afv analyze: %s (%s is unchanged)\n", err, out);
     return EXIT_BAD_INPUT;
   }
-  if (stage_commit(stage, out) != 0) return EXIT_BAD_INPUT;
+  st = analysis_lock(out, &lock) ? stage_commit(stage, out) : EXIT_BAD_INPUT;
+  if (lock >= 0) close(lock);
+  if (st != 0) {
+    stage_clear(stage);
+    return st;
+  }
   printf("frames %d (steady from %d)\nngc_frac_mean %.6g\nn_clusters_mean "
          "%.6g\nomega_mean %.6g\nt1_final %g\nD_s %.6g\nD_eff %.6g\n"
          "tau_NGC %.6g\nt1_rate %.6g\nmsd_beta %.6g\nwritten: %s/\n",

@@ -350,35 +350,25 @@ static int run_outputs(run_state *R)
   return AFV_OK;
 }
 
-/* Opens the append-only files: fresh (with headers) or cut back to the
-** sizes of the checkpoint (recorded_sizes_hold checked them) and appended
-** to. */
-int open_outputs(run_state *R, const afv_checkpoint *ck, char *err,
-                        size_t errlen)
+/* Opens the append-only files (run_file_open: regular files only, never
+** through a link, locked): fresh (with headers) or cut back to the sizes
+** of the checkpoint (recorded_sizes_hold checked them) and appended to;
+** and log.txt, appended to.  1, or 0 with a message printed. */
+int open_outputs(run_state *R, const afv_checkpoint *ck)
 {
-  char path[RUN_PATH_MAX + 32];
   int k;
   for (k = 0; k < AFV_CKPT_FILES; k++) {
     if (k == OUT_XYZ && !R->cfg.xyz) continue;
-    snprintf(path, sizeof path, "%s/%s", R->dir, afv_checkpoint_files[k]);
-    if (ck && truncate(path, (off_t)ck->bytes[k]) != 0) {
-      afv_errorf(err, errlen, "%s: cannot cut back to the checkpoint: %s",
-                 path, strerror(errno));
+    if (!(R->out[k] = run_file_open(R, afv_checkpoint_files[k],
+                                    ck ? ck->bytes[k] : 0)))
       return 0;
-    }
-    if (!(R->out[k] = fopen(path, ck ? "a" : "w"))) {
-      afv_errorf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-      return 0;
-    }
   }
   if (!ck) {
     afv_traj_write_header(R->out[OUT_TRAJ], afv_sim_n(R->sim),
                           afv_sim_box(R->sim));
     obs_write_header(R->out[OUT_OBS]);
   }
-  snprintf(path, sizeof path, "%s/log.txt", R->dir);
-  R->log = fopen(path, "a");
-  return 1;
+  return (R->log = run_file_open(R, "log.txt", -1)) != NULL;
 }
 
 static void close_outputs(run_state *R)
@@ -676,10 +666,7 @@ int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
     return write_failed(R, "params.txt");
   if (R->cells.n && write_cells_copy(R->dir, &R->cells) != AFV_OK)
     return write_failed(R, "cells.txt");
-  if (!open_outputs(R, NULL, err, sizeof err)) {
-    fprintf(stderr, "afv run: %s\n", err);
-    return EXIT_BAD_INPUT;
-  }
+  if (!open_outputs(R, NULL)) return EXIT_BAD_INPUT;
   log_build(R, "a fresh run");
   if (R->start_spacing > 0
       && R->start_spacing < R->cfg.spacing * (1 - 1e-9))
@@ -713,7 +700,7 @@ int cmd_run(int argc, char **argv)
     return bad_input("run: --continue goes with --out DIR (see afv run "
                      "--help)");
   memset(&R, 0, sizeof R);
-  R.lock_fd = -1;
+  R.lock_fd = R.dir_fd = -1;
   cfg_defaults(&R.cfg);
   if (!(R.sim = afv_sim_new())) return bad_input("run: out of memory");
   status = a.resume ? run_resume(&R, &a)

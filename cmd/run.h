@@ -90,6 +90,8 @@ typedef struct run_state {
   obs_analysis an;         /* analysis columns of observables.csv */
   int lock_fd;             /* DIR/observables.csv while this process holds
                            ** the run directory's lock, else -1 */
+  int dir_fd;              /* DIR while this process holds its flock, else
+                           ** -1 (run_dir.c, one writer per directory) */
   char io_path[RUN_PATH_MAX + 96];  /* the file whose writing failed */
   int io_errno;            /* and why (errno then) */
 } run_state;
@@ -114,8 +116,7 @@ void log_build(run_state *R, const char *what);
 void cfg_model(const run_cfg *c, const afv_cells *cl, afv_params *p,
     afv_box *b, afv_dyn *d);
 int run_start(run_state *R, char *err, size_t errlen);
-int open_outputs(run_state *R, const afv_checkpoint *ck, char *err,
-    size_t errlen);
+int open_outputs(run_state *R, const afv_checkpoint *ck);
 int run_loop(run_state *R);
 int write_failed(run_state *R, const char *name);
 int run_fresh(run_state *R, const run_args *a, int argc, char **argv);
@@ -147,6 +148,9 @@ int start_computable(const run_cfg *cfg, const afv_cells *cl,
 /* ---- run_dir.c ---- */
 int report_in_use(const char *dir, long pid);
 int lock_run_dir(run_state *R, int create);
+int run_file_lock(const char *dir, int fd, const char *path);
+FILE *run_file_open(run_state *R, const char *name, long long size);
+int run_files_regular(const char *dir);
 void unlock_run_dir(run_state *R);
 int make_out_dir(run_state *R);
 

@@ -315,7 +315,7 @@ int start_computable(const run_cfg *cfg, const afv_cells *cl,
   }
   R->cfg = *cfg;
   R->cells = *cl;
-  R->lock_fd = -1;
+  R->lock_fd = R->dir_fd = -1;
   ok = (R->sim = afv_sim_new()) != NULL && run_start(R, err, errlen) == AFV_OK
        && run_computable(R, "the start", err, errlen);
   if (!R->sim) afv_errorf(err, errlen, "out of memory");

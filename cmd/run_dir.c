@@ -16,6 +16,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <string.h>
+#include <sys/file.h>   /* flock: not POSIX, but in every libc afv meets */
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <time.h>
@@ -42,47 +43,80 @@ static int make_parents(const char *dir)
 }
 
 /* ---- one writer per run directory -------------------------------------- */
-/* A run holds a POSIX record lock (fcntl, a write lock on the whole file)
-** on DIR/observables.csv, the run's own data file, from before its first
-** check of DIR's files to its end, so a second `afv run` on DIR (fresh or
-** --resume) is refused at once, naming the holder's process id (F_GETLK).
-** The kernel drops the lock when the process ends, however it ends
-** (SIGKILL included): no stale lock is ever left to clean up.  The lock is
-** on a file a user has no reason to delete or replace while the run
-** lives (deleting it deletes the results), not on an empty file of its
-** own that invites cleaning (a deleted lock file let a second writer in).
-** observables.csv keeps its inode for the whole run: a fresh run opens it
-** with O_TRUNC, a resume cuts it back with truncate(2), and nothing else
-** replaces it.  fcntl locks belong to the process and the file: closing
-** any descriptor of observables.csv before the end would drop the lock,
-** so within a run the file is read only through R->lock_fd. */
+/* (doc/design.md, "One writer per run directory".)  From before its first
+** check of DIR's files to its end, a run holds two kinds of lock:
+**  - flock(2) LOCK_EX on DIR itself, through a descriptor of the
+**    directory: no file a user deletes, replaces or renames inside DIR
+**    touches it, so a second `afv run` on DIR (fresh or --resume) is
+**    refused whatever was done to the files (with a lock on
+**    observables.csv alone, `rm observables.csv; cp copy observables.csv`
+**    let a resume in beside the live run, and deleting it during the
+**    relaxation let a second fresh run write params.txt and
+**    observables.csv of another seed beside the first one's trajectory);
+**  - POSIX record locks (fcntl, a write lock on the whole file) on the
+**    files it appends to, LOCKED_FILES: observables.csv from the start,
+**    the others from when they are opened.  They name the holder's
+**    process id (F_GETLK; flock cannot), afv analyze asks them without
+**    side effect (run_lock_holder), and they guard alone where flock on a
+**    directory is not supported (NFS emulates flock by fcntl, which a
+**    directory cannot take): there, replacing every one of those files of
+**    a live run would let a second writer in.
+** The kernel drops both when the process ends, however it ends (SIGKILL
+** included): no stale lock is ever left to clean up, and afv never
+** creates a lock file of its own (an empty file invites cleaning).  The
+** locked files keep their inodes for the whole run: they are cut back
+** with ftruncate and appended to, never replaced.  fcntl locks belong to
+** the process and the file: closing any descriptor of a locked file
+** before the end would drop the lock, so within a run observables.csv is
+** read only through R->lock_fd, and written through a duplicate of it. */
 #define LOCK_FILE "observables.csv"
+static const char *const locked_files[] = {
+  LOCK_FILE, "trajectory.dat", "trajectory.xyz", "log.txt"};
+#define N_LOCKED_FILES (sizeof locked_files / sizeof locked_files[0])
 
 int report_in_use(const char *dir, long pid)
 {
-  fprintf(stderr, "afv run: %s is in use by process %ld (it holds the lock "
-          "on %s/" LOCK_FILE "): a run directory has one writer at a time; "
-          "wait for that run to end, or stop it\n", dir, pid, dir);
+  if (pid > 0)
+    fprintf(stderr, "afv run: %s is in use by process %ld (it holds the "
+            "run directory's lock): a run directory has one writer at a "
+            "time; wait for that run to end, or stop it\n", dir, pid);
+  else
+    fprintf(stderr, "afv run: %s is in use by another process (it holds "
+            "the lock on the directory): a run directory has one writer at "
+            "a time; wait for that run to end, or stop it\n", dir);
   return EXIT_BAD_INPUT;
 }
 
-/* The process holding DIR's lock, or 0 (none, or no lock file: nothing is
-** created).  Only for a process that does not hold the lock itself:
-** closing any descriptor of the file drops the caller's own locks on it.
-** (afv analyze asks it too: a run still being written is unfinished.) */
+/* The process holding a write lock that conflicts with one on fd, or 0. */
+static long fd_lock_holder(int fd)
+{
+  struct flock fl;
+  memset(&fl, 0, sizeof fl);
+  fl.l_type = F_WRLCK;
+  fl.l_whence = SEEK_SET;   /* l_start = l_len = 0: the whole file */
+  if (fcntl(fd, F_GETLK, &fl) != 0) return 0;
+  return fl.l_type == F_UNLCK ? 0 : (long)fl.l_pid;
+}
+
+/* The process holding a lock on one of DIR's LOCKED_FILES, or 0 (none:
+** nothing is created; a FIFO or a link there is not opened).  Only for a
+** process that holds none of them itself: closing any descriptor of a
+** file drops the caller's own locks on it.  (afv analyze asks it too: a
+** run still being written is unfinished.) */
 long run_lock_holder(const char *dir)
 {
   char path[RUN_PATH_MAX + 32];
-  struct flock fl;
-  int fd;
-  snprintf(path, sizeof path, "%s/" LOCK_FILE, dir);
-  if ((fd = open(path, O_RDWR | O_NOFOLLOW)) < 0) return 0;
-  memset(&fl, 0, sizeof fl);
-  fl.l_type = F_WRLCK;
-  fl.l_whence = SEEK_SET;
-  if (fcntl(fd, F_GETLK, &fl) != 0) fl.l_type = F_UNLCK;
-  close(fd);
-  return fl.l_type == F_UNLCK ? 0 : (long)fl.l_pid;
+  struct stat sb;
+  long pid = 0;
+  size_t k;
+  for (k = 0; k < N_LOCKED_FILES && pid == 0; k++) {
+    int fd;
+    snprintf(path, sizeof path, "%s/%s", dir, locked_files[k]);
+    if ((fd = open(path, O_RDWR | O_NOFOLLOW | O_NONBLOCK)) < 0) continue;
+    if (fstat(fd, &sb) == 0 && S_ISREG(sb.st_mode)) pid = fd_lock_holder(fd);
+    close(fd);
+  }
+  return pid;
 }
 
 /* Opens DIR's lock file: created if missing only for a fresh run (create
@@ -92,7 +126,8 @@ long run_lock_holder(const char *dir)
 static int open_lock_file(const char *path, int create)
 {
   struct stat sb;
-  int fd = open(path, O_RDWR | O_NOFOLLOW | (create ? O_CREAT : 0), 0666);
+  int fd = open(path, O_RDWR | O_NOFOLLOW | O_NONBLOCK
+                | (create ? O_CREAT : 0), 0666);
   if (fd < 0) {
     fprintf(stderr, "afv run: %s: cannot open%s: %s\n", path,
             create ? "" : " (a run directory has it from its start)",
@@ -108,46 +143,177 @@ static int open_lock_file(const char *path, int create)
   return fd;
 }
 
-/* Takes DIR's lock (create: see open_lock_file).  1 if this process now
-** holds it (R->lock_fd), else 0 with a message. */
-int lock_run_dir(run_state *R, int create)
+/* A write lock on the whole of fd's file (the file at path).  1 if this
+** process now holds it, else 0 with a message (in use: naming the
+** holder). */
+int run_file_lock(const char *dir, int fd, const char *path)
 {
-  char path[RUN_PATH_MAX + 32];
   struct flock fl;
-  int fd, tries;
-  snprintf(path, sizeof path, "%s/" LOCK_FILE, R->dir);
-  if ((fd = open_lock_file(path, create)) < 0) return 0;
+  long pid;
+  int tries;
   for (tries = 0; tries < 100; tries++) {
     memset(&fl, 0, sizeof fl);
     fl.l_type = F_WRLCK;
-    fl.l_whence = SEEK_SET;   /* l_start = l_len = 0: the whole file */
-    if (fcntl(fd, F_SETLK, &fl) == 0) {
-      R->lock_fd = fd;
-      return 1;
-    }
-    if (errno != EACCES && errno != EAGAIN) break;
-    memset(&fl, 0, sizeof fl);
-    fl.l_type = F_WRLCK;
     fl.l_whence = SEEK_SET;
-    if (fcntl(fd, F_GETLK, &fl) != 0) break;
-    if (fl.l_type != F_UNLCK) {   /* else the holder just ended: try again */
-      report_in_use(R->dir, (long)fl.l_pid);
-      close(fd);
+    if (fcntl(fd, F_SETLK, &fl) == 0) return 1;
+    if (errno != EACCES && errno != EAGAIN) break;
+    if ((pid = fd_lock_holder(fd)) > 0) {  /* else it just ended: again */
+      report_in_use(dir, pid);
       return 0;
     }
   }
   fprintf(stderr, "afv run: %s: cannot lock: %s\n", path,
           tries < 100 ? strerror(errno) : "the lock keeps changing hands");
-  close(fd);
   return 0;
 }
 
-/* Ends this process's hold on the run directory (closing the file drops
-** the lock). */
+/* The process that holds DIR's flock, by its file locks: a writer takes
+** observables.csv's at once after the directory's, so a run that started
+** a moment ago is named once it has (tried for up to HOLDER_WAIT_MS); 0
+** if none is found (its files were deleted or replaced). */
+#define HOLDER_WAIT_MS 200
+static long holder_named(const char *dir)
+{
+  struct timespec ts = {0, 5000000L};   /* 5 ms */
+  long pid = 0;
+  int waited;
+  for (waited = 0; waited < HOLDER_WAIT_MS && !(pid = run_lock_holder(dir));
+       waited += 5)
+    nanosleep(&ts, NULL);
+  return pid;
+}
+
+/* flock LOCK_EX on DIR itself (R->dir_fd).  1 if held, or if the file
+** system has no such lock for directories (the file locks then guard
+** alone); 0 with a message if another process holds it. */
+static int lock_dir_itself(run_state *R)
+{
+  int fd = open(R->dir, O_RDONLY | O_DIRECTORY);
+  if (fd < 0) {
+    fprintf(stderr, "afv run: %s: cannot open: %s\n", R->dir,
+            strerror(errno));
+    return 0;
+  }
+  if (flock(fd, LOCK_EX | LOCK_NB) == 0) {
+    R->dir_fd = fd;
+    return 1;
+  }
+  close(fd);
+  if (errno != EWOULDBLOCK) return 1;   /* ENOLCK, EBADF (NFS), EINVAL */
+  report_in_use(R->dir, holder_named(R->dir));
+  return 0;
+}
+
+/* Takes DIR's lock: the directory's, then observables.csv's (create: see
+** open_lock_file).  1 if this process now holds it (R->dir_fd,
+** R->lock_fd), else 0 with a message. */
+int lock_run_dir(run_state *R, int create)
+{
+  char path[RUN_PATH_MAX + 32];
+  int fd;
+  snprintf(path, sizeof path, "%s/" LOCK_FILE, R->dir);
+  if (!lock_dir_itself(R)) return 0;
+  if ((fd = open_lock_file(path, create)) < 0) return 0;
+  if (!run_file_lock(R->dir, fd, path)) {
+    close(fd);
+    return 0;
+  }
+  R->lock_fd = fd;
+  return 1;
+}
+
+/* Ends this process's hold on the run directory (closing the descriptors
+** drops the locks). */
 void unlock_run_dir(run_state *R)
 {
   if (R->lock_fd >= 0) close(R->lock_fd);
-  R->lock_fd = -1;
+  if (R->dir_fd >= 0) close(R->dir_fd);
+  R->lock_fd = R->dir_fd = -1;
+}
+
+/* Opens DIR/name, a file the run appends to (LOCKED_FILES), for writing:
+** never through a symbolic link, never a FIFO or a device (O_NOFOLLOW |
+** O_NONBLOCK, then a regular file only: a FIFO at log.txt blocked
+** --resume for ever), created if missing, cut to size bytes (size < 0:
+** kept whole), positioned at its end and locked; observables.csv is
+** written through a duplicate of R->lock_fd (the file the lock was taken
+** on, whatever is at its name now).  The stream, or NULL with a message. */
+FILE *run_file_open(run_state *R, const char *name, long long size)
+{
+  char path[RUN_PATH_MAX + 32];
+  struct stat sb;
+  FILE *fp = NULL;
+  int own_lock = strcmp(name, LOCK_FILE) == 0, fd;
+  snprintf(path, sizeof path, "%s/%s", R->dir, name);
+  fd = own_lock ? dup(R->lock_fd)
+       : open(path, O_WRONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK, 0666);
+  if (fd < 0) {
+    fprintf(stderr, "afv run: %s: cannot open: %s\n", path, errno == ELOOP
+            ? "a symbolic link (afv writes only its own files)"
+            : strerror(errno));
+    return NULL;
+  }
+  if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode))
+    fprintf(stderr, "afv run: %s: not a regular file (afv writes only its "
+            "own files)\n", path);
+  else if (own_lock || run_file_lock(R->dir, fd, path)) {
+    if ((size < 0 || ftruncate(fd, (off_t)size) == 0)
+        && lseek(fd, 0, SEEK_END) >= 0 && (fp = fdopen(fd, "w")))
+      return fp;
+    fprintf(stderr, "afv run: %s: cannot %s: %s\n", path, size > 0 ? "cut "
+            "back to the checkpoint" : "open", strerror(errno));
+  }
+  close(fd);
+  return NULL;
+}
+
+/* The files afv run writes in DIR (besides snap_*.svg). */
+static const char *const run_files[] = {
+  "params.txt", "checkpoint.txt", "trajectory.dat", LOCK_FILE,
+  "trajectory.xyz", "log.txt", "t1_reference.txt", "cells.txt", "final.svg"};
+
+/* 1 if name is a snapshot's, snap_DIGITS.svg. */
+static int is_snapshot(const char *name)
+{
+  size_t m = strlen(name);
+  return strncmp(name, "snap_", 5) == 0 && m > 9
+         && strcmp(name + m - 4, ".svg") == 0
+         && strspn(name + 5, "0123456789") == m - 9;
+}
+
+/* 1 if DIR/name is not there or is a regular file; else 0 with a message
+** (a symbolic link, a FIFO, a directory: afv never made it, and would
+** write through it, block on it, or remove it). */
+static int regular_or_absent(const char *dir, const char *name)
+{
+  char path[RUN_PATH_MAX + 300];
+  struct stat sb;
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  if (lstat(path, &sb) != 0 || S_ISREG(sb.st_mode)) return 1;
+  fprintf(stderr, "afv run: %s: %s, which afv never makes: afv writes and "
+          "removes only its own files; move it away\n", path,
+          S_ISLNK(sb.st_mode) ? "a symbolic link" : S_ISDIR(sb.st_mode)
+          ? "a directory" : "not a regular file");
+  return 0;
+}
+
+/* 1 if every file of a run's names in DIR (run_files, the snapshots) is a
+** regular file, as afv makes them; else 0 with a message naming the first
+** that is not.  Checked under the lock before any byte changes. */
+int run_files_regular(const char *dir)
+{
+  size_t k;
+  int ok = 1;
+  DIR *d;
+  struct dirent *e;
+  for (k = 0; ok && k < sizeof run_files / sizeof run_files[0]; k++)
+    ok = regular_or_absent(dir, run_files[k]);
+  if (ok && (d = opendir(dir))) {
+    while (ok && (e = readdir(d)) != NULL)
+      if (is_snapshot(e->d_name)) ok = regular_or_absent(dir, e->d_name);
+    closedir(d);
+  }
+  return ok;
 }
 
 /* 1 (with a message) if R->dir holds a run: it has a checkpoint (a run
@@ -167,15 +333,6 @@ static int holds_run(const run_state *R)
             "continue it with --resume %s, or choose another --out\n",
             R->dir, R->dir);
   return 1;
-}
-
-/* 1 if name is a snapshot's, snap_DIGITS.svg. */
-static int is_snapshot(const char *name)
-{
-  size_t m = strlen(name);
-  return strncmp(name, "snap_", 5) == 0 && m > 9
-         && strcmp(name + m - 4, ".svg") == 0
-         && strspn(name + 5, "0123456789") == m - 9;
 }
 
 /* Files a run that stopped before its first checkpoint may have left and
@@ -200,11 +357,6 @@ static void clear_unfinished_run(const char *dir)
     }
   closedir(d);
 }
-
-/* The files afv run writes in DIR (besides snap_*.svg). */
-static const char *const run_files[] = {
-  "params.txt", "checkpoint.txt", "trajectory.dat", LOCK_FILE,
-  "trajectory.xyz", "log.txt", "t1_reference.txt", "cells.txt", "final.svg"};
 
 /* DIR's params.txt: 1 if afv wrote it, 0 if there is none, -1 if it is
 ** a user's file (it does not start with afv's first line). */
@@ -289,7 +441,8 @@ int make_out_dir(run_state *R)
     fprintf(stderr, "afv run: cannot create %s: %s\n", dir, strerror(errno));
     return 0;
   }
-  if (!lock_run_dir(R, 1) || holds_run(R)) return 0;
+  if (!lock_run_dir(R, 1) || holds_run(R) || !run_files_regular(dir))
+    return 0;
   clear_unfinished_run(dir);
   return 1;
 }

@@ -397,7 +397,7 @@ static int resume_checks(run_state *R, const run_args *a, long long more,
 
 int run_resume(run_state *R, const run_args *a)
 {
-  char err[2 * RUN_PATH_MAX], path[RUN_PATH_MAX + 32];
+  char path[RUN_PATH_MAX + 32];
   afv_checkpoint ck;
   long long more = -1;
   int st, new_steps = 0;
@@ -414,7 +414,8 @@ int run_resume(run_state *R, const run_args *a)
             "directory)\n", path, strerror(errno));
     return EXIT_BAD_INPUT;
   }
-  if (!lock_run_dir(R, 0)) return EXIT_BAD_INPUT;
+  if (!lock_run_dir(R, 0) || !run_files_regular(R->dir))
+    return EXIT_BAD_INPUT;
   memset(&ck, 0, sizeof ck);
   st = resume_checks(R, a, more, &ck, &new_steps);
   /* all checked: from here on files change (params.txt atomically) */
@@ -422,10 +423,7 @@ int run_resume(run_state *R, const run_args *a)
       && write_params(R->dir, &R->cfg, R->cells.n ? "cells.txt" : "none")
          != AFV_OK)
     st = write_failed(R, "params.txt");
-  if (st == 0 && !open_outputs(R, &ck, err, sizeof err)) {
-    fprintf(stderr, "afv run: %s\n", err);
-    st = EXIT_BAD_INPUT;
-  }
+  if (st == 0 && !open_outputs(R, &ck)) st = EXIT_BAD_INPUT;
   afv_checkpoint_free(&ck);
   if (st != 0) return st;
   R->progress = !R->cfg.quiet && isatty(STDERR_FILENO);

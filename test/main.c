@@ -59,6 +59,7 @@ int main(void)
   suite_pictures();
   suite_readers();
   suite_runjob();
+  suite_hostile();
   suite_reference();
   suite_sweep();
   suite_geometry();

@@ -1,0 +1,229 @@
+/*
+** test_hostile.c -- afv run and afv analyze against a hostile user (issue
+** 38): links and files of a user's at the names afv writes, files of a
+** live run deleted or replaced, two analyses of one run at once.  afv
+** never follows a link it did not make, never removes a file it did not
+** create, and keeps one writer per run directory whatever is done to its
+** files.
+**
+** Every test runs ./afv (from the repository root, where `make test`
+** starts the runner) in a directory under /tmp, removed at the end; the
+** shell does the file work (ln, cp, cmp).
+*/
+#define _POSIX_C_SOURCE 200809L
+#include "test.h"
+
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/types.h>
+#include <time.h>
+#include <unistd.h>
+
+static char root[256];   /* the suite's directory */
+
+/* A fast system: 64 cells, a checkpoint every 5 steps. */
+#define QUICK "--N 64 --P0 4.5 --v0 0.3 --sample_every 5 --frame_every 10 " \
+              "--checkpoint_every 5 --svg_every 0 --quiet"
+
+/* 1 if root/err.txt (a command's stderr) holds text. */
+static int err_says(const char *text)
+{
+  return test_sh("grep -q -- '%s' %s/err.txt", text, root) == 0;
+}
+
+/* Starts a long run of QUICK and args into root/sub in the background
+** (the shell's child) and waits for its file sign (checkpoint.txt: its
+** first checkpoint; params.txt: its relaxation); its process id, or -1. */
+static long start_writer(const char *sub, const char *args,
+                         const char *sign)
+{
+  char path[512];
+  long pid = -1;
+  FILE *fp;
+  test_sh("./afv run " QUICK " %s --steps 100000000 --out %s/%s 2>/dev/null "
+          "& echo $! > %s/%s.pid; i=0; while [ $i -lt 2000 ] && [ ! -e "
+          "%s/%s/%s ]; do sleep 0.01; i=$((i+1)); done", args, root, sub,
+          root, sub, root, sub, sign);
+  snprintf(path, sizeof path, "%s/%s.pid", root, sub);
+  if ((fp = fopen(path, "r"))) {
+    if (fscanf(fp, "%ld", &pid) != 1) pid = -1;
+    fclose(fp);
+  }
+  return pid;
+}
+
+/* Kills the writer pid (started by start_writer) and waits until it is
+** gone (its parent, the shell, has ended: init reaps it). */
+static void stop_writer(long pid)
+{
+  struct timespec ts = {0, 5000000L};
+  int k;
+  if (pid <= 0) return;
+  kill((pid_t)pid, SIGKILL);
+  for (k = 0; k < 400 && kill((pid_t)pid, 0) == 0; k++) nanosleep(&ts, NULL);
+}
+
+/* ---- links and files afv did not make ------------------------------------ */
+/* Links at the names of afv's temporary files are never written through:
+** a resume beside links checkpoint.txt.tmp, params.txt.tmp and
+** final.svg.tmp -> victim leaves the victim and the links as they were
+** (the code before wrote the checkpoint into the victim).  A link at
+** trajectory.dat in a run that stopped before its first checkpoint makes
+** a fresh run refuse, naming it (the code before emptied the victim). */
+static void test_links_never_followed(void)
+{
+  int st;
+  test_sh("cd %s && printf precious > victim && cp victim victim2", root);
+  CHECK(test_sh("./afv run " QUICK " --steps 20 --out %s/l1", root) == 0,
+        "the run");
+  test_sh("cd %s/l1 && for f in checkpoint.txt params.txt final.svg; do "
+          "ln -s %s/victim $f.tmp; done", root, root);
+  st = test_sh("./afv run --resume %s/l1 --steps 10 --quiet 2> %s/err.txt",
+               root, root);
+  CHECK(st == 0, "resume beside links at the temporary names: exit %d", st);
+  CHECK(test_sh("cd %s && printf precious | cmp -s - victim && test -L "
+                "l1/checkpoint.txt.tmp && test -L l1/final.svg.tmp && test "
+                "-L l1/params.txt.tmp && test ! -L l1/checkpoint.txt", root)
+        == 0, "the resume wrote through (or replaced) a link it did not "
+        "make");
+  /* a run stopped before its first checkpoint, a link at trajectory.dat */
+  CHECK(test_sh("./afv run " QUICK " --steps 20 --out %s/l2 && cd %s/l2 && "
+                "rm checkpoint.txt trajectory.dat && ln -s %s/victim2 "
+                "trajectory.dat", root, root, root) == 0, "setup of l2");
+  st = test_sh("./afv run " QUICK " --steps 20 --out %s/l2 2> %s/err.txt",
+               root, root);
+  CHECK(st == 2 && err_says("trajectory.dat: a symbolic link"), "a fresh "
+        "run over a link at trajectory.dat: exit %d, want 2 naming it", st);
+  CHECK(test_sh("cd %s && printf precious | cmp -s - victim2 && test -L "
+                "l2/trajectory.dat", root) == 0, "the fresh run wrote "
+        "through (or removed) the link at trajectory.dat");
+}
+
+/* A user's files at the names of afv's temporary files stay as they were
+** (the code before renamed them away: a fresh run "removed" a user's
+** params.txt.tmp, checkpoint.txt.tmp and final.svg.tmp), and afv analyze
+** neither empties a user's analysis.tmp/ nor a directory a link
+** analysis.tmp points to (the code before removed every file of both). */
+static void test_user_files_never_removed(void)
+{
+  int st;
+  test_sh("mkdir -p %s/u && cd %s/u && for f in params.txt checkpoint.txt "
+          "final.svg; do echo mine > $f.tmp; done", root, root);
+  st = test_sh("./afv run " QUICK " --steps 20 --out %s/u 2> %s/err.txt",
+               root, root);
+  CHECK(st == 0, "a fresh run beside a user's *.tmp files: exit %d", st);
+  CHECK(test_sh("cd %s/u && for f in params.txt checkpoint.txt final.svg; "
+                "do echo mine | cmp -s - $f.tmp || exit 1; done", root) == 0,
+        "a user's *.tmp file was changed or removed by a fresh run");
+  CHECK(test_sh("./afv run " QUICK " --steps 20 --out %s/u2", root) == 0,
+        "the second run");
+  test_sh("mkdir -p %s/other %s/u/analysis.tmp && echo keep > "
+          "%s/other/keep && echo mine > %s/u/analysis.tmp/mine && ln -s "
+          "%s/other %s/u2/analysis.tmp", root, root, root, root, root, root);
+  st = test_sh("./afv analyze %s/u --steady-from 0 --lag 0.1 > /dev/null 2> "
+               "%s/err.txt && ./afv analyze %s/u2 --steady-from 0 --lag 0.1 "
+               "> /dev/null 2>> %s/err.txt", root, root, root, root);
+  CHECK(st == 0, "analyze beside a user's analysis.tmp: exit %d", st);
+  CHECK(test_sh("test -e %s/u/analysis/summary.txt && test -e "
+                "%s/u/analysis.tmp/mine && test -e %s/other/keep && test -L "
+                "%s/u2/analysis.tmp", root, root, root, root) == 0,
+        "analyze emptied a user's analysis.tmp/ or a linked directory");
+}
+
+/* ---- one writer per run directory ---------------------------------------- */
+/* With a run live in DIR, each file of the run replaced by a copy (a new
+** inode), then deleted, one after the other (so that at the end none of
+** the live run's files is left), leaves a resume and a fresh run (seed 2)
+** refused, exit 2 (in use; or holding a run, or without params.txt), and
+** no params.txt of seed 2.  (The code before held
+** the lock on observables.csv alone: replacing it let the resume in, both
+** writing the same files, and deleting it let a fresh run of another seed
+** write its params.txt and observables.csv beside the first run's
+** trajectory.) */
+static void test_lock_holds_whatever_is_replaced(void)
+{
+  static const char *const files[] = {"observables.csv", "trajectory.dat",
+    "log.txt", "checkpoint.txt", "t1_reference.txt", "params.txt"};
+  long pid = start_writer("live", "", "checkpoint.txt");
+  size_t k;
+  int how;
+  CHECK(pid > 0, "the writer did not start");
+  for (k = 0; k < sizeof files / sizeof files[0]; k++)
+    for (how = 0; how < 2; how++) {
+      int resumed, fresh;
+      if (how == 0)
+        test_sh("cd %s/live && cp %s copy && rm %s && mv copy %s", root,
+                files[k], files[k], files[k]);
+      else
+        test_sh("rm -f %s/live/%s", root, files[k]);
+      resumed = test_sh("./afv run --resume %s/live --steps 10 --quiet 2> "
+                        "%s/err.txt", root, root);
+      CHECK(resumed == 2 && (err_says("in use") || err_says("cannot open")),
+            "%s %s: a resume beside the live run: exit %d", files[k],
+            how ? "deleted" : "replaced", resumed);
+      fresh = test_sh("./afv run " QUICK " --seed 2 --steps 10 --out "
+                      "%s/live 2> %s/err.txt", root, root);
+      CHECK(fresh == 2 && (err_says("in use") || err_says("already holds")),
+            "%s %s: a fresh run into the live run's directory: exit %d",
+            files[k], how ? "deleted" : "replaced", fresh);
+      CHECK(test_sh("grep -q '^seed  *2' %s/live/params.txt 2>/dev/null",
+                    root) != 0,
+            "%s %s: params.txt of the second writer", files[k], how ?
+            "deleted" : "replaced");
+    }
+  stop_writer(pid);
+  /* a run relaxing (no checkpoint yet), its observables.csv deleted */
+  pid = start_writer("relaxing", "--relax_tol 1e-300 --relax_max_steps "
+                     "100000000", "params.txt");
+  CHECK(pid > 0, "the relaxing writer did not start");
+  test_sh("rm %s/relaxing/observables.csv", root);
+  CHECK(test_sh("./afv run " QUICK " --seed 2 --steps 10 --out %s/relaxing "
+                "2> %s/err.txt", root, root) == 2 && err_says("in use")
+        && test_sh("grep -q '^seed  *2' %s/relaxing/params.txt", root) != 0,
+        "a fresh run beside a relaxing run whose observables.csv was "
+        "deleted was not refused as in use");
+  stop_writer(pid);
+}
+
+/* ---- two analyses of one run ---------------------------------------------- */
+/* Two afv analyze of one run at the same moment, at lags 0.5 and 1: both
+** succeed, and analysis/ is then exactly the output of one of them alone
+** (the code before shared analysis.tmp/: summary.txt of one lag, msd.svg
+** of the other, no msd.csv, a stray series.svg.tmp), with no staging
+** folder left. */
+static void test_two_analyses_serialise(void)
+{
+  int trial;
+  CHECK(test_sh("./afv run " QUICK " --steps 200 --out %s/an", root) == 0,
+        "the run");
+  CHECK(test_sh("./afv analyze %s/an --steady-from 0 --lag 0.5 > /dev/null "
+                "&& cp -r %s/an/analysis %s/lag05 && ./afv analyze %s/an "
+                "--steady-from 0 --lag 1 > /dev/null && cp -r "
+                "%s/an/analysis %s/lag1", root, root, root, root, root, root)
+        == 0, "the two analyses alone");
+  for (trial = 0; trial < 4; trial++) {
+    int st = test_sh("./afv analyze %s/an --steady-from 0 --lag 0.5 > "
+                     "/dev/null 2>&1 & a=$!; ./afv analyze %s/an "
+                     "--steady-from 0 --lag 1 > /dev/null 2>&1 & b=$!; "
+                     "wait $a && wait $b", root, root);
+    CHECK(st == 0, "trial %d: an analysis failed", trial);
+    CHECK(test_sh("cd %s && { diff -r an/analysis lag05 >/dev/null || diff "
+                  "-r an/analysis lag1 > /dev/null; }", root) == 0,
+          "trial %d: analysis/ is not one analysis whole", trial);
+    CHECK(test_sh("ls %s/an | grep -q 'analysis\\.tmp'", root) != 0,
+          "trial %d: a staging folder was left", trial);
+  }
+}
+
+void suite_hostile(void)
+{
+  snprintf(root, sizeof root, "/tmp/afv_test_hostile.%ld", (long)getpid());
+  test_sh("rm -rf %s && mkdir -p %s", root, root);
+  RUN(test_links_never_followed);
+  RUN(test_user_files_never_removed);
+  RUN(test_lock_holds_whatever_is_replaced);
+  RUN(test_two_analyses_serialise);
+  test_sh("rm -rf %s", root);
+}
