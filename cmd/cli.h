@@ -122,6 +122,19 @@ int run_config_write(const char *path, int n, const char *const *names,
 int run_param(const char *path, const char *key, double *v);
 /* params.txt of a run: picks l, v0 and Dr.  0 if unreadable. */
 int read_run_params(const char *path, double *l, double *v0, double *Dr);
+/* params.txt of a run read whole, as afv run reads it: l, v0, Dr, which
+** it must hold, and steps (-1 if a hand-written one has none; afv's own
+** must).  1, 0 if there is no file at path, -1 with the reason in err
+** (afv analyze refuses it: no silent defaults). */
+int run_params_read(const char *path, double *l, double *v0, double *Dr,
+                    long long *steps, char *err, size_t errlen);
+/* The fingerprint of the run with the params.txt at path and the id id
+** (its directory's name, a sweep's job id): 16 hex digits into out, of
+** every key that changes what the run computes (but cells, a path), and
+** the id.  1, 0 if
+** there is no file at path, -1 with the reason in err. */
+int run_fingerprint(const char *path, const char *id, char *out, size_t len,
+                    char *err, size_t errlen);
 /* l of the run whose trajectory is at path, from params.txt beside it. */
 void run_l_beside(const char *path, double *l);
 /* The process id of the afv run writing in DIR (it holds the lock on

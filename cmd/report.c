@@ -31,8 +31,9 @@ static const char *analyze_usage =
   "usage: afv analyze DIR [--lag L] [--steady-from T] [--l L] [--v0 V]"
   " [--Dr D]\n"
   "                   [--partial]\n\n"
-  "Reads DIR/trajectory.dat (and l, v0, Dr from DIR/params.txt; options\n"
-  "override) and writes DIR/analysis/:\n"
+  "Reads DIR/trajectory.dat (and l, v0, Dr from DIR/params.txt, which\n"
+  "must be read whole; options override) and writes DIR/analysis/ (two\n"
+  "analyses of one run at once: one after the other, each whole):\n"
   "  summary.txt  KEY VALUE: steady means and standard deviations of\n"
   "               N_GC/N, number of clusters and Omega; final T1; D_s,\n"
   "               D_eff = D_s / D_0 (D_0 = v0^2 / (2 Dr); nan at v0 = 0\n"
@@ -40,7 +41,10 @@ static const char *analyze_usage =
   "               tau_NGC; t1_rate (T1 events per cell per unit time\n"
   "               between steady frames); msd_beta (slope of log MSD_rel\n"
   "               vs log lag, lags 1% .. 10% of the window: ~0 caged,\n"
-  "               ~1 fluid); the window, the lag of D_s and its origins\n"
+  "               ~1 fluid); the window, the lag of D_s and its origins;\n"
+  "               run_id (DIR's name) and run_fingerprint (of the keys of\n"
+  "               params.txt and the id), by which afv collect ties the\n"
+  "               summary to its run\n"
   "  series.csv   time, ngc_frac, n_clusters, omega, t1 per frame\n"
   "  msd.csv      lag, msd, msd_rel (relative to contacting neighbours)\n"
   "  csd.csv      n, p(n): cluster size distribution over steady frames\n"
@@ -239,6 +243,52 @@ static int analysis_lock(const char *out, int *fd)
   return 1;
 }
 
+/* A params.txt that cannot be read whole (err: where and why): refused,
+** exit status 2, nothing written. */
+static int params_unreadable(const char *err)
+{
+  fprintf(stderr, "afv analyze: %s; analyze takes l, v0 and Dr from it and "
+          "uses no defaults for a damaged params.txt; nothing written\n",
+          err);
+  return EXIT_BAD_INPUT;
+}
+
+/* The name of directory dir (its last component, trailing '/' ignored)
+** into out. */
+static void dir_name(const char *dir, char *out, size_t len)
+{
+  size_t end = strlen(dir), start;
+  while (end > 1 && dir[end - 1] == '/') end--;
+  for (start = end; start > 0 && dir[start - 1] != '/'; start--) {}
+  snprintf(out, len, "%.*s", (int)(end - start), dir + start);
+}
+
+/* Appends the run's id (its directory's name) and fingerprint
+** (run_fingerprint: params.txt and the id) to the staged summary.txt, so
+** that afv collect can tie the summary to its run.  0, or EXIT_BAD_INPUT
+** with a message. */
+static int stage_fingerprint(const char *stage, const char *dir)
+{
+  char path[RUN_PATH_MAX + 96], id[RUN_PATH_MAX], print[32] = "none";
+  char err[2 * RUN_PATH_MAX];
+  FILE *fp;
+  int bad;
+  dir_name(dir, id, sizeof id);
+  snprintf(path, sizeof path, "%s/params.txt", dir);
+  if (run_fingerprint(path, id, print, sizeof print, err, sizeof err) < 0)
+    return params_unreadable(err);
+  snprintf(path, sizeof path, "%s/summary.txt", stage);
+  if (!(fp = fopen(path, "a"))) bad = 1;
+  else {
+    fprintf(fp, "run_id %s\nrun_fingerprint %s\n", id, print);
+    bad = fclose(fp) != 0;
+  }
+  if (bad)
+    fprintf(stderr, "afv analyze: %s: cannot write: %s\n", path,
+            strerror(errno));
+  return bad ? EXIT_BAD_INPUT : 0;
+}
+
 /* Writes the analysis into its own staging folder (stage_make), then,
 ** once every file is written, moves them into DIR/analysis/ under its
 ** lock: a full disk or any other write error leaves DIR/analysis/ as it
@@ -258,6 +308,10 @@ static int analyze_write(const char *dir, const afv_analysis *a)
   if (afv_analysis_write(a, stage, err, sizeof err) != AFV_OK) {
     stage_clear(stage);
     fprintf(stderr, "afv analyze: %s (%s is unchanged)\n", err, out);
+    return EXIT_BAD_INPUT;
+  }
+  if (stage_fingerprint(stage, dir) != 0) {
+    stage_clear(stage);
     return EXIT_BAD_INPUT;
   }
   st = analysis_lock(out, &lock) ? stage_commit(stage, out) : EXIT_BAD_INPUT;
@@ -300,12 +354,12 @@ static int run_dir_readable(const char *dir)
 ** still writes in it (it holds the lock on observables.csv), or its
 ** checkpoint is short of the steps params.txt asks for (or missing, or
 ** unreadable), or it stopped before writing final.svg, its last output.
-** 0 if it finished, or if dir holds no afv run's params.txt with steps (a
-** trajectory from elsewhere: nothing to compare with). */
-static int run_unfinished(const char *dir, char *why, size_t len)
+** 0 if it finished, or if dir holds no params.txt (steps < 0: a
+** trajectory from elsewhere, nothing to compare with). */
+static int run_unfinished(const char *dir, long long steps, char *why,
+                          size_t len)
 {
   char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
-  double steps;
   long pid = run_lock_holder(dir);
   afv_checkpoint ck;
   long long at;
@@ -314,8 +368,7 @@ static int run_unfinished(const char *dir, char *why, size_t len)
              "holds the lock on %s/observables.csv)", pid, dir);
     return 1;
   }
-  snprintf(path, sizeof path, "%s/params.txt", dir);
-  if (run_param(path, "steps", &steps) != 1) return 0;
+  if (steps < 0) return 0;   /* no params.txt */
   snprintf(path, sizeof path, "%s/checkpoint.txt", dir);
   if (afv_checkpoint_read(path, &ck, err, sizeof err) != AFV_OK) {
     snprintf(why, len, "the run's end is unknown: %s", err);
@@ -324,19 +377,19 @@ static int run_unfinished(const char *dir, char *why, size_t len)
   at = ck.step;
   afv_checkpoint_free(&ck);
   snprintf(path, sizeof path, "%s/final.svg", dir);
-  if (at >= (long long)steps && access(path, F_OK) == 0) return 0;
+  if (at >= steps && access(path, F_OK) == 0) return 0;
   snprintf(why, len, "the run is unfinished: checkpoint.txt is at step %lld "
-           "of the %.0f in params.txt%s", at, steps, at >= (long long)steps
+           "of the %lld in params.txt%s", at, steps, at >= steps
            ? ", and final.svg, its last output, is missing" : "");
   return 1;
 }
 
 /* Refuses an unfinished run (exit EXIT_RUN_UNFINISHED), or with --partial
 ** (accept) says that its frames so far are analysed; 0 to go on. */
-static int refuse_unfinished(const char *dir, int accept)
+static int refuse_unfinished(const char *dir, long long steps, int accept)
 {
   char why[2 * RUN_PATH_MAX + 256];
-  if (!run_unfinished(dir, why, sizeof why)) return 0;
+  if (!run_unfinished(dir, steps, why, sizeof why)) return 0;
   if (accept) {
     fprintf(stderr, "afv analyze: warning: %s: %s: analysing its frames so "
             "far (--partial)\n", dir, why);
@@ -352,6 +405,7 @@ int cmd_analyze(int argc, char **argv)
   const char *dir = NULL;
   char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
   double lag = NAN, from = 0, l = 1, v0 = 0.5, Dr = 0.1;
+  long long steps = -1;                        /* -1: no params.txt */
   double l_o = NAN, v0_o = NAN, Dr_o = NAN;   /* NAN: option not given */
   afv_traj_file tr;
   afv_analysis a;
@@ -385,7 +439,9 @@ int cmd_analyze(int argc, char **argv)
   lag_given = !isnan(lag);
   if (!lag_given) lag = DEFAULT_LAG;
   snprintf(path, sizeof path, "%s/params.txt", dir);
-  if (!read_run_params(path, &l, &v0, &Dr))
+  if ((st = run_params_read(path, &l, &v0, &Dr, &steps, err, sizeof err)) < 0)
+    return params_unreadable(err);
+  if (st == 0)
     fprintf(stderr, "afv analyze: %s not found: using l = 1, v0 = 0.5, "
             "Dr = 0.1 unless given\n", path);
   if (!isnan(l_o)) l = l_o;
@@ -396,7 +452,7 @@ int cmd_analyze(int argc, char **argv)
     fprintf(stderr, "afv analyze: --Dr: %g: must be >= 0\n", Dr);
     return EXIT_BAD_INPUT;
   }
-  if ((st = refuse_unfinished(dir, partial)) != 0) return st;
+  if ((st = refuse_unfinished(dir, steps, partial)) != 0) return st;
   snprintf(path, sizeof path, "%s/trajectory.dat", dir);
   if (afv_traj_open(&tr, path, err, sizeof err) != AFV_OK)
     return bad_input(err);

@@ -568,6 +568,22 @@ static const char *unstable_reason(afv_sim *s)
          "(check mu, then KA, KP, Lambda)";
 }
 
+/* The relaxation refused a step (AFV_EUNSTABLE): says which cell and why,
+** discards the run (nothing to keep: from its start it would stop the
+** same way) and returns exit status 3, as an unstable step of the run.
+** (Before: exit 2, "a move > l/2" where the limit is AFV_RUNAWAY_MOVE, and
+** the run's first four files left.) */
+static int relax_unstable(run_state *R)
+{
+  afv_sim *s = R->sim;
+  fprintf(stderr, "afv run: relaxation: cell %d would move %g l (> %g l) "
+          "in a time %g: %s; nothing kept (from its start the run would "
+          "stop the same way)\n", afv_sim_bad_cell(s), afv_sim_bad_disp(s),
+          AFV_RUNAWAY_MOVE, afv_sim_dyn(s)->dt, unstable_reason(s));
+  discard_run(R);
+  return EXIT_UNSTABLE;
+}
+
 /* Integrates to cfg.steps.  Returns an exit status. */
 int run_loop(run_state *R)
 {
@@ -673,6 +689,7 @@ int run_fresh(run_state *R, const run_args *a, int argc, char **argv)
     run_log(R, "cluster start: spacing %.6g l instead of %.6g l, so that "
             "the cluster fits the box\n", R->start_spacing, R->cfg.spacing);
   if ((st = relax_start(R)) == AFV_ENONFINITE) return report_nonfinite(R);
+  if (st == AFV_EUNSTABLE) return relax_unstable(R);
   if (st != AFV_OK) {
     fprintf(stderr, "afv run: relaxation: %s\n", afv_strerror(st));
     return EXIT_BAD_INPUT;

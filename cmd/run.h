@@ -90,6 +90,7 @@ typedef struct run_state {
   obs_analysis an;         /* analysis columns of observables.csv */
   int lock_fd;             /* DIR/observables.csv while this process holds
                            ** the run directory's lock, else -1 */
+  int made_dir;            /* 1 if this process created DIR */
   int dir_fd;              /* DIR while this process holds its flock, else
                            ** -1 (run_dir.c, one writer per directory) */
   char io_path[RUN_PATH_MAX + 96];  /* the file whose writing failed */
@@ -131,11 +132,14 @@ void locate_error(char *err, size_t errlen, const int *set,
 int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
     size_t errlen);
 int write_params(const char *dir, const run_cfg *c, const char *cells);
+int record_agrees(const char *path, const run_cfg *c, const int *set,
+    char *err, size_t errlen);
 int write_cells_copy(const char *dir, const afv_cells *cl);
 int scan_args(int argc, char **argv, run_args *a);
 int requested_cfg(run_cfg *cfg, afv_cells *cl, const run_args *a,
     int argc, char **argv, int *set);
 int written_after_0_1_0(const char *params);
+int params_written_by_afv(const char *path);
 int same_run_asked(const run_args *a, int argc, char **argv);
 
 /* ---- run_compute.c ---- */
@@ -153,6 +157,7 @@ FILE *run_file_open(run_state *R, const char *name, long long size);
 int run_files_regular(const char *dir);
 void unlock_run_dir(run_state *R);
 int make_out_dir(run_state *R);
+void discard_run(run_state *R);
 
 /* ---- run_resume.c ---- */
 int run_resume(run_state *R, const run_args *a);

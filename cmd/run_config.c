@@ -235,9 +235,12 @@ void cfg_defaults(run_cfg *cfg)
 }
 
 /* Reads KEY VALUE lines ('#' starts a comment).  set[k] records the line
-** of key k.  Returns 1, or 0 with "FILE:LINE: ..." in err. */
-int read_config(const char *path, run_cfg *cfg, int *set, char *err,
-                       size_t errlen)
+** of key k (set must hold no line numbers: a key on two lines is refused,
+** naming both).  A REMOVED KEY is refused, or skipped if removed_ok (a
+** reader of an old run's params.txt).  Returns 1, or 0 with "FILE:LINE:
+** ..." in err. */
+static int read_keys(const char *path, run_cfg *cfg, int *set,
+                     int removed_ok, char *err, size_t errlen)
 {
   afv_lines L;
   char msg[RUN_PATH_MAX];
@@ -253,6 +256,7 @@ int read_config(const char *path, run_cfg *cfg, int *set, char *err,
     extra = val ? strtok(NULL, " \t\r") : NULL;
     K = find_key(key);
     if (removed_key(key, val, msg, sizeof msg)) {
+      if (removed_ok) continue;
       afv_errorf(err, errlen, "%s:%lld: %s", path, L.lineno, msg);
       ok = 0;
     } else if (!K) {
@@ -263,6 +267,11 @@ int read_config(const char *path, run_cfg *cfg, int *set, char *err,
       afv_errorf(err, errlen, "%s:%lld: %s: expected one value ('KEY "
                  "VALUE')", path, L.lineno, key);
       ok = 0;
+    } else if (set[K - run_keys] > 0) {   /* last-wins would hide one */
+      afv_errorf(err, errlen, "%s:%lld: %s: given twice (line %d has it "
+                 "too): a key has one value", path, L.lineno, key,
+                 set[K - run_keys]);
+      ok = 0;
     } else if (!set_key(cfg, K, val, path, msg, sizeof msg)) {
       afv_errorf(err, errlen, "%s:%lld: %s", path, L.lineno, msg);
       ok = 0;
@@ -272,6 +281,12 @@ int read_config(const char *path, run_cfg *cfg, int *set, char *err,
   }
   afv_lines_close(&L);
   return ok && got == 0;
+}
+
+int read_config(const char *path, run_cfg *cfg, int *set, char *err,
+                size_t errlen)
+{
+  return read_keys(path, cfg, set, 0, err, errlen);
 }
 
 /* The box side of N cells at packing fraction phi: N pi l^2 = phi L^2. */
@@ -458,6 +473,100 @@ static void key_text(const run_cfg *c, const run_key *K, char *buf,
   }
 }
 
+/* THE RECORD.  params.txt ends with the keys as afv wrote them, in
+** comment lines "# as written: KEY=VALUE ..." (at most RECORD_WIDTH
+** characters; the cells key, a path, is not in it), so that --resume finds
+** a key edited since (record_agrees): the checkpoint and the files do not
+** show every key (an edited v0, Dr, mu, cap, phi, frame_every, init or
+** relax_tol let the run go on under other parameters in the same files).
+** A params.txt of an earlier afv has no record and is not checked. */
+#define RECORD_PREFIX "# as written:"
+#define RECORD_WIDTH 72
+
+/* The keys a resume may see changed: steps (--steps MORE rewrites it, and
+** a run may be made longer by hand), quiet and checkpoint_every (neither
+** changes what the run computes or records), cells (not recorded). */
+static int resume_may_change(const run_key *K)
+{
+  return K->kind == K_PATH || strcmp(K->name, "steps") == 0
+         || strcmp(K->name, "quiet") == 0
+         || strcmp(K->name, "checkpoint_every") == 0;
+}
+
+static void write_record(FILE *fp, const run_cfg *c)
+{
+  size_t used = 0;
+  int k;
+  for (k = 0; k < N_RUN_KEYS; k++) {
+    char value[RUN_PATH_MAX + 32];
+    size_t m;
+    if (run_keys[k].kind == K_PATH) continue;
+    key_text(c, &run_keys[k], value, sizeof value);
+    m = strlen(run_keys[k].name) + strlen(value) + 2;
+    if (used == 0 || used + m > RECORD_WIDTH) {
+      fprintf(fp, "%s" RECORD_PREFIX, used ? "\n" : "");
+      used = strlen(RECORD_PREFIX);
+    }
+    fprintf(fp, " %s=%s", run_keys[k].name, value);
+    used += m;
+  }
+  fputc('\n', fp);
+}
+
+/* A real key's value text (%.17g) in the fewest digits that read back
+** as it, in place (it never grows: %.17g is the longest form). */
+static void shortest_real(const run_key *K, char *text, size_t len)
+{
+  char buf[64];
+  double x;
+  if (K->kind != K_REAL || real_problem(text, &x)) return;
+  exact_text(x, buf, sizeof buf);
+  if (strlen(buf) < len) memcpy(text, buf, strlen(buf) + 1);
+}
+
+/* The KEY=VALUE words of a record line: each key that the resume may not
+** change must have the value in c.  1, or 0 with the message in err. */
+static int record_line_agrees(char *line, const run_cfg *c, const int *set,
+                              const char *path, char *err, size_t errlen)
+{
+  char *word;
+  for (word = strtok(line + strlen(RECORD_PREFIX), " \t\r"); word;
+       word = strtok(NULL, " \t\r")) {
+    char *eq = strchr(word, '='), now[RUN_PATH_MAX + 32];
+    const run_key *K;
+    if (!eq) continue;
+    *eq = 0;
+    if (!(K = find_key(word)) || resume_may_change(K)) continue;
+    key_text(c, K, now, sizeof now);
+    if (strcmp(now, eq + 1) == 0) continue;
+    shortest_real(K, now, sizeof now);   /* 0.7, not 0.69999999999999996 */
+    shortest_real(K, eq + 1, strlen(eq + 1) + 1);
+    afv_errorf(err, errlen, "%s:%d: %s %s, but afv wrote %s %s (its record "
+               "at the end of the file): a key edited since the run began "
+               "changes the run its files hold; restore it, or start a new "
+               "run (afv run --config %s --out NEWDIR)", path,
+               set[K - run_keys], K->name, now, K->name, eq + 1, path);
+    return 0;
+  }
+  return 1;
+}
+
+/* params.txt at path (read into c, set[k] the line of key k) against its
+** record: 1 if every key a resume may not change has the value afv wrote
+** (or there is no record), else 0 naming the key in err. */
+int record_agrees(const char *path, const run_cfg *c, const int *set,
+                  char *err, size_t errlen)
+{
+  afv_lines L;
+  int ok = 1;
+  if (afv_lines_open(&L, path, err, errlen) != AFV_OK) return 0;
+  while (ok && afv_lines_next(&L, NULL, 0) > 0)
+    if (strncmp(L.line, RECORD_PREFIX, strlen(RECORD_PREFIX)) == 0)
+      ok = record_line_agrees(L.line, c, set, path, err, errlen);
+  afv_lines_close(&L);
+  return ok;
+}
+
 /* Writes every key to path as KEY VALUE (reals in %.17g: they read back
 ** exactly); cells is the value written for the cells key. */
 static int write_params_to(const char *path, const run_cfg *c,
@@ -477,6 +586,7 @@ static int write_params_to(const char *path, const run_cfg *c,
   }
   if (strcmp(c->box, "periodic") == 0)
     fprintf(fp, "# box side L = %.17g\n", box_side(c));
+  write_record(fp, c);
   return afv_atomic_commit(fp, tmp, path);
 }
 
@@ -606,6 +716,18 @@ const char *run_option_names(void)
   return names;
 }
 
+/* 1 if the option argv[k] ("--NAME") is among argv[1 .. k-1]: no value
+** starts with "--" (scan_args refuses one), so an equal word there is the
+** same option given before. */
+static int given_before(char **argv, int k)
+{
+  int j;
+  if (strncmp(argv[k], "--", 2) != 0) return 0;
+  for (j = 1; j < k; j++)
+    if (strcmp(argv[j], argv[k]) == 0) return 1;
+  return 0;
+}
+
 /* First pass: --help, --config, --out, --resume, --quiet; checks that
 ** every other option is --KEY VALUE with a known KEY. */
 int scan_args(int argc, char **argv, run_args *a)
@@ -618,6 +740,11 @@ int scan_args(int argc, char **argv, run_args *a)
     if (strcmp(o, "--help") == 0 || strcmp(o, "-h") == 0) {
       run_help();
       return -1;
+    }
+    if (given_before(argv, k)) {
+      fprintf(stderr, "afv run: %s: given twice: an option has one value "
+              "(the last one would silently win)\n", o);
+      return 0;
     }
     if (strcmp(o, "--quiet") == 0
         && (k + 1 >= argc || strncmp(argv[k + 1], "--", 2) == 0)) {
@@ -824,6 +951,99 @@ int run_param(const char *path, const char *key, double *v)
   }
   afv_lines_close(&L);
   return found;
+}
+
+/* The params.txt at path: 1 if afv wrote it (it starts with afv's first
+** line), 0 if there is none, -1 if it is a user's file (or not a regular
+** file: a FIFO is not opened for reading, which would block). */
+int params_written_by_afv(const char *path)
+{
+  char line[32] = "";
+  struct stat sb;
+  ssize_t got = 0;
+  int fd;
+  if (lstat(path, &sb) != 0) return 0;
+  if (!S_ISREG(sb.st_mode)) return -1;
+  if ((fd = open(path, O_RDONLY | O_NONBLOCK | O_NOFOLLOW)) >= 0) {
+    got = read(fd, line, 20);
+    close(fd);
+  }
+  return got == 20 && strncmp(line, "# afv run parameters", 20) == 0 ? 1
+         : -1;
+}
+
+/* params.txt of a run read whole, as afv run reads it (read_config: every
+** line a known key with a value it accepts, no key twice), for afv
+** analyze (the keys of afv 0.1 and 0.2 that were removed are skipped),
+** which must not fill in defaults for what it cannot read (an
+** empty, garbled or cut params.txt gave v0 = 0.5 silently, and D_eff 25
+** times off): l, v0 and Dr, which it must hold, and steps, which afv's
+** own params.txt must hold (one written by hand, for a trajectory from
+** elsewhere, need not: *steps = -1).  1 if read, 0 if there is no file at
+** path, -1 with the reason in err. */
+int run_params_read(const char *path, double *l, double *v0, double *Dr,
+                    long long *steps, char *err, size_t errlen)
+{
+  static const char *const needed[] = {"l", "v0", "Dr", "steps"};
+  int set[N_RUN_KEYS];
+  run_cfg c;
+  size_t k;
+  if (access(path, F_OK) != 0 && errno == ENOENT) return 0;
+  memset(set, 0, sizeof set);
+  cfg_defaults(&c);
+  if (!read_keys(path, &c, set, 1, err, errlen)) return -1;
+  for (k = 0; k < sizeof needed / sizeof needed[0]; k++)
+    if (set[find_key(needed[k]) - run_keys] == 0
+        && (k < 3 || params_written_by_afv(path) > 0)) {
+      afv_errorf(err, errlen, "%s: no %s (afv run writes every key): not "
+                 "the whole params.txt of a run", path, needed[k]);
+      return -1;
+    }
+  *l = c.l;
+  *v0 = c.v0;
+  *Dr = c.Dr;
+  *steps = set[find_key("steps") - run_keys] ? c.steps : -1;
+  return 1;
+}
+
+/* THE FINGERPRINT of a run, which afv analyze writes into its summary.txt
+** and afv collect checks against the run (cli.h): FNV-1a 64 over "id=ID\n"
+** and "KEY=VALUE\n" for every key of params.txt as afv run writes it
+** (key_text), but quiet and checkpoint_every, which change nothing the
+** run computes, and cells, a path read relative to where params.txt is
+** read from (a run's own copy is always cells.txt).  A summary copied from another job (another id, seed or
+** point) or from a run edited since has another fingerprint. */
+static unsigned long long fnv1a(unsigned long long h, const char *text)
+{
+  for (; *text; text++) {
+    h ^= (unsigned char)*text;
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
+
+int run_fingerprint(const char *path, const char *id, char *out, size_t len,
+                    char *err, size_t errlen)
+{
+  unsigned long long h = fnv1a(0xcbf29ce484222325ull, "id=");
+  int set[N_RUN_KEYS], k;
+  run_cfg c;
+  if (access(path, F_OK) != 0 && errno == ENOENT) return 0;
+  memset(set, 0, sizeof set);
+  cfg_defaults(&c);
+  if (!read_keys(path, &c, set, 1, err, errlen)) return -1;
+  h = fnv1a(fnv1a(h, id), "\n");
+  for (k = 0; k < N_RUN_KEYS; k++) {
+    char value[RUN_PATH_MAX + 32];
+    if (!strcmp(run_keys[k].name, "quiet")
+        || !strcmp(run_keys[k].name, "checkpoint_every")
+        || run_keys[k].kind == K_PATH)
+      continue;
+    key_text(&c, &run_keys[k], value, sizeof value);
+    h = fnv1a(fnv1a(fnv1a(fnv1a(h, run_keys[k].name), "="), value), "\n");
+  }
+  snprintf(out, len, "%016llx", h);
+  return 1;
 }
 
 /* params.txt of a run: picks l, v0 and Dr (a tolerant reader: the run

@@ -358,20 +358,12 @@ static void clear_unfinished_run(const char *dir)
   closedir(d);
 }
 
-/* DIR's params.txt: 1 if afv wrote it, 0 if there is none, -1 if it is
-** a user's file (it does not start with afv's first line). */
-static int params_written_by_afv(const char *dir)
+/* DIR's params.txt: params_written_by_afv. */
+static int dir_params_by_afv(const char *dir)
 {
-  char path[RUN_PATH_MAX + 32], line[64] = "";
-  struct stat sb;
-  FILE *fp;
+  char path[RUN_PATH_MAX + 32];
   snprintf(path, sizeof path, "%s/params.txt", dir);
-  if (lstat(path, &sb) != 0) return 0;
-  if ((fp = fopen(path, "r"))) {
-    if (!fgets(line, sizeof line, fp)) line[0] = 0;
-    fclose(fp);
-  }
-  return strncmp(line, "# afv run parameters", 20) == 0 ? 1 : -1;
+  return params_written_by_afv(path);
 }
 
 /* 1 (with a message) if DIR holds files of a run's names that afv did not
@@ -393,7 +385,7 @@ static int foreign_files(const char *dir)
   DIR *d;
   struct dirent *e;
   const char *found = NULL;
-  int params = params_written_by_afv(dir);
+  int params = dir_params_by_afv(dir);
   if (params > 0) return 0;
   if (params < 0) found = "params.txt";
   /* run_files[0] is params.txt, looked at above */
@@ -413,7 +405,7 @@ static int foreign_files(const char *dir)
     report_in_use(dir, holder);
     return 1;
   }
-  if (params == 0 && params_written_by_afv(dir) > 0)
+  if (params == 0 && dir_params_by_afv(dir) > 0)
     return 0;   /* a run's, started meanwhile: the lock or holds_run says */
   if (params < 0)
     fprintf(stderr, "afv run: %s/params.txt is not afv's (it does not start "
@@ -437,7 +429,9 @@ int make_out_dir(run_state *R)
   if (holds_run(R) || foreign_files(dir))
     return 0;                       /* refused before anything changes */
   if (!make_parents(dir)) return 0;
-  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+  if (mkdir(dir, 0777) == 0)
+    R->made_dir = 1;
+  else if (errno != EEXIST) {
     fprintf(stderr, "afv run: cannot create %s: %s\n", dir, strerror(errno));
     return 0;
   }
@@ -445,4 +439,20 @@ int make_out_dir(run_state *R)
     return 0;
   clear_unfinished_run(dir);
   return 1;
+}
+
+/* Removes what a fresh run made, for a run that stops before it has
+** anything to keep (an unstable relaxation: from its start it would stop
+** the same way): its files (run_files; under the lock, after
+** clear_unfinished_run and run_files_regular, every one there is this
+** run's) and DIR itself if this process created it. */
+void discard_run(run_state *R)
+{
+  char path[RUN_PATH_MAX + 32];
+  size_t k;
+  for (k = 0; k < sizeof run_files / sizeof run_files[0]; k++) {
+    snprintf(path, sizeof path, "%s/%s", R->dir, run_files[k]);
+    remove(path);
+  }
+  if (R->made_dir) rmdir(R->dir);
 }

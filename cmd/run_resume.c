@@ -289,6 +289,8 @@ static int resume_params(run_state *R, const run_args *a, int *set,
     locate_error(err, sizeof err, set, params);
     return bad_input(err);
   }
+  if (!record_agrees(params, &R->cfg, set, err, sizeof err))
+    return bad_input(err);
   return 0;
 }
 

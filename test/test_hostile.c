@@ -217,6 +217,203 @@ static void test_two_analyses_serialise(void)
   }
 }
 
+/* ---- readers trust nothing they cannot check ------------------------------ */
+/* A resume refuses a params.txt whose keys were edited since the run began,
+** naming the key, and changes nothing (the code before went on under the
+** edited v0, Dr, mu, cap, phi, frame_every, init or relax_tol in the same
+** files; only P0, seed, dt and sample_every showed in the checkpoint). */
+static void test_resume_refuses_edited_keys(void)
+{
+  static const char *const edits[][2] = {
+    {"v0", "0.7"}, {"Dr", "0.2"}, {"mu", "2"}, {"cap", "0.1"},
+    {"phi", "0.4"}, {"frame_every", "5"}, {"init", "lattice"},
+    {"relax_tol", "0.001"}};
+  size_t k;
+  CHECK(test_sh("./afv run " QUICK " --steps 20 --out %s/ed", root) == 0,
+        "the run");
+  for (k = 0; k < sizeof edits / sizeof edits[0]; k++) {
+    char want[64];
+    int st;
+    test_sh("rm -rf %s/ed1 %s/ed2 && cp -r %s/ed %s/ed1 && sed -i 's/^%s .*/"
+            "%s %s/' %s/ed1/params.txt && cp -r %s/ed1 %s/ed2", root, root,
+            root, root, edits[k][0], edits[k][0], edits[k][1], root, root,
+            root);
+    st = test_sh("./afv run --resume %s/ed1 --steps 10 --quiet 2> "
+                 "%s/err.txt", root, root);
+    snprintf(want, sizeof want, ": %s %s, but afv wrote %s", edits[k][0],
+             edits[k][1], edits[k][0]);
+    CHECK(st == 2 && err_says(want), "%s edited to %s: exit %d, want 2 "
+          "naming it", edits[k][0], edits[k][1], st);
+    CHECK(test_sh("diff -r %s/ed1 %s/ed2 > /dev/null", root, root) == 0,
+          "%s edited: the refused resume changed the directory",
+          edits[k][0]);
+  }
+}
+
+/* afv analyze refuses a params.txt it cannot read whole (empty, garbage,
+** v0 missing, v0 not a number), exit 2, nothing written (the code before
+** used v0 = 0.5 and friends silently, D_eff 25 times off, and skipped the
+** unfinished-run check). */
+static void test_analyze_refuses_damaged_params(void)
+{
+  static const char *const damage[] = {
+    ": > params.txt", "echo garbage > params.txt",
+    "sed -i '/^v0 /d' params.txt", "sed -i 's/^v0 .*/v0 abc/' params.txt"};
+  size_t k;
+  CHECK(test_sh("./afv run " QUICK " --steps 20 --out %s/ap", root) == 0,
+        "the run");
+  for (k = 0; k < sizeof damage / sizeof damage[0]; k++) {
+    int st;
+    test_sh("rm -rf %s/ap1 && cp -r %s/ap %s/ap1 && cd %s/ap1 && %s", root,
+            root, root, root, damage[k]);
+    st = test_sh("./afv analyze %s/ap1 --steady-from 0 --lag 0.1 > "
+                 "/dev/null 2> %s/err.txt", root, root);
+    CHECK(st == 2 && err_says("params.txt") && test_sh("test -e "
+          "%s/ap1/analysis", root) != 0, "'%s': exit %d, want 2 naming "
+          "params.txt, and no analysis/", damage[k], st);
+  }
+}
+
+/* ---- smaller ---------------------------------------------------------------- */
+/* A FIFO at log.txt makes a resume refuse at once, naming it (the code
+** before blocked for ever in fopen; timeout ends it here, exit 124). */
+static void test_fifo_log_does_not_block(void)
+{
+  int st;
+  CHECK(test_sh("./afv run " QUICK " --steps 20 --out %s/ff && rm "
+                "%s/ff/log.txt && mkfifo %s/ff/log.txt", root, root, root)
+        == 0, "setup");
+  st = test_sh("timeout 10 ./afv run --resume %s/ff --steps 10 --quiet 2> "
+               "%s/err.txt", root, root);
+  CHECK(st == 2 && err_says("log.txt: not a regular file"), "a FIFO at "
+        "log.txt: exit %d, want 2 naming it", st);
+}
+
+/* A relaxation that cannot step (mu 1e300: a move that is not finite)
+** stops with exit status 3, says so with the real bound (1e8 l), and
+** leaves nothing (the code before: exit 2, "a move > l/2", and params.txt,
+** log.txt, observables.csv and trajectory.dat left). */
+static void test_unstable_relaxation(void)
+{
+  int st = test_sh("./afv run --N 50 --mu 1e300 --steps 10 --out %s/mu 2> "
+                   "%s/err.txt", root, root);
+  CHECK(st == 3 && err_says("relaxation: cell") && err_says("1e+08 l")
+        && !err_says("l/2"), "exit %d, want 3 and the relaxation's bound",
+        st);
+  CHECK(test_sh("test -e %s/mu", root) != 0, "the stopped run left %s/mu",
+        root);
+}
+
+/* A key given twice, on the command line or in a config, is refused by
+** name, nothing made (the code before: the last one won, silently); nan
+** is "not a number", not "beyond the largest double". */
+static void test_key_twice_and_nan_refused(void)
+{
+  int st = test_sh("./afv run --steps 0 --relax_max_steps 0 --v0 1 --v0 2 "
+                   "--out %s/tw 2> %s/err.txt", root, root);
+  CHECK(st == 2 && err_says("--v0: given twice"), "--v0 twice: exit %d",
+        st);
+  test_sh("printf 'v0 1\\nsteps 0\\nv0 2\\n' > %s/tw.conf", root);
+  st = test_sh("./afv run --config %s/tw.conf --relax_max_steps 0 --out "
+               "%s/tw 2> %s/err.txt", root, root, root);
+  CHECK(st == 2 && err_says("tw.conf:3: v0: given twice (line 1"), "v0 "
+        "twice in a config: exit %d", st);
+  CHECK(test_sh("test -e %s/tw", root) != 0, "a refused run made its "
+        "directory");
+  st = test_sh("./afv run --v0 nan --out %s/tw 2> %s/err.txt", root, root);
+  CHECK(st == 2 && err_says("not a number (nan)")
+        && !err_says("beyond the largest"), "nan: exit %d", st);
+}
+
+/* A small sweep: 2 jobs (v0 0.1 and 0.3), 20 cells, 20 steps. */
+#define SWEEP "--P0 4 --v0 0.1,0.3 --N 20 --steps 20 --frame_every 5 " \
+              "--lag 0.05"
+
+/* A killed afv sweep leaves DIR.writing-PID (SIGKILL cannot be caught);
+** the next sweep to DIR removes such a folder of a process that is gone,
+** afv's files only: one holding a user's file keeps it (and itself).  (The
+** code before left every one behind, 46 MB for a large grid.) */
+static void test_stale_sweep_folder_removed(void)
+{
+  int st;
+  test_sh("cd %s && for d in sw.writing-999999998 sw.writing-999999999; do "
+          "mkdir -p $d/jobs $d/runs $d/logs && echo x > $d/jobs/0001.conf && "
+          "echo x > $d/jobs/0002.conf.7.0badf00d.tmp && echo x > "
+          "$d/points.csv && echo x > $d/Makefile; done && echo mine > "
+          "sw.writing-999999998/mine.txt", root);
+  st = test_sh("./afv sweep --out %s/sw " SWEEP " > /dev/null 2> "
+               "%s/err.txt", root, root);
+  CHECK(st == 0, "the sweep: exit %d", st);
+  CHECK(test_sh("test ! -e %s/sw.writing-999999999", root) == 0,
+        "a dead sweep's folder was left");
+  CHECK(test_sh("cd %s/sw.writing-999999998 && test -e mine.txt && test ! "
+                "-e points.csv && test ! -e jobs/0001.conf", root) == 0,
+        "a dead sweep's folder with a user's file: the user's file removed, "
+        "or afv's left");
+}
+
+/* afv collect on a copy of the finished sweep root/sc after the shell
+** command damage: its exit status, its stderr in root/err.txt. */
+static int collect_after(const char *damage)
+{
+  return test_sh("rm -rf %s/swc && cp -r %s/sc %s/swc && cd %s/swc && %s && "
+                 "cd - > /dev/null && ./afv collect %s/swc > /dev/null 2> "
+                 "%s/err.txt", root, root, root, root, damage, root, root);
+}
+
+/* afv collect ties every summary to its run and range-checks it: a
+** summary copied from the other job, values out of range, a key twice, a
+** cell count not N, D_eff nan at v0 > 0, and a missing jobs/ID.conf make
+** the job damaged (exit 1, the reason named); a missing analysis.txt, a
+** repeated key column and a points.csv of its header alone are bad input
+** (exit 2); a full disk says why.  (The code before verified every one of
+** these, exit 0, and said "cannot write" without the reason.) */
+static void test_collect_ties_and_checks(void)
+{
+  static const char *const damaged[][2] = {
+    {"cp runs/0001/analysis/summary.txt runs/0002/analysis/", "is of run "
+     "0001"},
+    {"sed -i 's/^ngc_frac_mean .*/ngc_frac_mean 7/' S", "ngc_frac_mean 7 is "
+     "out of its range"},
+    {"sed -i 's/^omega_mean .*/omega_mean -3/' S", "omega_mean -3 is out"},
+    {"sed -i 's/^D_eff .*/D_eff -5/' S", "D_eff -5 is out"},
+    {"sed -i 's/^D_eff .*/D_eff inf/' S", "D_eff inf is out"},
+    {"sed -i 's/^D_eff .*/D_eff nan/' S", "D_eff nan, but v0"},
+    {"sed -i 's/^msd_beta .*/msd_beta inf/' S", "msd_beta inf is out"},
+    {"sed -i 's/^cells .*/cells 21/' S", "counts 21 cells"},
+    {"echo 'ngc_frac_mean 0.5' >> S", "ngc_frac_mean given twice"},
+    {"rm jobs/0002.conf", "jobs/0002.conf: No such file"}};
+  static const char *const bad[] = {
+    "rm analysis.txt", "sed -i 's/^id,/id,v0,/; 2,$ s/^\\([^,]*\\),/\\1,0.1,/'"
+    " points.csv", "sed -i '2,$ d' points.csv"};
+  size_t k;
+  CHECK(test_sh("./afv sweep --out %s/sc " SWEEP " > /dev/null && make -s "
+                "-C %s/sc > /dev/null 2>&1 && ./afv collect %s/sc > /dev/null",
+                root, root, root) == 0, "the sweep, run and collected");
+  for (k = 0; k < sizeof damaged / sizeof damaged[0]; k++) {
+    char cmd[256], *at;
+    int st;
+    snprintf(cmd, sizeof cmd, "%s", damaged[k][0]);
+    if ((at = strstr(cmd, " S")) && at[2] == 0)   /* S: job 0002's summary */
+      snprintf(at, sizeof cmd - (size_t)(at - cmd),
+               " runs/0002/analysis/summary.txt");
+    st = collect_after(cmd);
+    CHECK(st == 1 && err_says(damaged[k][1]) && err_says("job 0002"),
+          "'%s': exit %d, want 1 and job 0002 damaged: %s", cmd, st,
+          damaged[k][1]);
+  }
+  for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+    int st = collect_after(bad[k]);
+    CHECK(st == 2, "'%s': exit %d, want 2", bad[k], st);
+  }
+  /* (stderr through a pipe: a file would be past the limit too) */
+  test_sh("{ (trap '' XFSZ; ulimit -f 0; exec ./afv collect %s/sc) 2>&1 > "
+          "/dev/null; echo \"exit $?\"; } | cat > %s/err.txt", root, root);
+  CHECK(err_says("table.csv: cannot write: ") && err_says(strerror(EFBIG))
+        && err_says("exit 2"), "collect past a file size limit does not "
+        "say why");
+}
+
 void suite_hostile(void)
 {
   snprintf(root, sizeof root, "/tmp/afv_test_hostile.%ld", (long)getpid());
@@ -225,5 +422,12 @@ void suite_hostile(void)
   RUN(test_user_files_never_removed);
   RUN(test_lock_holds_whatever_is_replaced);
   RUN(test_two_analyses_serialise);
+  RUN(test_resume_refuses_edited_keys);
+  RUN(test_analyze_refuses_damaged_params);
+  RUN(test_fifo_log_does_not_block);
+  RUN(test_unstable_relaxation);
+  RUN(test_key_twice_and_nan_refused);
+  RUN(test_stale_sweep_folder_removed);
+  RUN(test_collect_ties_and_checks);
   test_sh("rm -rf %s", root);
 }

@@ -184,8 +184,10 @@ static int exit_status(pid_t pid)
 }
 
 /* A fast system that writes a checkpoint every 5 steps. */
-#define FAST "--N 64 --P0 4.5 --v0 0.3 --sample_every 5 --frame_every 10 " \
-             "--checkpoint_every 5 --svg_every 0 --quiet"
+#define FAST "--N 64 " FAST_SYSTEM
+/* (a key is given once: afv run refuses one given twice) */
+#define FAST_SYSTEM "--P0 4.5 --v0 0.3 --sample_every 5 --frame_every 10 " \
+                    "--checkpoint_every 5 --svg_every 0 --quiet"
 
 /* Starts a long run of FAST's system into root/sub (out receives the
 ** path) and waits for its first checkpoint; returns the writer's pid and
@@ -467,7 +469,7 @@ static void test_failed_resume_changes_nothing(void)
     {"printf 'torn' >> trajectory.dat", "--steps 1x0", "--steps"},
     /* params.txt edited to a modulus the run cannot compute with */
     {"sed 's/^KA .*/KA 1e200/' params.txt > p.tmp && mv p.tmp params.txt",
-     "--steps 50", "params.txt:6: KA: 1e+200"},
+     "--steps 50", "params.txt:6: KA 1e+200, but afv wrote KA 1"},
     /* cell 5's angle (line 14 of the checkpoint) not finite */
     {"awk 'NR == 14 { $3 = \"inf\" } { print }' checkpoint.txt > c.tmp && "
      "mv c.tmp checkpoint.txt", "--steps 50", "checkpoint.txt"},
@@ -631,15 +633,19 @@ static void test_continue_other_parameters_refused(void)
   size_t c;
   write_column("c1.txt", "v0", 30, 1, "0.2", "0.3");
   write_column("c2.txt", "v0", 30, 1, "0.25", "0.3");
-  CHECK(test_sh("./afv run " FAST " --N 30 --cells %s/c1.txt --steps 20 "
-                "--out %s/co && rm %s/co/final.svg", root, root, root) == 0,
+  CHECK(test_sh("./afv run --N 30 " FAST_SYSTEM " --cells %s/c1.txt --steps "
+                "20 --out %s/co && rm %s/co/final.svg", root, root, root) == 0,
         "the run, made unfinished");
+  /* its keys as a config, which the options of each case override (a key
+  ** given twice on the command line is refused) */
+  test_sh("grep -v '^quiet\\|^cells' %s/co/params.txt > %s/co.conf && echo "
+          "'cells c1.txt' >> %s/co.conf", root, root, root);
   for (c = 0; c < 2 * sizeof cases / sizeof cases[0]; c++) {
     const char *const *k = cases[c % 4];
     char args[512], *at, *before, *after, *e;
     long nb, na;
     int st;
-    snprintf(args, sizeof args, "--cells @/c1.txt %s", k[0]);
+    snprintf(args, sizeof args, "%s", k[0]);
     while ((at = strchr(args, '@'))) {   /* '@': the suite's directory */
       char rest[512];
       snprintf(rest, sizeof rest, "%s", at + 1);
@@ -649,8 +655,8 @@ static void test_continue_other_parameters_refused(void)
       CHECK(test_sh("./afv run --resume %s/co --quiet", root) == 0,
             "finishing the run");
     before = picture("co", &nb);
-    st = test_sh("./afv run " FAST " --N 30 --steps 20 %s --continue --out "
-                 "%s/co 2> %s/err.txt", args, root, root);
+    st = test_sh("./afv run --config %s/co.conf %s --continue --out %s/co "
+                 "2> %s/err.txt", root, args, root, root);
     after = picture("co", &na);
     e = last_err();
     CHECK(st == 2 && strstr(e, k[1]) && strchr(e, '\n') == e + strlen(e) - 1,
@@ -662,7 +668,7 @@ static void test_continue_other_parameters_refused(void)
     free(after);
     free(e);
   }
-  CHECK(test_sh("cp %s/c1.txt %s/c1copy.txt && ./afv run " FAST " --N 30 "
+  CHECK(test_sh("cp %s/c1.txt %s/c1copy.txt && ./afv run --N 30 " FAST_SYSTEM " "
                 "--cells %s/c1copy.txt --steps 20 --continue --out %s/co",
                 root, root, root, root) == 0, "--continue with the run's own "
         "parameters");
@@ -705,10 +711,16 @@ static void test_foreign_directory_kept(void)
 }
 
 /* ---- a run that stopped before its first checkpoint ---------------------- */
-/* trajectory.dat past a file size limit (ulimit -f 2: 1024 bytes, POSIX
-** counts 512-byte blocks; the frame of step 0 is 1346 bytes, params.txt
-** and t1_reference.txt are smaller): the run stops with the file and the
-** system's reason; its directory has no checkpoint, a resume is refused,
+/* 120 cells 2.5 l apart, not relaxed: no contact, so t1_reference.txt is
+** a few bytes, params.txt about 1.3 KB, and the frame of step 0 in
+** trajectory.dat 2.5 KB, the largest file written before the first
+** checkpoint. */
+#define APART "--N 120 " FAST_SYSTEM " --init lattice --spacing 2.5 " \
+              "--relax_max_steps 0 --steps 50"
+
+/* trajectory.dat past a file size limit (ulimit -f 4: 2048 bytes, POSIX
+** counts 512-byte blocks): the run stops with the file and the system's
+** reason; its directory has no checkpoint, a resume is refused,
 ** proposing a fresh run from the directory's own params.txt into it,
 ** which is accepted and equals a run elsewhere.  (The code before:
 ** "cannot write the outputs" without file or reason, then refused both a
@@ -722,7 +734,7 @@ static void test_unfinished_run_rerunnable(void)
   SKIP("ThreadSanitizer's runtime cannot run under ulimit -f");
   return;
 #endif
-  check_size_limit_failure(2, FAST " --steps 50", "u", "u/trajectory.dat");
+  check_size_limit_failure(4, APART, "u", "u/trajectory.dat");
   CHECK(!exists("u/checkpoint.txt") && exists("u/params.txt"),
         "not the state of a run stopped before its first checkpoint");
   st = test_sh("./afv run --resume %s/u 2> %s/err.txt", root, root);
@@ -734,14 +746,14 @@ static void test_unfinished_run_rerunnable(void)
   CHECK(test_sh("./afv run --config %s/u/params.txt --out %s/u 2> "
                 "%s/err.txt", root, root, root) == 0, "a fresh run into the "
         "unfinished directory was refused");
-  CHECK(test_sh("./afv run " FAST " --steps 50 --out %s/u_ref", root) == 0,
+  CHECK(test_sh("./afv run " APART " --out %s/u_ref", root) == 0,
         "the reference run");
   CHECK(same_file("u", "u_ref", "trajectory.dat")
         && same_file("u", "u_ref", "observables.csv"), "the re-run differs "
         "from a run in a fresh directory");
   /* now it holds a run: a fresh run is refused, nothing changes */
-  CHECK(test_sh("./afv run " FAST " --steps 50 --out %s/u 2>/dev/null", root)
-        == 2, "a completed run was overwritten");
+  CHECK(test_sh("./afv run " APART " --out %s/u 2>/dev/null", root) == 2,
+        "a completed run was overwritten");
 }
 
 /* ---- afv analyze on a run that has not finished ---------------------------- */
