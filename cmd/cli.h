@@ -122,12 +122,22 @@ int run_config_write(const char *path, int n, const char *const *names,
 int run_param(const char *path, const char *key, double *v);
 /* params.txt of a run: picks l, v0 and Dr.  0 if unreadable. */
 int read_run_params(const char *path, double *l, double *v0, double *Dr);
+/* A run's params.txt as afv analyze reads it (run_params_read). */
+typedef struct run_params_info {
+  int afv_run;             /* 1: written by afv run (every key is there) */
+  double l, v0, Dr, dt;    /* the model's and the dynamics' */
+  long long steps;         /* -1 if a hand-written one has none */
+  long long N, frame_every;
+  int periodic;            /* 1: box periodic, of side L */
+  double L;                /* sqrt(N pi l^2 / phi) */
+  int cells;               /* 1: per-cell values from a cells file */
+} run_params_info;
 /* params.txt of a run read whole, as afv run reads it: l, v0, Dr, which
 ** it must hold, and steps (-1 if a hand-written one has none; afv's own
 ** must).  1, 0 if there is no file at path, -1 with the reason in err
 ** (afv analyze refuses it: no silent defaults). */
-int run_params_read(const char *path, double *l, double *v0, double *Dr,
-                    long long *steps, char *err, size_t errlen);
+int run_params_read(const char *path, run_params_info *p, char *err,
+                    size_t errlen);
 /* The fingerprint of the run with the params.txt at path and the id id
 ** (its directory's name, a sweep's job id): 16 hex digits into out, of
 ** every key that changes what the run computes (but cells, a path), and

@@ -981,11 +981,11 @@ int params_written_by_afv(const char *path)
 ** own params.txt must hold (one written by hand, for a trajectory from
 ** elsewhere, need not: *steps = -1).  1 if read, 0 if there is no file at
 ** path, -1 with the reason in err. */
-int run_params_read(const char *path, double *l, double *v0, double *Dr,
-                    long long *steps, char *err, size_t errlen)
+int run_params_read(const char *path, run_params_info *p, char *err,
+                    size_t errlen)
 {
   static const char *const needed[] = {"l", "v0", "Dr", "steps"};
-  int set[N_RUN_KEYS];
+  int set[N_RUN_KEYS], afv_own = params_written_by_afv(path) > 0;
   run_cfg c;
   size_t k;
   if (access(path, F_OK) != 0 && errno == ENOENT) return 0;
@@ -993,16 +993,23 @@ int run_params_read(const char *path, double *l, double *v0, double *Dr,
   cfg_defaults(&c);
   if (!read_keys(path, &c, set, 1, err, errlen)) return -1;
   for (k = 0; k < sizeof needed / sizeof needed[0]; k++)
-    if (set[find_key(needed[k]) - run_keys] == 0
-        && (k < 3 || params_written_by_afv(path) > 0)) {
+    if (set[find_key(needed[k]) - run_keys] == 0 && (k < 3 || afv_own)) {
       afv_errorf(err, errlen, "%s: no %s (afv run writes every key): not "
                  "the whole params.txt of a run", path, needed[k]);
       return -1;
     }
-  *l = c.l;
-  *v0 = c.v0;
-  *Dr = c.Dr;
-  *steps = set[find_key("steps") - run_keys] ? c.steps : -1;
+  memset(p, 0, sizeof *p);
+  p->afv_run = afv_own;
+  p->l = c.l;
+  p->v0 = c.v0;
+  p->Dr = c.Dr;
+  p->dt = c.dt;
+  p->steps = set[find_key("steps") - run_keys] ? c.steps : -1;
+  p->N = c.N;
+  p->frame_every = c.frame_every;
+  p->periodic = strcmp(c.box, "periodic") == 0;
+  p->L = box_side(&c);
+  p->cells = strcmp(c.cells, "none") != 0;
   return 1;
 }
 
@@ -1011,8 +1018,9 @@ int run_params_read(const char *path, double *l, double *v0, double *Dr,
 ** and "KEY=VALUE\n" for every key of params.txt as afv run writes it
 ** (key_text), but quiet and checkpoint_every, which change nothing the
 ** run computes, and cells, a path read relative to where params.txt is
-** read from (a run's own copy is always cells.txt).  A summary copied from another job (another id, seed or
-** point) or from a run edited since has another fingerprint. */
+** read from (a run's own copy is always cells.txt).  A summary copied
+** from another job (another id, seed or point) or from a run edited since
+** has another fingerprint. */
 static unsigned long long fnv1a(unsigned long long h, const char *text)
 {
   for (; *text; text++) {

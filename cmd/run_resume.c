@@ -12,6 +12,7 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <stdarg.h>
@@ -163,6 +164,62 @@ static int obs_agrees(ckpt_trust *T)
   return 1;
 }
 
+/* The little-endian IEEE float64 at p (the trajectory's order, io.c). */
+static double le_f64(const unsigned char *p)
+{
+  uint64_t u = 0;
+  double x;
+  int k;
+  for (k = 7; k >= 0; k--) u = u << 8 | p[k];
+  memcpy(&x, &u, sizeof x);
+  return x;
+}
+
+/* The largest |v0| of the run (the cells file's column, if it has one). */
+static double largest_v0(const run_state *R)
+{
+  double v = fabs(R->cfg.v0);
+  int i;
+  if (R->cells.has[AFV_COL_V0])
+    for (i = 0, v = 0; i < R->cells.n; i++)
+      v = fmax(v, fabs(R->cells.col[AFV_COL_V0][i]));
+  return v;
+}
+
+/* The centres of the last frame (its step; its cells from byte from of fd)
+** are the checkpoint's, bit for bit, where step is the checkpoint's, else
+** within MOVE BOUND (cmd/report.c) of them: (checkpoint step - step) x
+** (AFV_MAX_STEP_DISP l + |v0| dt).  (A last frame with x = 1e300 was
+** resumed, and appended to, before.) */
+static int last_frame_agrees(ckpt_trust *T, int fd, long long from,
+                             long long step)
+{
+  const run_state *R = T->R;
+  const double *r = T->ck->r;
+  size_t bytes = (size_t)T->ck->n * AFV_TRAJ_CELL_BYTES;
+  double bound = (double)(T->ck->step - step)
+                 * (AFV_MAX_STEP_DISP * R->cfg.l + largest_v0(R) * R->cfg.dt);
+  unsigned char *cells = malloc(bytes + 1);
+  char why[224];
+  int i, bad = -1;
+  if (cells && read_span(fd, from, from + (long long)bytes, (char *)cells,
+                         bytes + 1))
+    for (i = 0, bad = 0; bad == 0 && i < T->ck->n; i++) {
+      const unsigned char *c = cells + (size_t)i * AFV_TRAJ_CELL_BYTES;
+      bad = !(fabs(le_f64(c) - r[2*i]) <= bound
+              && fabs(le_f64(c + 8) - r[2*i+1]) <= bound) ? i + 1 : 0;
+    }
+  free(cells);
+  if (bad == 0) return 1;
+  if (bad < 0)
+    return untrusted(T, OUT_TRAJ, "cannot be read at its last frame");
+  snprintf(why, sizeof why, "ends with the frame of step %lld, in which cell "
+           "%d is not within %g of the checkpoint's state (%lld steps of at "
+           "most %g l + |v0| dt)", step, bad - 1, bound,
+           T->ck->step - step, AFV_MAX_STEP_DISP);
+  return untrusted(T, OUT_TRAJ, why);
+}
+
 /* trajectory.dat (format 2, io.c): its text header line, then frames of
 ** AFV_TRAJ_FRAME_HEAD + AFV_TRAJ_CELL_BYTES N bytes (step and time, which
 ** afv_traj_frame_head decodes, then the cells); the file must end, at the
@@ -201,7 +258,7 @@ static int traj_agrees(ckpt_trust *T, int fd)
              "%lld", due_step);
     return untrusted(T, OUT_TRAJ, why);
   }
-  return 1;
+  return last_frame_agrees(T, fd, end - frame + AFV_TRAJ_FRAME_HEAD, step);
 }
 
 /* trajectory.dat (above); trajectory.xyz: the count line, a comment with

@@ -274,6 +274,69 @@ static void test_analyze_refuses_damaged_params(void)
   }
 }
 
+/* Writes x as a little-endian float64 (the trajectory's order, io.c)
+** over the x centre of cell i in frame k of the 64-cell trajectory at
+** root/rel; 1 if written. */
+static int patch_centre(const char *rel, int k, int i, double x)
+{
+  char path[512], line[256];
+  unsigned char b[8];
+  unsigned long long u;
+  long head;
+  FILE *fp;
+  int j, ok;
+  snprintf(path, sizeof path, "%s/%s", root, rel);
+  if (!(fp = fopen(path, "r+b"))) return 0;
+  ok = fgets(line, sizeof line, fp) != NULL;
+  head = (long)strlen(line);
+  memcpy(&u, &x, sizeof u);
+  for (j = 0; j < 8; j++) b[j] = (unsigned char)(u >> (8 * j));
+  ok = ok && fseek(fp, head + (long)k * (16 + 20 * 64) + 16 + 20L * i,
+                   SEEK_SET) == 0 && fwrite(b, 1, 8, fp) == 8;
+  return fclose(fp) == 0 && ok;
+}
+
+/* afv analyze refuses a trajectory that is not its finished run's: cut to
+** 10 of its 31 frames, a centre of 1e5 in frame 5, the header's box edited
+** to 4 or 1e308 (exit 2, nothing written; the code before analysed each,
+** D_s 3.5e6 for the centre); afv run --resume refuses a last frame with x
+** = 1e300, changing nothing (the code before appended to it). */
+static void test_trajectory_checked(void)
+{
+  static const char *const damage[][2] = {
+    {"truncate -s $(( $(head -1 trajectory.dat | wc -c) + 10 * 1296 )) "
+     "trajectory.dat", "records"},
+    {"sed -i '1s/periodic .*/periodic 4 4/' trajectory.dat", "trajectory"},
+    {"sed -i '1s/periodic .*/periodic 1e308 1e308/' trajectory.dat",
+     "trajectory"}, {"", "since the frame before, beyond"}};
+  size_t k;
+  int st;
+  CHECK(test_sh("./afv run " QUICK " --steps 300 --out %s/tr && ./afv "
+                "analyze %s/tr --steady-from 0 --lag 0.5 > /dev/null 2>&1",
+                root, root) == 0, "the run and its analysis");
+  for (k = 0; k < sizeof damage / sizeof damage[0]; k++) {
+    test_sh("rm -rf %s/tr1 && cp -r %s/tr %s/tr1 && rm -r %s/tr1/analysis "
+            "&& cd %s/tr1 && %s", root, root, root, root, root,
+            damage[k][0][0] ? damage[k][0] : "true");
+    if (!damage[k][0][0])
+      CHECK(patch_centre("tr1/trajectory.dat", 5, 3, 1e5), "patching");
+    st = test_sh("./afv analyze %s/tr1 --steady-from 0 --lag 0.5 > /dev/null "
+                 "2> %s/err.txt", root, root);
+    CHECK(st == 2 && err_says(damage[k][1]) && test_sh("test ! -e "
+          "%s/tr1/analysis", root) == 0, "damage %d: exit %d, want 2 "
+          "naming '%s', nothing written", (int)k, st, damage[k][1]);
+  }
+  CHECK(test_sh("./afv run " QUICK " --steps 20 --out %s/lf", root) == 0,
+        "the run to resume");
+  CHECK(patch_centre("lf/trajectory.dat", 2, 0, 1e300), "patching");
+  test_sh("cp -r %s/lf %s/lf0", root, root);
+  st = test_sh("./afv run --resume %s/lf --steps 10 --quiet 2> %s/err.txt",
+               root, root);
+  CHECK(st == 2 && err_says("is not within 0 of the checkpoint")
+        && test_sh("diff -r %s/lf %s/lf0 > /dev/null", root, root) == 0,
+        "a last frame with x = 1e300: exit %d, want 2, nothing changed", st);
+}
+
 /* ---- smaller ---------------------------------------------------------------- */
 /* A FIFO at log.txt makes a resume refuse at once, naming it (the code
 ** before blocked for ever in fopen; timeout ends it here, exit 124). */
@@ -424,6 +487,7 @@ void suite_hostile(void)
   RUN(test_two_analyses_serialise);
   RUN(test_resume_refuses_edited_keys);
   RUN(test_analyze_refuses_damaged_params);
+  RUN(test_trajectory_checked);
   RUN(test_fifo_log_does_not_block);
   RUN(test_unstable_relaxation);
   RUN(test_key_twice_and_nan_refused);
