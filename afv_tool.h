@@ -69,6 +69,9 @@ void afv_errorf(char *err, size_t errlen, const char *fmt, ...);
 ** flushes, closes and renames it over PATH.  An interrupted writer leaves
 ** PATH as it was.  On error the temporary (afv's own) is removed. */
 FILE *afv_atomic_open(const char *path, char *tmp, size_t tmplen);
+/* The PID of those names: 0 unless the program sets it (afv's main sets
+** its process id, so a killed writer's temporaries can be told apart). */
+extern long afv_atomic_pid;
 int   afv_atomic_commit(FILE *fp, const char *tmp, const char *path);
 
 /* ---- 2. run files: checkpoints, T1 reference, analysis (io.c, ...) ----- */

@@ -388,18 +388,23 @@ int afv_points_read(const char *path, int *n_out, double **r_out, char *err,
 ** user left at any name is never written through, truncated or removed
 ** (with the fixed name PATH.tmp and fopen "w", a link there made afv
 ** overwrite the file it points to, and a user's PATH.tmp was removed).
-** RAND mixes the clock, a counter and an address; a name that exists
-** already is skipped (up to ATOMIC_TRIES names). */
+** PID is afv_atomic_pid (the program sets it to its process id; the
+** library calls no getpid, which WASI lacks); RAND mixes the time, a
+** counter, an address and PID; a name that exists already is skipped (up
+** to ATOMIC_TRIES names). */
 #define ATOMIC_TRIES 64
 
+long afv_atomic_pid;
+
 /* 32 bits that differ between calls and processes (not for statistics:
-** they only make a name no one else has). */
+** they only make a name no one else has; O_EXCL makes it safe anyway). */
 static unsigned long atomic_salt(void)
 {
   static unsigned long counter;
-  uint64_t z = (uint64_t)time(NULL) ^ ((uint64_t)clock() << 20)
-               ^ ((uint64_t)(uintptr_t)&counter << 7) ^ (uint64_t)++counter
-                 * 0x9E3779B97F4A7C15ull ^ (uint64_t)getpid() << 40;
+  unsigned long here = 0;
+  uint64_t z = (uint64_t)time(NULL) ^ (uint64_t)(uintptr_t)&here << 16
+               ^ (uint64_t)++counter * 0x9E3779B97F4A7C15ull
+               ^ (uint64_t)afv_atomic_pid << 40;
   z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;   /* splitmix64's finaliser */
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
   return (unsigned long)((z ^ (z >> 31)) & 0xffffffffu);
@@ -411,7 +416,7 @@ FILE *afv_atomic_open(const char *path, char *tmp, size_t tmplen)
   FILE *fp;
   for (k = 0; k < ATOMIC_TRIES && fd < 0; k++) {
     if ((size_t)snprintf(tmp, tmplen, "%s.%ld.%08lx.tmp", path,
-                         (long)getpid(), atomic_salt()) >= tmplen) {
+                         afv_atomic_pid, atomic_salt()) >= tmplen) {
       errno = ENAMETOOLONG;
       return NULL;
     }

@@ -722,12 +722,7 @@ static int make_points(sweep_table *T)
   }
   if (!group_points(T, order)) goto done;
   snprintf(path, sizeof path, "%s/analysis.txt", T->dir);
-  if (!(T->has_args = stat(path, &T->analysis_args) == 0)) {
-    fprintf(stderr, "afv collect: %s: %s (afv sweep writes it: the "
-            "analysis every job's summary must be of)\n", path,
-            strerror(errno));
-    goto done;
-  }
+  T->has_args = stat(path, &T->analysis_args) == 0;   /* else refused */
   for (j = 0; j < T->njobs; j++) {
     verify_job(T, j);
     if (T->jobs[j].state != JOB_DONE) continue;
@@ -1342,6 +1337,18 @@ static void report_beta(const sweep_table *T)
            "means are over the other seeds)\n", some, tabled);
 }
 
+/* DIR/analysis.txt, the analysis every summary must be of (afv sweep
+** writes it): 1, or 0 with a message if it is not there (a deleted one
+** let every summary, of any analysis, pass). */
+static int analysis_args_there(const sweep_table *T)
+{
+  if (T->has_args) return 1;
+  fprintf(stderr, "afv collect: %s/analysis.txt: %s (afv sweep writes it: "
+          "the analysis every job's summary must be of)\n", T->dir,
+          strerror(ENOENT));
+  return 0;
+}
+
 int cmd_collect(int argc, char **argv)
 {
   sweep_table T;
@@ -1359,7 +1366,8 @@ int cmd_collect(int argc, char **argv)
   }
   if (!T.dir) return bad_input("collect: missing DIR (see afv collect --help)");
   if (strlen(T.dir) > RUN_PATH_MAX - 128) return bad_input("collect: DIR too long");
-  ok = read_points(&T) && make_points(&T) && !mixes_cap(&T);
+  ok = read_points(&T) && make_points(&T) && !mixes_cap(&T)
+       && analysis_args_there(&T);
   if (ok) {
     missing = report_missing(&T);
     ok = write_one(T.dir, "table.csv", write_table, &T)

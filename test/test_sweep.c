@@ -617,6 +617,7 @@ static void collect_verifies_jobs(void)
 static void collect_refuses_mixed_cap(void)
 {
   shell("rm -rf %s/mc && mkdir -p %s/mc/jobs", base);
+  shell("touch %s/mc/analysis.txt%.0s", base);   /* afv sweep writes it */
   write_rel("mc/points.csv", "id,P0,seed\n0001,4,1\n0002,4,2\n");
   write_rel("mc/jobs/0001.conf", "P0 4\ncap 0\n");
   write_rel("mc/jobs/0002.conf", "P0 4\ncap 0.45\n");
