@@ -109,57 +109,92 @@ typedef struct run_args {
   int cont;               /* --continue: fresh, resumed or left alone */
 } run_args;
 
-/* ---- run.c ---- */
-int obs_t1_reference(obs_analysis *an, afv_sim *s,
-    const char *dir, int resume);
+/* Each call's contract is at its definition; here, a line each.  Calls
+** that return an exit status print their message; "0 with err" calls
+** leave it in err. */
+
+/* ---- run.c: the job ------------------------------------------------------ */
+/* C(0) of the t1 column: made and written (resume 0), or read back. */
+int obs_t1_reference(obs_analysis *an, afv_sim *s, const char *dir,
+                     int resume);
+/* A line in log.txt and, unless quiet, on stderr. */
 void run_log(run_state *R, const char *fmt, ...);
+/* log.txt: the afv (version, commit) that writes what follows. */
 void log_build(run_state *R, const char *what);
+/* The model and dynamics of a configuration (per-cell columns borrowed). */
 void cfg_model(const run_cfg *c, const afv_cells *cl, afv_params *p,
-    afv_box *b, afv_dyn *d);
+               afv_box *b, afv_dyn *d);
+/* The start, unrelaxed, in R->sim; an afv status, the reason in err. */
 int run_start(run_state *R, char *err, size_t errlen);
+/* The append-only files and log.txt, fresh (ck NULL) or cut back to ck. */
 int open_outputs(run_state *R, const afv_checkpoint *ck);
+/* Integrates to cfg.steps; an exit status. */
 int run_loop(run_state *R);
+/* "DIR/NAME: cannot write: REASON" (errno); EXIT_BAD_INPUT. */
 int write_failed(run_state *R, const char *name);
+/* afv run --out DIR; an exit status. */
 int run_fresh(run_state *R, const run_args *a, int argc, char **argv);
 
-/* ---- run_config.c ---- */
+/* ---- run_config.c: the keys ---------------------------------------------- */
 void cfg_defaults(run_cfg *cfg);
+/* A config or params.txt into cfg, set[k] the line of key k. */
 int read_config(const char *path, run_cfg *cfg, int *set, char *err,
-    size_t errlen);
+                size_t errlen);
+/* L = sqrt(N pi l^2 / phi). */
 double box_side(const run_cfg *c);
+/* Prefixes "path:line: " to a message that starts with a key of set. */
 void locate_error(char *err, size_t errlen, const int *set,
-    const char *path);
+                  const char *path);
+/* Range checks (reads the cells file into cl); 0 with err. */
 int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
-    size_t errlen);
+                 size_t errlen);
+/* DIR/params.txt, every key and THE RECORD, atomically. */
 int write_params(const char *dir, const run_cfg *c, const char *cells);
+/* params.txt's keys against THE RECORD (a key edited since); 0 with err. */
 int record_agrees(const char *path, const run_cfg *c, const int *set,
-    char *err, size_t errlen);
+                  char *err, size_t errlen);
+/* DIR/cells.txt, the run's copy of its cells file. */
 int write_cells_copy(const char *dir, const afv_cells *cl);
+/* The first pass over the command line: 1, 0 (bad), -1 (--help). */
 int scan_args(int argc, char **argv, run_args *a);
+/* Defaults, --config, --KEY VALUE, checked; 0 or an exit status. */
 int requested_cfg(run_cfg *cfg, afv_cells *cl, const run_args *a,
-    int argc, char **argv, int *set);
+                  int argc, char **argv, int *set);
+/* 0, or an exit status for a params.txt of afv 0.1.0. */
 int written_after_0_1_0(const char *params);
+/* 1 afv's params.txt, 0 none, -1 a user's (or not a regular file). */
 int params_written_by_afv(const char *path);
+/* --continue: the keys asked are DIR's run's; 0 or an exit status. */
 int same_run_asked(const run_args *a, int argc, char **argv);
 
-/* ---- run_compute.c ---- */
+/* ---- run_compute.c: what a run can compute ------------------------------- */
+/* 1 if everything recorded of the state is finite, else msg says what. */
 int state_finite(afv_sim *s, char *msg, size_t len);
+/* The state of R->sim and the run's keys computable; 0 with err. */
 int run_computable(const run_state *R, const char *where, char *err,
-    size_t errlen);
-int start_computable(const run_cfg *cfg, const afv_cells *cl,
-    char *err, size_t errlen);
+                   size_t errlen);
+/* The start of cfg built and checked as afv run does; 0 with err. */
+int start_computable(const run_cfg *cfg, const afv_cells *cl, char *err,
+                     size_t errlen);
 
-/* ---- run_dir.c ---- */
+/* ---- run_dir.c: the run directory ---------------------------------------- */
+/* "DIR is in use by process PID ..." (pid <= 0: another process). */
 int report_in_use(const char *dir, long pid);
+/* DIR's lock: flock on DIR, fcntl on observables.csv; 1 if held. */
 int lock_run_dir(run_state *R, int create);
+/* A write lock on fd's file; 1 if held, else 0 with a message. */
 int run_file_lock(const char *dir, int fd, const char *path);
+/* An append-only file: regular, never through a link, cut, locked. */
 FILE *run_file_open(run_state *R, const char *name, long long size);
+/* 1 if no link, FIFO or directory is at a run file's name. */
 int run_files_regular(const char *dir);
 void unlock_run_dir(run_state *R);
+/* A fresh run's DIR: checked, created, locked, cleared; 1 or 0. */
 int make_out_dir(run_state *R);
+/* Removes what a fresh run made (an unstable relaxation). */
 void discard_run(run_state *R);
 
-/* ---- run_resume.c ---- */
+/* ---- run_resume.c: --resume and --continue ------------------------------- */
 int run_resume(run_state *R, const run_args *a);
 int run_continue(run_state *R, run_args *a, int argc, char **argv);
 
