@@ -193,6 +193,8 @@ void unlock_run_dir(run_state *R);
 int make_out_dir(run_state *R);
 /* Removes what a fresh run made (an unstable relaxation). */
 void discard_run(run_state *R);
+/* Removes the temporaries of killed writers (NAME.PID.RAND.tmp, PID gone). */
+void remove_stale_temporaries(const char *dir);
 
 /* ---- run_resume.c: --resume and --continue ------------------------------- */
 int run_resume(run_state *R, const run_args *a);

@@ -11,6 +11,7 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <stdarg.h>
@@ -438,6 +439,7 @@ int make_out_dir(run_state *R)
   if (!lock_run_dir(R, 1) || holds_run(R) || !run_files_regular(dir))
     return 0;
   clear_unfinished_run(dir);
+  remove_stale_temporaries(dir);
   return 1;
 }
 
@@ -455,4 +457,44 @@ void discard_run(run_state *R)
     remove(path);
   }
   if (R->made_dir) rmdir(R->dir);
+}
+
+/* 1 if name is a temporary of afv_atomic_open (io.c) of a file of a run,
+** NAME.PID.RAND.tmp with NAME one of run_files or a snapshot, whose
+** process PID is gone (kill(PID, 0): ESRCH): a killed writer's. */
+static int stale_temporary(const char *name)
+{
+  char base[300];
+  const char *end = name + strlen(name), *rand, *pid;
+  size_t k;
+  long p;
+  if (end - name < 15 || strcmp(end - 4, ".tmp") != 0) return 0;
+  rand = end - 13;                       /* ".XXXXXXXX.tmp" */
+  if (rand[0] != '.' || strspn(rand + 1, "0123456789abcdef") != 8) return 0;
+  for (pid = rand - 1; pid > name && pid[-1] != '.'; pid--) {}
+  if (pid <= name + 1 || strspn(pid, "0123456789") != (size_t)(rand - pid)
+      || rand - pid > 9)
+    return 0;
+  p = atol(pid);
+  snprintf(base, sizeof base, "%.*s", (int)(pid - 1 - name), name);
+  for (k = 0; k < sizeof run_files / sizeof run_files[0]; k++)
+    if (strcmp(base, run_files[k]) == 0) break;
+  if (k == sizeof run_files / sizeof run_files[0] && !is_snapshot(base))
+    return 0;
+  return p > 0 && kill((pid_t)p, 0) != 0 && errno == ESRCH;
+}
+
+/* Removes the temporaries a killed writer left in DIR (stale_temporary),
+** under the lock (no other afv process writes in DIR); nothing else. */
+void remove_stale_temporaries(const char *dir)
+{
+  char path[RUN_PATH_MAX + 300];
+  DIR *d = opendir(dir);
+  struct dirent *e;
+  while (d && (e = readdir(d)) != NULL)
+    if (stale_temporary(e->d_name)) {
+      snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+      remove(path);
+    }
+  if (d) closedir(d);
 }

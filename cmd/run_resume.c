@@ -482,6 +482,7 @@ int run_resume(run_state *R, const run_args *a)
       && write_params(R->dir, &R->cfg, R->cells.n ? "cells.txt" : "none")
          != AFV_OK)
     st = write_failed(R, "params.txt");
+  if (st == 0) remove_stale_temporaries(R->dir);
   if (st == 0 && !open_outputs(R, &ck)) st = EXIT_BAD_INPUT;
   afv_checkpoint_free(&ck);
   if (st != 0) return st;

@@ -132,6 +132,31 @@ static void test_user_files_never_removed(void)
         "analyze emptied a user's analysis.tmp/ or a linked directory");
 }
 
+/* The temporaries a killed writer left (NAME.PID.RAND.tmp, NAME a run
+** file's, PID gone) are removed by the next writer; a user's file of a
+** similar name, another name's, or a live process's stays.  (The code
+** before wrote NAME.tmp, which a user could own; now each writer's name
+** is its own, and a killed one's would pile up.) */
+static void test_stale_temporaries_removed(void)
+{
+  int st;
+  CHECK(test_sh("./afv run " QUICK " --steps 20 --out %s/st", root) == 0,
+        "the run");
+  test_sh("cd %s/st && for f in checkpoint.txt.999999999.0badf00d.tmp "
+          "snap_000000010.svg.999999999.12345678.tmp checkpoint.txt.tmp "
+          "notes.999999999.0badf00d.tmp params.txt.%ld.0badf00d.tmp; do "
+          "echo x > $f; done", root, (long)getpid());
+  st = test_sh("./afv run --resume %s/st --steps 10 --quiet", root);
+  CHECK(st == 0, "the resume: exit %d", st);
+  CHECK(test_sh("cd %s/st && test ! -e checkpoint.txt.999999999.0badf00d.tmp"
+                " && test ! -e snap_000000010.svg.999999999.12345678.tmp",
+                root) == 0, "a killed writer's temporaries were left");
+  CHECK(test_sh("cd %s/st && test -e checkpoint.txt.tmp && test -e "
+                "notes.999999999.0badf00d.tmp && test -e "
+                "params.txt.%ld.0badf00d.tmp", root, (long)getpid()) == 0,
+        "a file afv did not leave was removed");
+}
+
 /* ---- one writer per run directory ---------------------------------------- */
 /* With a run live in DIR, each file of the run replaced by a copy (a new
 ** inode), then deleted, one after the other (so that at the end none of
@@ -483,6 +508,7 @@ void suite_hostile(void)
   test_sh("rm -rf %s && mkdir -p %s", root, root);
   RUN(test_links_never_followed);
   RUN(test_user_files_never_removed);
+  RUN(test_stale_temporaries_removed);
   RUN(test_lock_holds_whatever_is_replaced);
   RUN(test_two_analyses_serialise);
   RUN(test_resume_refuses_edited_keys);
