@@ -101,8 +101,9 @@ print-lib-sources:
 
 # The program, in cmd/: main.c dispatches to the commands (cmd/cli.h lists
 # their files); they include the library's headers from the top level.
-CLI_SRC  = $(addprefix cmd/,main.c cli.c inspect.c run.c report.c sweep.c \
-           collect.c paper.c paper_data.c claims.c) $(FITS_SRC)
+CLI_SRC  = $(addprefix cmd/,main.c cli.c inspect.c run.c run_config.c \
+           run_compute.c run_dir.c run_resume.c report.c sweep.c collect.c \
+           paper.c paper_data.c claims.c) $(FITS_SRC)
 CLI_OBJ  = $(CLI_SRC:.c=.o)
 
 afv: $(CLI_OBJ) libafv.a .build-flags
@@ -113,6 +114,7 @@ afv: $(CLI_OBJ) libafv.a .build-flags
 
 $(CLI_OBJ): cmd/cli.h cmd/fits.h
 cmd/paper.o cmd/paper_data.o cmd/claims.o: cmd/paper.h
+$(filter cmd/run%,$(CLI_OBJ)): cmd/run.h
 
 cmd/%.o: cmd/%.c $(LIB_H) cmd/cli.h cmd/fits.h .build-flags
 	$(CC) $(CFLAGS) -I. -c -o $@ $<
@@ -285,10 +287,11 @@ fuzz/build/%.o: %.c $(LIB_H) cmd/cli.h cmd/fits.h
 fuzz/build/libafv_fuzz.a: $(FUZZ_OBJ)
 	$(AR) rcs $@ $(FUZZ_OBJ)
 
-# (cmd/run.c: the config and collect harnesses include it; cmd/collect.c:
+# (cmd/run*.c: the config and collect harnesses include them; cmd/collect.c:
 # the collect harness)
 fuzz/build/fuzz_%: fuzz/fuzz_%.c fuzz/build/libafv_fuzz.a $(wildcard fuzz/*.h) \
-                   cmd/run.c cmd/collect.c cmd/cli.h $(LIB_H)
+                   $(wildcard cmd/run*.c) cmd/run.h cmd/collect.c cmd/cli.h \
+                   $(LIB_H)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -I. -o $@ $< \
 	  fuzz/build/libafv_fuzz.a -lm
 

@@ -60,10 +60,15 @@ void afv_lines_close(afv_lines *L);
 /* snprintf into err (if err != NULL): the library's way to explain a status. */
 void afv_errorf(char *err, size_t errlen, const char *fmt, ...);
 
-/* Atomic output: write to the FILE from afv_atomic_open (PATH.tmp, name in
-** tmp), then afv_atomic_commit flushes, closes and renames it over PATH.
-** An interrupted writer leaves PATH as it was.  On error the .tmp is removed. */
+/* Atomic output: write to the FILE from afv_atomic_open (a new file
+** PATH.PID.RAND.tmp created exclusively, never through a link; its name in
+** tmp, which needs room for PATH and 32 bytes), then afv_atomic_commit
+** flushes, closes and renames it over PATH.  An interrupted writer leaves
+** PATH as it was.  On error the temporary (afv's own) is removed. */
 FILE *afv_atomic_open(const char *path, char *tmp, size_t tmplen);
+/* The PID of those names: 0 unless the program sets it (afv's main sets
+** its process id, so a killed writer's temporaries can be told apart). */
+extern long afv_atomic_pid;
 int   afv_atomic_commit(FILE *fp, const char *tmp, const char *path);
 
 /* ---- 2. run files: checkpoints, T1 reference, analysis (io.c, ...) ----- */

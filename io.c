@@ -31,6 +31,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <fcntl.h>
+#include <time.h>
+#include <unistd.h>
 
 /* Initial capacity of the points array; small so that growth is exercised
 ** by every test that reads more than a handful of cells. */
@@ -377,13 +380,57 @@ int afv_points_read(const char *path, int *n_out, double **r_out, char *err,
 }
 
 /* ---- atomic files ------------------------------------------------------ */
-/* A file is written as PATH.tmp and renamed over PATH only when complete:
-** rename is atomic on POSIX file systems, so a reader (or a resumed run)
-** sees the old file or the new one, never half of one. */
+/* A file is written as a temporary PATH.PID.RAND.tmp and renamed over PATH
+** only when complete: rename is atomic on POSIX file systems, so a reader
+** (or a resumed run) sees the old file or the new one, never half of one.
+** The temporary is created exclusively (O_CREAT | O_EXCL | O_NOFOLLOW), so
+** it is always a new file of this process: a file or a symbolic link a
+** user left at any name is never written through, truncated or removed
+** (with the fixed name PATH.tmp and fopen "w", a link there made afv
+** overwrite the file it points to, and a user's PATH.tmp was removed).
+** PID is afv_atomic_pid (the program sets it to its process id; the
+** library calls no getpid, which WASI lacks); RAND mixes the time, a
+** counter, an address and PID; a name that exists already is skipped (up
+** to ATOMIC_TRIES names). */
+#define ATOMIC_TRIES 64
+
+long afv_atomic_pid;
+
+/* 32 bits that differ between calls and processes (not for statistics:
+** they only make a name no one else has; O_EXCL makes it safe anyway). */
+static unsigned long atomic_salt(void)
+{
+  static unsigned long counter;
+  unsigned long here = 0;
+  uint64_t z = (uint64_t)time(NULL) ^ (uint64_t)(uintptr_t)&here << 16
+               ^ (uint64_t)++counter * 0x9E3779B97F4A7C15ull
+               ^ (uint64_t)afv_atomic_pid << 40;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;   /* splitmix64's finaliser */
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return (unsigned long)((z ^ (z >> 31)) & 0xffffffffu);
+}
+
 FILE *afv_atomic_open(const char *path, char *tmp, size_t tmplen)
 {
-  if ((size_t)snprintf(tmp, tmplen, "%s.tmp", path) >= tmplen) return NULL;
-  return fopen(tmp, "w");
+  int k, fd = -1;
+  FILE *fp;
+  for (k = 0; k < ATOMIC_TRIES && fd < 0; k++) {
+    if ((size_t)snprintf(tmp, tmplen, "%s.%ld.%08lx.tmp", path,
+                         afv_atomic_pid, atomic_salt()) >= tmplen) {
+      errno = ENAMETOOLONG;
+      return NULL;
+    }
+    fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0666);
+    if (fd < 0 && errno != EEXIST) return NULL;
+  }
+  if (fd < 0) return NULL;   /* errno: EEXIST */
+  if (!(fp = fdopen(fd, "w"))) {
+    int why = errno;
+    close(fd);
+    remove(tmp);
+    errno = why;
+  }
+  return fp;
 }
 
 /* On failure errno keeps the system's reason (ENOSPC on a full disk), not

@@ -68,7 +68,9 @@ const char *real_problem(const char *text, double *out)
   errno = 0;
   *out = strtod(text, &end);
   if (end == text || *end) return "is not a number";
-  if (isnan(*out) || isinf(*out) || (errno == ERANGE && fabs(*out) > 1))
+  if (isnan(*out))
+    return "is not a number (nan)";
+  if (isinf(*out) || (errno == ERANGE && fabs(*out) > 1))
     return "is not a finite number (beyond the largest double, "
            "1.7976931348623157e+308)";
   if (errno == ERANGE || (*out != 0 && fabs(*out) < DBL_MIN))

@@ -5,7 +5,8 @@
 **   main.c     the dispatcher: afv COMMAND ... -> cmd_COMMAND
 **   cli.c      option parsing and messages shared by the commands
 **   inspect.c  eval, check, draw, meanfield: one configuration
-**   run.c      run: the simulation job (run directory, outputs, resume)
+**   run*.c     run: the simulation job (run directory, outputs, resume;
+**              cmd/run.h lists its files)
 **   report.c   analyze: a run's order parameters and plots
 **   sweep.c    sweep: a grid of runs and its runners (make, parallel, SLURM)
 **   collect.c  collect: a sweep's table, missing jobs, fits and figures
@@ -106,7 +107,7 @@ void print_wrapped(const char *text);
 int double_option(int argc, char **argv, int *k, const char *name,
                   double *out, int *bad);
 
-/* ---- run.c: the keys of afv run, for afv sweep -------------------------- */
+/* ---- run_config.c: the keys of afv run, for afv sweep ------------------ */
 /* 1 if NAME is a key of afv run and TEXT a value it accepts; else 0 and
 ** err says why ("KEY: 'TEXT' is not ...", or "unknown key"). */
 int run_key_check(const char *name, const char *text, char *err,
@@ -117,13 +118,36 @@ int run_key_check(const char *name, const char *text, char *err,
 int run_config_write(const char *path, int n, const char *const *names,
                      const char *const *values, char *err, size_t errlen);
 
-/* ---- run.c: tolerant readers of a run directory ------------------------- */
+/* ---- run_config.c, run_dir.c: readers of a run directory --------------- */
 /* The value of key in the params.txt at path, if it is a whole finite
 ** number (the last one, if the key repeats): 1 if found, 0 if not, -1 if
 ** the file cannot be read.  Lines are read whole (afv_lines). */
 int run_param(const char *path, const char *key, double *v);
 /* params.txt of a run: picks l, v0 and Dr.  0 if unreadable. */
 int read_run_params(const char *path, double *l, double *v0, double *Dr);
+/* A run's params.txt as afv analyze reads it (run_params_read). */
+typedef struct run_params_info {
+  int afv_run;             /* 1: written by afv run (every key is there) */
+  double l, v0, Dr, dt;    /* the model's and the dynamics' */
+  long long steps;         /* -1 if a hand-written one has none */
+  long long N, frame_every;
+  int periodic;            /* 1: box periodic, of side L */
+  double L;                /* sqrt(N pi l^2 / phi) */
+  int cells;               /* 1: per-cell values from a cells file */
+} run_params_info;
+/* params.txt of a run read whole, as afv run reads it: l, v0, Dr, which
+** it must hold, and steps (-1 if a hand-written one has none; afv's own
+** must).  1, 0 if there is no file at path, -1 with the reason in err
+** (afv analyze refuses it: no silent defaults). */
+int run_params_read(const char *path, run_params_info *p, char *err,
+                    size_t errlen);
+/* The fingerprint of the run with the params.txt at path and the id id
+** (its directory's name, a sweep's job id): 16 hex digits into out, of
+** every key that changes what the run computes (but cells, a path), and
+** the id.  1, 0 if
+** there is no file at path, -1 with the reason in err. */
+int run_fingerprint(const char *path, const char *id, char *out, size_t len,
+                    char *err, size_t errlen);
 /* l of the run whose trajectory is at path, from params.txt beside it. */
 void run_l_beside(const char *path, double *l);
 /* The process id of the afv run writing in DIR (it holds the lock on

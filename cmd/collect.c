@@ -119,14 +119,18 @@ static const char *collect_usage =
   "                   map_D_eff.svg, map_msd_beta.svg (threshold contour in\n"
   "                   black, the fitted boundary dashed) and boundary.svg\n"
   "A job is tabled only when verified: its summary.txt is complete (every\n"
-  "value above, a number; N_GC/N, Omega, the cluster count and the T1\n"
-  "rate finite), its run's params.txt holds the values of its points.csv\n"
-  "row and of jobs/ID.conf, the run finished (its checkpoint at its last\n"
-  "step, final.svg written), the analysis saw every frame of it and is not\n"
-  "older than DIR/analysis.txt (the sweep's analysis arguments).  Every\n"
-  "other job"
-  " is damaged, with the reason.  points.csv must have distinct ids and\n"
-  "distinct (state point, seed) rows, values that afv run accepts.\n"
+  "value above a number, once; N_GC/N and Omega in 0 .. 1, the cluster\n"
+  "count >= 1, the T1 rate finite >= 0, D_eff finite >= 0, or nan where\n"
+  "v0 = 0 or Dr = 0, tau_NGC not -inf, msd_beta finite or nan) and of\n"
+  "this job's run (its run_id the job's id, its run_fingerprint that of\n"
+  "the run's params.txt, its cell count N), its run's params.txt holds the\n"
+  "values of its points.csv row and of jobs/ID.conf, the run finished\n"
+  "(its checkpoint at its last step, final.svg written), the analysis saw\n"
+  "every frame of it and is not older than DIR/analysis.txt (the sweep's\n"
+  "analysis arguments).  Every other job is missing or damaged, with the\n"
+  "reason.  points.csv must have distinct key columns, a job at least,\n"
+  "distinct ids and distinct (state point, seed) rows, values that afv run\n"
+  "accepts; DIR/analysis.txt must be there.\n"
   "Exit status: 0 every job verified, 1 some missing or damaged (the rest\n"
   "is still written), 2 bad input.\n";
 
@@ -208,6 +212,13 @@ static int read_header(sweep_table *T, FILE *fp, const char *path)
   }
   T->nkeys = n - 2;
   for (k = 0; k < T->nkeys; k++) {
+    int m;
+    for (m = 0; m <= k; m++)   /* f[0] is id; a key twice: which one? */
+      if (!strcmp(f[m], f[k + 1])) {
+        fprintf(stderr, "afv collect: %s:1: column '%s' repeats column %d\n",
+                path, f[k + 1], m + 1);
+        return 0;
+      }
     snprintf(T->key[k], FIELD_MAX, "%s", f[k + 1]);
     if (!run_key_check(T->key[k], "1", err, sizeof err)
         && strstr(err, "unknown")) {
@@ -310,6 +321,11 @@ static int read_points(sweep_table *T)
     T->njobs++;
   }
   fclose(fp);
+  if (T->njobs == 0) {
+    fprintf(stderr, "afv collect: %s: no job (the header alone): not a "
+            "sweep of afv sweep\n", path);
+    return 0;
+  }
   return 1;
 }
 
@@ -425,7 +441,7 @@ static int kv_read(const char *path, kv_file *F, char *why, size_t len)
 {
   char line[512];
   FILE *fp = open_regular(path);
-  int st, lineno = 0;
+  int st, lineno = 0, k;
   F->n = 0;
   if (!fp) {
     snprintf(why, len, "%s", open_error());
@@ -441,6 +457,11 @@ static int kv_read(const char *path, kv_file *F, char *why, size_t len)
       snprintf(why, len, "line %d is not KEY VALUE", lineno);
       return fclose(fp), 0;
     }
+    for (k = 0; k < F->n; k++)   /* last-wins would hide one */
+      if (!strcmp(F->key[k], F->key[F->n])) {
+        snprintf(why, len, "line %d: %s given twice", lineno, F->key[k]);
+        return fclose(fp), 0;
+      }
     F->n++;
   }
   fclose(fp);
@@ -474,24 +495,45 @@ static int must_be_finite(int k)
   return k == P_NGC || k == P_NCL || k == P_OMEGA || k == P_T1;
 }
 
-/* summary.txt of J, complete: its order parameters into J->v, its frame
-** count into *frames. */
-static int summary_ok(const sweep_table *T, job *J, long *frames,
-                      struct stat *when)
+/* The range of each order parameter (in the order of params[]), which a
+** summary.txt of afv analyze never leaves (ngc_frac_mean 7, omega_mean -3,
+** D_eff -5 or inf, msd_beta inf were "verified" before).  nan passes
+** here where must_be_finite allows it (D_eff at v0 = 0: tied_ok). */
+static const char *const range_text[N_PARAMS] = {
+  "0 .. 1", ">= 1", "0 .. 1", ">= 0, finite, or nan", "finite, inf or nan",
+  ">= 0", "finite or nan"};
+
+static int in_range(int k, double x)
+{
+  if (isnan(x)) return !must_be_finite(k);
+  switch (k) {
+  case P_NGC: case P_OMEGA: return x >= 0 && x <= 1;
+  case P_NCL: return x >= 1;
+  case P_DEFF: return x >= 0 && isfinite(x);
+  case P_TAU: return !isinf(x) || x > 0;   /* -1e-17: a rounded 0 */
+  case P_T1: return x >= 0;
+  default: return isfinite(x);   /* P_BETA */
+  }
+}
+
+/* summary.txt of J, complete (read into S): its order parameters into
+** J->v, each in its range, its frame count into *frames. */
+static int summary_ok(const sweep_table *T, job *J, kv_file *S,
+                      long *frames, struct stat *when)
 {
   char path[RUN_PATH_MAX + 96], why[256];
-  kv_file F;
+  const kv_file *F = S;
   const char *f;
   int k, st;
   double fr;
   snprintf(path, sizeof path, "%s/runs/%s/analysis/summary.txt", T->dir, J->id);
-  if ((st = kv_read(path, &F, why, sizeof why)) <= 0)
+  if ((st = kv_read(path, S, why, sizeof why)) <= 0)
     return st < 0 ? job_fails(J, JOB_MISSING, "")
                   : job_fails(J, JOB_DAMAGED, "summary.txt: %s", why);
   if (stat(path, when) != 0) return job_fails(J, JOB_DAMAGED, "summary.txt: "
                                               "%s", strerror(errno));
   for (k = 0; k < N_PARAMS; k++) {
-    const char *v = kv_get(&F, params[k].key);
+    const char *v = kv_get(F, params[k].key);
     if (!v) return job_fails(J, JOB_DAMAGED, "summary.txt lacks %s (an "
                              "incomplete analysis)", params[k].key);
     J->v[k] = number_of(v);
@@ -501,8 +543,11 @@ static int summary_ok(const sweep_table *T, job *J, long *frames,
     if (must_be_finite(k) && !isfinite(J->v[k]))
       return job_fails(J, JOB_DAMAGED, "summary.txt: %s %s is not finite",
                        params[k].key, v);
+    if (!in_range(k, J->v[k]))
+      return job_fails(J, JOB_DAMAGED, "summary.txt: %s %s is out of its "
+                       "range (%s)", params[k].key, v, range_text[k]);
   }
-  f = kv_get(&F, "frames");
+  f = kv_get(F, "frames");
   if (!f) return job_fails(J, JOB_DAMAGED, "summary.txt lacks frames (an "
                            "incomplete analysis)");
   /* a frame count, checked before the cast: 1e27 would overflow a long */
@@ -517,35 +562,36 @@ static int summary_ok(const sweep_table *T, job *J, long *frames,
 /* The run's params.txt holds the values of J's row of points.csv and of
 ** jobs/ID.conf (if there is one: afv sweep writes it); its steps and
 ** frame_every into *steps, *every. */
-static int params_ok(const sweep_table *T, job *J, int j, double *steps,
-                     double *every)
+static int params_ok(const sweep_table *T, job *J, int j, kv_file *Pf,
+                     double *steps, double *every)
 {
-  static kv_file P, C;  /* big: not on the stack */
+  static kv_file C;  /* big: not on the stack */
+  kv_file *const P = Pf;
   char path[RUN_PATH_MAX + 96], why[256];
   const char *v;
   int k, st;
   snprintf(path, sizeof path, "%s/runs/%s/params.txt", T->dir, J->id);
-  if ((st = kv_read(path, &P, why, sizeof why)) <= 0)
+  if ((st = kv_read(path, P, why, sizeof why)) <= 0)
     return job_fails(J, JOB_DAMAGED, "params.txt: %s", why);
   for (k = 0; k <= T->nkeys; k++) {
     const char *key = k < T->nkeys ? T->key[k] : "seed";
     const char *want = k < T->nkeys ? VAL(T, j, k) : J->seed;
-    if (!(v = kv_get(&P, key)) || !same_value(key, v, want))
+    if (!(v = kv_get(P, key)) || !same_value(key, v, want))
       return job_fails(J, JOB_DAMAGED, "params.txt has %s %s, points.csv %s "
                        "(not this job's run)", key, v ? v : "(none)", want);
   }
   snprintf(path, sizeof path, "%s/jobs/%s.conf", T->dir, J->id);
-  if ((st = kv_read(path, &C, why, sizeof why)) == 0)
+  if ((st = kv_read(path, &C, why, sizeof why)) <= 0)
     return job_fails(J, JOB_DAMAGED, "jobs/%s.conf: %s", J->id, why);
   for (k = 0; st > 0 && k < C.n; k++)
     if (strcmp(C.key[k], "version") && strcmp(C.key[k], "commit")
-        && (!(v = kv_get(&P, C.key[k])) || !same_value(C.key[k], v, C.val[k])))
+        && (!(v = kv_get(P, C.key[k])) || !same_value(C.key[k], v, C.val[k])))
       return job_fails(J, JOB_DAMAGED, "params.txt has %s %s, jobs/%s.conf "
                        "%s (not this job's run)", C.key[k], v ? v : "(none)",
                        J->id, C.val[k]);
-  v = kv_get(&P, "steps");
+  v = kv_get(P, "steps");
   *steps = v ? number_of(v) : NAN;
-  v = kv_get(&P, "frame_every");
+  v = kv_get(P, "frame_every");
   *every = v ? number_of(v) : NAN;
   if (!(*steps >= 0) || !(*every >= 0))
     return job_fails(J, JOB_DAMAGED, "params.txt lacks steps or "
@@ -593,16 +639,54 @@ static int finished_ok(const sweep_table *T, job *J, double steps,
   return 1;
 }
 
+/* summary.txt (S) is of J's run (params.txt, P): its run_id is J's id and
+** its run_fingerprint that of params.txt with that id (run_fingerprint; a
+** summary copied from another sweep, seed or job, or a run edited since,
+** has another), it counted N cells, and D_eff is a number where D_0 is
+** (v0 != 0, Dr > 0). */
+static int tied_ok(const sweep_table *T, job *J, const kv_file *S,
+                   const kv_file *P)
+{
+  char path[RUN_PATH_MAX + 96], print[32], err[2 * RUN_PATH_MAX];
+  const char *id = kv_get(S, "run_id"), *fp = kv_get(S, "run_fingerprint");
+  const char *cells = kv_get(S, "cells"), *N = kv_get(P, "N");
+  const char *v0 = kv_get(P, "v0"), *Dr = kv_get(P, "Dr");
+  if (!id || !fp)
+    return job_fails(J, JOB_DAMAGED, "summary.txt lacks run_id or "
+                     "run_fingerprint (written by an older afv analyze, or "
+                     "not by afv): remove runs/%s/analysis and run the "
+                     "runner again", J->id);
+  snprintf(path, sizeof path, "%s/runs/%s/params.txt", T->dir, J->id);
+  if (run_fingerprint(path, J->id, print, sizeof print, err, sizeof err) <= 0)
+    return job_fails(J, JOB_DAMAGED, "params.txt: %s", err);
+  if (strcmp(id, J->id) || strcmp(fp, print))
+    return job_fails(J, JOB_DAMAGED, "summary.txt is of run %s with "
+                     "fingerprint %s, but job %s's run has %s (copied from "
+                     "another run, or the run changed since its analysis)",
+                     id, fp, J->id, print);
+  if (!cells || !N || number_of(cells) != number_of(N))
+    return job_fails(J, JOB_DAMAGED, "summary.txt counts %s cells, params.txt "
+                     "has N %s", cells ? cells : "no", N ? N : "(none)");
+  if (isnan(J->v[P_DEFF]) && v0 && Dr && number_of(v0) != 0
+      && number_of(Dr) > 0)
+    return job_fails(J, JOB_DAMAGED, "summary.txt: D_eff nan, but v0 %s and "
+                     "Dr %s make D_0 a number", v0, Dr);
+  return 1;
+}
+
 /* Reads and verifies job j: JOB_DONE with its order parameters, else
 ** JOB_MISSING or JOB_DAMAGED with the reason. */
 static void verify_job(const sweep_table *T, int j)
 {
+  static kv_file S, P;   /* summary.txt, params.txt (big: not on the stack) */
   job *J = &T->jobs[j];
   double steps = 0, every = 0;
   long frames = 0;
   struct stat when;
-  if (summary_ok(T, J, &frames, &when) && params_ok(T, J, j, &steps, &every)
-      && finished_ok(T, J, steps, every, frames, &when))
+  if (summary_ok(T, J, &S, &frames, &when)
+      && params_ok(T, J, j, &P, &steps, &every)
+      && finished_ok(T, J, steps, every, frames, &when)
+      && tied_ok(T, J, &S, &P))
     J->state = JOB_DONE;
 }
 
@@ -638,7 +722,7 @@ static int make_points(sweep_table *T)
   }
   if (!group_points(T, order)) goto done;
   snprintf(path, sizeof path, "%s/analysis.txt", T->dir);
-  T->has_args = stat(path, &T->analysis_args) == 0;
+  T->has_args = stat(path, &T->analysis_args) == 0;   /* else refused */
   for (j = 0; j < T->njobs; j++) {
     verify_job(T, j);
     if (T->jobs[j].state != JOB_DONE) continue;
@@ -1172,7 +1256,8 @@ static int write_one(const char *dir, const char *name, table_writer fn,
   snprintf(path, sizeof path, "%s/%s", dir, name);
   if (!(fp = afv_atomic_open(path, tmp, sizeof tmp))
       || (fn(fp, T), afv_atomic_commit(fp, tmp, path)) != AFV_OK) {
-    fprintf(stderr, "afv collect: %s: cannot write\n", path);
+    fprintf(stderr, "afv collect: %s: cannot write: %s\n", path,
+            strerror(errno));   /* ENOSPC: "No space left on device" */
     return 0;
   }
   return 1;
@@ -1252,6 +1337,18 @@ static void report_beta(const sweep_table *T)
            "means are over the other seeds)\n", some, tabled);
 }
 
+/* DIR/analysis.txt, the analysis every summary must be of (afv sweep
+** writes it): 1, or 0 with a message if it is not there (a deleted one
+** let every summary, of any analysis, pass). */
+static int analysis_args_there(const sweep_table *T)
+{
+  if (T->has_args) return 1;
+  fprintf(stderr, "afv collect: %s/analysis.txt: %s (afv sweep writes it: "
+          "the analysis every job's summary must be of)\n", T->dir,
+          strerror(ENOENT));
+  return 0;
+}
+
 int cmd_collect(int argc, char **argv)
 {
   sweep_table T;
@@ -1269,13 +1366,15 @@ int cmd_collect(int argc, char **argv)
   }
   if (!T.dir) return bad_input("collect: missing DIR (see afv collect --help)");
   if (strlen(T.dir) > RUN_PATH_MAX - 128) return bad_input("collect: DIR too long");
-  ok = read_points(&T) && make_points(&T) && !mixes_cap(&T);
+  ok = read_points(&T) && make_points(&T) && !mixes_cap(&T)
+       && analysis_args_there(&T);
   if (ok) {
     missing = report_missing(&T);
     ok = write_one(T.dir, "table.csv", write_table, &T)
          && write_one(T.dir, "missing.txt", write_missing, &T);
     if (ok && !write_figures(T.dir, &T)) {
-      fprintf(stderr, "afv collect: %s/figures: cannot write\n", T.dir);
+      fprintf(stderr, "afv collect: %s/figures: cannot write: %s\n", T.dir,
+              strerror(errno));
       ok = 0;
     }
   }

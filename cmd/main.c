@@ -15,8 +15,11 @@
 ** Exit status: 0 success, 1 a check failed, 2 bad input or options,
 ** 3 a run stopped on an unstable step.
 */
+#define _POSIX_C_SOURCE 200809L  /* getpid */
 #include "afv.h"
 #include "cli.h"
+
+#include <unistd.h>
 
 #include <ctype.h>
 #include <stdio.h>
@@ -100,6 +103,7 @@ int main(int argc, char **argv)
 {
   size_t c;
   if (argc > 0 && argv[0]) program_name = argv[0];
+  afv_atomic_pid = (long)getpid();   /* in the names of temporary files */
   if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0
       || strcmp(argv[1], "help") == 0) {
     fputs(usage_text, argc < 2 ? stderr : stdout);

@@ -12,6 +12,8 @@
 #include <stddef.h>
 #include <string.h>
 #include <dirent.h>
+#include <fcntl.h>
+#include <sys/file.h>   /* flock: not POSIX, but in every libc afv meets */
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <time.h>
@@ -29,8 +31,9 @@ static const char *analyze_usage =
   "usage: afv analyze DIR [--lag L] [--steady-from T] [--l L] [--v0 V]"
   " [--Dr D]\n"
   "                   [--partial]\n\n"
-  "Reads DIR/trajectory.dat (and l, v0, Dr from DIR/params.txt; options\n"
-  "override) and writes DIR/analysis/:\n"
+  "Reads DIR/trajectory.dat (and l, v0, Dr from DIR/params.txt, which\n"
+  "must be read whole; options override) and writes DIR/analysis/ (two\n"
+  "analyses of one run at once: one after the other, each whole):\n"
   "  summary.txt  KEY VALUE: steady means and standard deviations of\n"
   "               N_GC/N, number of clusters and Omega; final T1; D_s,\n"
   "               D_eff = D_s / D_0 (D_0 = v0^2 / (2 Dr); nan at v0 = 0\n"
@@ -38,7 +41,10 @@ static const char *analyze_usage =
   "               tau_NGC; t1_rate (T1 events per cell per unit time\n"
   "               between steady frames); msd_beta (slope of log MSD_rel\n"
   "               vs log lag, lags 1% .. 10% of the window: ~0 caged,\n"
-  "               ~1 fluid); the window, the lag of D_s and its origins\n"
+  "               ~1 fluid); the window, the lag of D_s and its origins;\n"
+  "               run_id (DIR's name) and run_fingerprint (of the keys of\n"
+  "               params.txt and the id), by which afv collect ties the\n"
+  "               summary to its run\n"
   "  series.csv   time, ngc_frac, n_clusters, omega, t1 per frame\n"
   "  msd.csv      lag, msd, msd_rel (relative to contacting neighbours)\n"
   "  csd.csv      n, p(n): cluster size distribution over steady frames\n"
@@ -59,7 +65,11 @@ static const char *analyze_usage =
   "  --partial        analyse a run that has not finished (its checkpoint\n"
   "                   short of its steps, or afv run still writing in DIR)\n"
   "                   from the frames it has so far; without it such a run\n"
-  "                   is refused, exit status 1, nothing written\n";
+  "                   is refused, exit status 1, nothing written\n\n"
+  "The trajectory must be the run's: its header has params.txt's N and\n"
+  "box; a finished run's has the size and last frame its checkpoint\n"
+  "records; no centre moves between two frames S steps apart by more than\n"
+  "S (" AFV_STR(AFV_MAX_STEP_DISP) " l + |v0| dt) (a larger move is a jump on every step).\n";
 
 
 /* The steady window [steady_from, end] must hold two frames, and a lag
@@ -122,7 +132,7 @@ static int analyze_plots(const char *dir, const afv_analysis *a,
   int (*const draw[3])(FILE *, const afv_analysis *) = {
     afv_svg_msd, afv_svg_series, afv_svg_csd
   };
-  char path[RUN_PATH_MAX + 64], tmp[RUN_PATH_MAX + 96];
+  char path[RUN_PATH_MAX + 96], tmp[RUN_PATH_MAX + 160];
   int k;
   for (k = 0; k < 3; k++) {
     FILE *fp;
@@ -152,9 +162,9 @@ static int analyze_plots(const char *dir, const afv_analysis *a,
   return 0;
 }
 
-/* Removes the files in the staging folder dir (left by an analyze that was
-** killed or failed), and dir itself if rmdir_too. */
-static void stage_clear(const char *dir, int rmdir_too)
+/* Removes the files in the staging folder dir, this process's own (made
+** by stage_make, written by this process), and dir itself. */
+static void stage_clear(const char *dir)
 {
   char path[RUN_PATH_MAX + 320];
   DIR *d = opendir(dir);
@@ -165,7 +175,7 @@ static void stage_clear(const char *dir, int rmdir_too)
       remove(path);
     }
   if (d) closedir(d);
-  if (rmdir_too) rmdir(dir);
+  rmdir(dir);
 }
 
 /* Moves every file of the staging folder into out, summary.txt last (the
@@ -176,11 +186,6 @@ static int stage_commit(const char *stage, const char *out)
   DIR *d;
   struct dirent *e;
   int last;
-  if (mkdir(out, 0777) != 0 && errno != EEXIST) {
-    fprintf(stderr, "afv analyze: cannot create %s: %s\n", out,
-            strerror(errno));
-    return EXIT_BAD_INPUT;
-  }
   for (last = 0; last < 2; last++) {
     if (!(d = opendir(stage))) break;
     while ((e = readdir(d)))
@@ -201,31 +206,124 @@ static int stage_commit(const char *stage, const char *out)
   return 0;
 }
 
-/* Writes the analysis into DIR/analysis.tmp/, then, once every file is
-** written, moves them into DIR/analysis/: a full disk or any other write
-** error leaves DIR/analysis/ as it was. */
+/* The staging folder of this analysis: a new directory
+** DIR/analysis.tmp.PID.XXXXXX (mkdtemp: a name no one has, created
+** exclusively, never through a link), so two analyses of one run never
+** share one and a user's analysis.tmp/ (or a link there) is never
+** emptied or removed.  1, or 0 with a message. */
+static int stage_make(const char *dir, char *stage, size_t len)
+{
+  snprintf(stage, len, "%s/analysis.tmp.%ld.XXXXXX", dir, (long)getpid());
+  if (mkdtemp(stage)) return 1;
+  fprintf(stderr, "afv analyze: cannot create %s: %s\n", stage,
+          strerror(errno));
+  return 0;
+}
+
+/* Opens DIR/analysis/ (created if missing; a directory, never a link) and
+** holds an exclusive flock on it until *fd is closed: two analyses of one
+** run commit one after the other, so analysis/ holds one analysis whole.
+** Where the file system has no flock for directories (NFS), the analysis
+** goes on unlocked.  1, or 0 with a message. */
+static int analysis_lock(const char *out, int *fd)
+{
+  struct stat sb;
+  if (mkdir(out, 0777) != 0 && errno != EEXIST) {
+    fprintf(stderr, "afv analyze: cannot create %s: %s\n", out,
+            strerror(errno));
+    return 0;
+  }
+  if (lstat(out, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+    fprintf(stderr, "afv analyze: %s: not a directory (a link, or a file; "
+            "afv writes only into its own analysis/)\n", out);
+    return 0;
+  }
+  if ((*fd = open(out, O_RDONLY | O_DIRECTORY | O_NOFOLLOW)) < 0) {
+    fprintf(stderr, "afv analyze: %s: cannot open: %s\n", out,
+            strerror(errno));
+    return 0;
+  }
+  while (flock(*fd, LOCK_EX) != 0 && errno == EINTR) {}
+  return 1;
+}
+
+/* A params.txt that cannot be read whole (err: where and why): refused,
+** exit status 2, nothing written. */
+static int params_unreadable(const char *err)
+{
+  fprintf(stderr, "afv analyze: %s; analyze takes l, v0 and Dr from it and "
+          "uses no defaults for a damaged params.txt; nothing written\n",
+          err);
+  return EXIT_BAD_INPUT;
+}
+
+/* The name of directory dir (its last component, trailing '/' ignored)
+** into out. */
+static void dir_name(const char *dir, char *out, size_t len)
+{
+  size_t end = strlen(dir), start;
+  while (end > 1 && dir[end - 1] == '/') end--;
+  for (start = end; start > 0 && dir[start - 1] != '/'; start--) {}
+  snprintf(out, len, "%.*s", (int)(end - start), dir + start);
+}
+
+/* Appends the run's id (its directory's name) and fingerprint
+** (run_fingerprint: params.txt and the id) to the staged summary.txt, so
+** that afv collect can tie the summary to its run.  0, or EXIT_BAD_INPUT
+** with a message. */
+static int stage_fingerprint(const char *stage, const char *dir)
+{
+  char path[RUN_PATH_MAX + 96], id[RUN_PATH_MAX], print[32] = "none";
+  char err[2 * RUN_PATH_MAX];
+  FILE *fp;
+  int bad;
+  dir_name(dir, id, sizeof id);
+  snprintf(path, sizeof path, "%s/params.txt", dir);
+  if (run_fingerprint(path, id, print, sizeof print, err, sizeof err) < 0)
+    return params_unreadable(err);
+  snprintf(path, sizeof path, "%s/summary.txt", stage);
+  if (!(fp = fopen(path, "a"))) bad = 1;
+  else {
+    fprintf(fp, "run_id %s\nrun_fingerprint %s\n", id, print);
+    bad = fclose(fp) != 0;
+  }
+  if (bad)
+    fprintf(stderr, "afv analyze: %s: cannot write: %s\n", path,
+            strerror(errno));
+  return bad ? EXIT_BAD_INPUT : 0;
+}
+
+/* Writes the analysis into its own staging folder (stage_make), then,
+** once every file is written, moves them into DIR/analysis/ under its
+** lock: a full disk or any other write error leaves DIR/analysis/ as it
+** was, and a second analysis at the same time waits for the first's
+** commit. */
 static int analyze_write(const char *dir, const afv_analysis *a)
 {
-  char out[RUN_PATH_MAX + 32], stage[RUN_PATH_MAX + 32];
+  char out[RUN_PATH_MAX + 32], stage[RUN_PATH_MAX + 64];
   char err[RUN_PATH_MAX + 128];
+  int lock = -1, st;
   snprintf(out, sizeof out, "%s/analysis", dir);
-  snprintf(stage, sizeof stage, "%s/analysis.tmp", dir);
-  stage_clear(stage, 0);
-  if (mkdir(stage, 0777) != 0 && errno != EEXIST) {
-    fprintf(stderr, "afv analyze: cannot create %s: %s\n", stage,
-            strerror(errno));
-    return EXIT_BAD_INPUT;
-  }
+  if (!stage_make(dir, stage, sizeof stage)) return EXIT_BAD_INPUT;
   if (analyze_plots(stage, a, out) != 0) {
-    stage_clear(stage, 1);
+    stage_clear(stage);
     return EXIT_BAD_INPUT;
   }
   if (afv_analysis_write(a, stage, err, sizeof err) != AFV_OK) {
-    stage_clear(stage, 1);
+    stage_clear(stage);
     fprintf(stderr, "afv analyze: %s (%s is unchanged)\n", err, out);
     return EXIT_BAD_INPUT;
   }
-  if (stage_commit(stage, out) != 0) return EXIT_BAD_INPUT;
+  if (stage_fingerprint(stage, dir) != 0) {
+    stage_clear(stage);
+    return EXIT_BAD_INPUT;
+  }
+  st = analysis_lock(out, &lock) ? stage_commit(stage, out) : EXIT_BAD_INPUT;
+  if (lock >= 0) close(lock);
+  if (st != 0) {
+    stage_clear(stage);
+    return st;
+  }
   printf("frames %d (steady from %d)\nngc_frac_mean %.6g\nn_clusters_mean "
          "%.6g\nomega_mean %.6g\nt1_final %g\nD_s %.6g\nD_eff %.6g\n"
          "tau_NGC %.6g\nt1_rate %.6g\nmsd_beta %.6g\nwritten: %s/\n",
@@ -260,12 +358,12 @@ static int run_dir_readable(const char *dir)
 ** still writes in it (it holds the lock on observables.csv), or its
 ** checkpoint is short of the steps params.txt asks for (or missing, or
 ** unreadable), or it stopped before writing final.svg, its last output.
-** 0 if it finished, or if dir holds no afv run's params.txt with steps (a
-** trajectory from elsewhere: nothing to compare with). */
-static int run_unfinished(const char *dir, char *why, size_t len)
+** 0 if it finished, or if dir holds no params.txt (steps < 0: a
+** trajectory from elsewhere, nothing to compare with). */
+static int run_unfinished(const char *dir, long long steps, char *why,
+                          size_t len)
 {
   char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
-  double steps;
   long pid = run_lock_holder(dir);
   afv_checkpoint ck;
   long long at;
@@ -274,8 +372,7 @@ static int run_unfinished(const char *dir, char *why, size_t len)
              "holds the lock on %s/observables.csv)", pid, dir);
     return 1;
   }
-  snprintf(path, sizeof path, "%s/params.txt", dir);
-  if (run_param(path, "steps", &steps) != 1) return 0;
+  if (steps < 0) return 0;   /* no params.txt */
   snprintf(path, sizeof path, "%s/checkpoint.txt", dir);
   if (afv_checkpoint_read(path, &ck, err, sizeof err) != AFV_OK) {
     snprintf(why, len, "the run's end is unknown: %s", err);
@@ -284,19 +381,25 @@ static int run_unfinished(const char *dir, char *why, size_t len)
   at = ck.step;
   afv_checkpoint_free(&ck);
   snprintf(path, sizeof path, "%s/final.svg", dir);
-  if (at >= (long long)steps && access(path, F_OK) == 0) return 0;
+  if (at >= steps && access(path, F_OK) == 0) return 0;
   snprintf(why, len, "the run is unfinished: checkpoint.txt is at step %lld "
-           "of the %.0f in params.txt%s", at, steps, at >= (long long)steps
+           "of the %lld in params.txt%s", at, steps, at >= steps
            ? ", and final.svg, its last output, is missing" : "");
   return 1;
 }
 
 /* Refuses an unfinished run (exit EXIT_RUN_UNFINISHED), or with --partial
-** (accept) says that its frames so far are analysed; 0 to go on. */
-static int refuse_unfinished(const char *dir, int accept)
+** (accept) says that its frames so far are analysed; 0 to go on, with
+** *finished = 1 if the run is an afv run's that reached its end. */
+static int refuse_unfinished(const char *dir, long long steps, int accept,
+                             int *finished)
 {
   char why[2 * RUN_PATH_MAX + 256];
-  if (!run_unfinished(dir, why, sizeof why)) return 0;
+  *finished = 0;
+  if (!run_unfinished(dir, steps, why, sizeof why)) {
+    *finished = steps >= 0;
+    return 0;
+  }
   if (accept) {
     fprintf(stderr, "afv analyze: warning: %s: %s: analysing its frames so "
             "far (--partial)\n", dir, why);
@@ -307,81 +410,252 @@ static int refuse_unfinished(const char *dir, int accept)
   return EXIT_RUN_UNFINISHED;
 }
 
-int cmd_analyze(int argc, char **argv)
+/* ---- the trajectory is the run's ---------------------------------------- */
+/* afv analyze trusts a trajectory only as far as it agrees with its run
+** (an edited header box of 4 or 1e308, a file cut to 10 of its 31 frames,
+** a centre of 1e5 gave numbers before, D_s 3.5e6):
+**  - the header: params.txt's N cells, its box (periodic of side L = sqrt(N
+**    pi l^2 / phi), bit for bit, or open);
+**  - a finished run's: the size its checkpoint records, so every frame,
+**    the last one of the last frame step, its centres those of the
+**    checkpoint, bit for bit, where that step is the checkpoint's;
+**  - MOVE BOUND: between two frames S steps apart no centre moves more than
+**    S (AFV_MAX_STEP_DISP l + |v0| dt): a step that moves a cell farther
+**    than AFV_MAX_STEP_DISP l is a jump (counted in log.txt), and a run in
+**    which every step jumps is no run to analyse.  Not checked for runs
+**    with per-cell v0 (a cells file). */
+
+/* Step of the last frame at or before step, frames every `every` steps. */
+static long long last_frame_step(long long step, long long every)
 {
-  const char *dir = NULL;
-  char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
-  double lag = NAN, from = 0, l = 1, v0 = 0.5, Dr = 0.1;
-  double l_o = NAN, v0_o = NAN, Dr_o = NAN;   /* NAN: option not given */
-  afv_traj_file tr;
-  afv_analysis a;
-  int k, st, bad = 0, lag_given, partial = 0;
+  return every > 0 ? step / every * every : -1;
+}
+
+static int traj_header_ok(const afv_traj_file *tr, const char *path,
+                          const run_params_info *P)
+{
+  if (!P->afv_run) return 1;
+  if (tr->n != P->N) {
+    fprintf(stderr, "afv analyze: %s: %d cells, but params.txt has N %lld: "
+            "not this run's trajectory\n", path, tr->n, P->N);
+    return 0;
+  }
+  if (tr->box.periodic != P->periodic
+      || (P->periodic && (tr->box.Lx != P->L || tr->box.Ly != P->L))) {
+    fprintf(stderr, "afv analyze: %s: its header's box (%s %.17g x %.17g) "
+            "is not params.txt's (%s, side %.17g): not this run's "
+            "trajectory\n", path, tr->box.periodic ? "periodic" : "open",
+            tr->box.Lx, tr->box.Ly, P->periodic ? "periodic" : "open", P->L);
+    return 0;
+  }
+  return 1;
+}
+
+/* A finished run's trajectory ends where its checkpoint says; r has room
+** for a frame. */
+static int traj_ends_at_checkpoint(afv_traj_file *tr, const char *dir,
+                                   const char *path,
+                                   const run_params_info *P, double *r)
+{
+  char ckpt[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
+  struct stat sb;
+  afv_checkpoint ck;
+  long long want;
+  int last = tr->nframes - 1, ok = 1;
+  snprintf(ckpt, sizeof ckpt, "%s/checkpoint.txt", dir);
+  if (afv_checkpoint_read(ckpt, &ck, err, sizeof err) != AFV_OK)
+    return !bad_input(err);
+  want = last_frame_step(ck.step, P->frame_every);
+  if (stat(path, &sb) != 0 || (long long)sb.st_size != ck.bytes[0]
+      || tr->step[last] != want) {
+    fprintf(stderr, "afv analyze: %s: %lld bytes, %d frames, the last of "
+            "step %lld, but its checkpoint (%s) records %lld bytes and step "
+            "%lld: the trajectory is not the finished run's (cut, or "
+            "edited)\n", path, (long long)sb.st_size, tr->nframes,
+            tr->step[last], ckpt, ck.bytes[0], want);
+    ok = 0;
+  } else if (want == ck.step
+             && (afv_traj_frame(tr, last, r, NULL, err, sizeof err) != AFV_OK
+                 || memcmp(r, ck.r, 2 * (size_t)ck.n * sizeof *r) != 0)) {
+    fprintf(stderr, "afv analyze: %s: its last frame (step %lld) is not "
+            "the state its checkpoint records: not the finished run's\n",
+            path, want);
+    ok = 0;
+  }
+  afv_checkpoint_free(&ck);
+  return ok;
+}
+
+/* MOVE BOUND over every pair of frames; a and b have room for a frame. */
+static int traj_moves_bounded(afv_traj_file *tr, const char *path,
+                              const run_params_info *P, double *a, double *b)
+{
+  char err[RUN_PATH_MAX + 128];
+  int k, i;
+  for (k = 0; k < tr->nframes; k++) {
+    double *now = k % 2 ? b : a, *before = k % 2 ? a : b, bound;
+    if (afv_traj_frame(tr, k, now, NULL, err, sizeof err) != AFV_OK)
+      return !bad_input(err);
+    if (k == 0) continue;
+    bound = (double)(tr->step[k] - tr->step[k - 1])
+            * (AFV_MAX_STEP_DISP * P->l + fabs(P->v0) * P->dt);
+    for (i = 0; i < tr->n; i++) {
+      double d = hypot(now[2*i] - before[2*i], now[2*i+1] - before[2*i+1]);
+      if (d <= bound) continue;
+      fprintf(stderr, "afv analyze: %s: frame %d (step %lld): cell %d moved "
+              "%g since the frame before, beyond %g, %lld steps of at most "
+              "%g l + |v0| dt (a larger move is a jump on every step): not "
+              "a trajectory of this run (edited?)\n", path, k, tr->step[k],
+              i, d, bound, tr->step[k] - tr->step[k - 1], AFV_MAX_STEP_DISP);
+      return 0;
+    }
+  }
+  return 1;
+}
+
+/* The checks above (finished: the run reached its end). */
+static int traj_is_the_runs(afv_traj_file *tr, const char *dir,
+                            const char *path, const run_params_info *P,
+                            int finished)
+{
+  double *a, *b;
+  int ok;
+  if (!traj_header_ok(tr, path, P)) return 0;
+  if (!P->afv_run) return 1;
+  a = malloc(2 * (size_t)tr->n * sizeof *a + 1);
+  b = malloc(2 * (size_t)tr->n * sizeof *b + 1);
+  ok = a && b && (!finished || traj_ends_at_checkpoint(tr, dir, path, P, a))
+       && (P->cells || traj_moves_bounded(tr, path, P, a, b));
+  if (!a || !b) bad_input("analyze: out of memory");
+  free(a);
+  free(b);
+  return ok;
+}
+
+/* The command line of afv analyze. */
+typedef struct analyze_args {
+  const char *dir;
+  double lag, from;        /* lag NAN: not given */
+  double l, v0, Dr;        /* NAN: not given (params.txt's, else defaults) */
+  int partial;             /* --partial */
+} analyze_args;
+
+/* Reads the options into o: 0, -1 after --help (exit 0), or an exit
+** status with the message printed. */
+static int analyze_options(int argc, char **argv, analyze_args *o)
+{
+  int k, bad = 0;
+  memset(o, 0, sizeof *o);
+  o->lag = o->l = o->v0 = o->Dr = NAN;
   for (k = 1; k < argc && !bad; k++) {
     if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
       fputs(analyze_usage, stdout);
-      return 0;
+      return -1;
     }
     if (strcmp(argv[k], "--partial") == 0) {
-      partial = 1;
+      o->partial = 1;
       continue;
     }
-    if (double_option(argc, argv, &k, "--lag", &lag, &bad)
-        || double_option(argc, argv, &k, "--steady-from", &from, &bad)
-        || double_option(argc, argv, &k, "--l", &l_o, &bad)
-        || double_option(argc, argv, &k, "--v0", &v0_o, &bad)
-        || double_option(argc, argv, &k, "--Dr", &Dr_o, &bad))
+    if (double_option(argc, argv, &k, "--lag", &o->lag, &bad)
+        || double_option(argc, argv, &k, "--steady-from", &o->from, &bad)
+        || double_option(argc, argv, &k, "--l", &o->l, &bad)
+        || double_option(argc, argv, &k, "--v0", &o->v0, &bad)
+        || double_option(argc, argv, &k, "--Dr", &o->Dr, &bad))
       continue;
-    if (argv[k][0] == '-' && argv[k][1]) {
+    if (argv[k][0] == '-' && argv[k][1])
       return unknown_option(argv[k], analyze_usage, NULL);
-    }
-    if (dir) return bad_input("analyze: more than one DIR given");
-    dir = argv[k];
+    if (o->dir) return bad_input("analyze: more than one DIR given");
+    o->dir = argv[k];
   }
   if (bad) return EXIT_BAD_INPUT;
-  if (!dir) return bad_input("analyze: missing DIR (see afv analyze --help)");
-  if (strlen(dir) > RUN_PATH_MAX - 64) return bad_input("analyze: DIR too long");
-  if (!run_dir_readable(dir)) return EXIT_BAD_INPUT;
-  if (lag <= 0) return bad_input("--lag: must be > 0");
-  lag_given = !isnan(lag);
-  if (!lag_given) lag = DEFAULT_LAG;
-  snprintf(path, sizeof path, "%s/params.txt", dir);
-  if (!read_run_params(path, &l, &v0, &Dr))
+  if (!o->dir)
+    return bad_input("analyze: missing DIR (see afv analyze --help)");
+  if (strlen(o->dir) > RUN_PATH_MAX - 64)
+    return bad_input("analyze: DIR too long");
+  return 0;
+}
+
+/* l, v0 and Dr of the analysis: the options, else params.txt's (read
+** whole into P), else the defaults for a trajectory without one.  0, or
+** an exit status with the message printed. */
+static int analyze_params(const analyze_args *o, run_params_info *P,
+                          double *l, double *v0, double *Dr)
+{
+  char path[RUN_PATH_MAX + 32], err[2 * RUN_PATH_MAX];
+  int st;
+  snprintf(path, sizeof path, "%s/params.txt", o->dir);
+  if ((st = run_params_read(path, P, err, sizeof err)) < 0)
+    return params_unreadable(err);
+  if (st == 0) {
     fprintf(stderr, "afv analyze: %s not found: using l = 1, v0 = 0.5, "
             "Dr = 0.1 unless given\n", path);
-  if (!isnan(l_o)) l = l_o;
-  if (!isnan(v0_o)) v0 = v0_o;
-  if (!isnan(Dr_o)) Dr = Dr_o;
-  if (!(l > 0)) return bad_input("analyze: l must be > 0");
-  if (!(Dr >= 0)) {                 /* a variance rate: never negative */
-    fprintf(stderr, "afv analyze: --Dr: %g: must be >= 0\n", Dr);
+    memset(P, 0, sizeof *P);
+    P->steps = -1;
+    P->l = 1;
+    P->v0 = 0.5;
+    P->Dr = 0.1;
+  }
+  *l = isnan(o->l) ? P->l : o->l;
+  *v0 = isnan(o->v0) ? P->v0 : o->v0;
+  *Dr = isnan(o->Dr) ? P->Dr : o->Dr;
+  if (!(*l > 0)) return bad_input("analyze: l must be > 0");
+  if (!(*Dr >= 0)) {                 /* a variance rate: never negative */
+    fprintf(stderr, "afv analyze: --Dr: %g: must be >= 0\n", *Dr);
     return EXIT_BAD_INPUT;
   }
-  if ((st = refuse_unfinished(dir, partial)) != 0) return st;
-  snprintf(path, sizeof path, "%s/trajectory.dat", dir);
-  if (afv_traj_open(&tr, path, err, sizeof err) != AFV_OK)
+  return 0;
+}
+
+/* The run's trajectory, opened into tr and checked (traj_is_the_runs,
+** window_holds).  0, or an exit status with the message printed (tr
+** closed). */
+static int analyze_open(const analyze_args *o, const run_params_info *P,
+                        int finished, double lag, afv_traj_file *tr)
+{
+  char path[RUN_PATH_MAX + 32], err[RUN_PATH_MAX + 128];
+  snprintf(path, sizeof path, "%s/trajectory.dat", o->dir);
+  if (afv_traj_open(tr, path, err, sizeof err) != AFV_OK)
     return bad_input(err);
-  if (tr.nframes == 0) {
-    afv_traj_close(&tr);
+  if (tr->nframes == 0)
     fprintf(stderr, "afv analyze: %s: no complete frame\n", path);
-    return EXIT_BAD_INPUT;
-  }
   /* afv run writes unwrapped centres (io.c, TRAJECTORY format): no
   ** unwrapping here, which would fold moves of more than half a box
   ** between two frames back into the box */
-  if (!window_holds(&tr, path, from, lag, lag_given)) {
-    afv_traj_close(&tr);
-    return EXIT_BAD_INPUT;
-  }
+  if (tr->nframes > 0 && traj_is_the_runs(tr, o->dir, path, P, finished)
+      && window_holds(tr, path, o->from, lag, !isnan(o->lag)))
+    return 0;
+  afv_traj_close(tr);
+  return EXIT_BAD_INPUT;
+}
+
+int cmd_analyze(int argc, char **argv)
+{
+  char err[RUN_PATH_MAX + 128];
+  double l, v0, Dr, lag;
+  analyze_args o;
+  run_params_info P;
+  afv_traj_file tr;
+  afv_analysis a;
+  int st, finished = 0;
+  if ((st = analyze_options(argc, argv, &o)) != 0) return st < 0 ? 0 : st;
+  if (!run_dir_readable(o.dir)) return EXIT_BAD_INPUT;
+  if (o.lag <= 0) return bad_input("--lag: must be > 0");
+  lag = isnan(o.lag) ? DEFAULT_LAG : o.lag;
+  if ((st = analyze_params(&o, &P, &l, &v0, &Dr)) != 0
+      || (st = refuse_unfinished(o.dir, P.steps, o.partial, &finished)) != 0
+      || (st = analyze_open(&o, &P, finished, lag, &tr)) != 0)
+    return st;
   err[0] = 0;
-  st = afv_analyze_file(&a, &tr, l, v0, Dr, from, lag, err, sizeof err);
+  st = afv_analyze_file(&a, &tr, l, v0, Dr, o.from, lag, err, sizeof err);
   afv_traj_close(&tr);
   if (st == AFV_OK) warn_if_lag_unsupported(&a, lag);
   if (st != AFV_OK && err[0]) return bad_input(err);
   if (st != AFV_OK) {
-    fprintf(stderr, "afv analyze: %s: %s\n", path, afv_strerror(st));
+    fprintf(stderr, "afv analyze: %s/trajectory.dat: %s\n", o.dir,
+            afv_strerror(st));
     return EXIT_BAD_INPUT;
   }
-  st = analyze_write(dir, &a);
+  st = analyze_write(o.dir, &a);
   afv_analysis_free(&a);
   return st;
 }

@@ -14,9 +14,11 @@
 #include "cli.h"
 
 #include <ctype.h>
+#include <dirent.h>
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -958,6 +960,77 @@ static void remove_partial(const char *dir, long njobs)
   rmdir(dir);
 }
 
+/* 1 if name is one afv sweep writes in jobs/ or at the top of a sweep
+** folder (under == 1: DIGITS.conf; else a sweep_files name), or the
+** temporary of one (NAME.PID.RAND.tmp, afv_atomic_open). */
+static int sweep_name(const char *name, int under)
+{
+  size_t m = under ? strspn(name, "0123456789") : 0;
+  int k;
+  if (under && m > 0 && strncmp(name + m, ".conf", 5) == 0)
+    return name[m + 5] == 0 || (name[m + 5] == '.'
+           && strstr(name + m + 5, ".tmp") != NULL);
+  for (k = 0; !under && k < N_OF(sweep_files); k++) {
+    m = strlen(sweep_files[k]);
+    if (strncmp(name, sweep_files[k], m) == 0
+        && (name[m] == 0 || (name[m] == '.' && strstr(name + m, ".tmp"))))
+      return 1;
+  }
+  return 0;
+}
+
+/* Removes the files of afv sweep's names in dir (sub: "jobs" or NULL). */
+static void remove_sweep_names(const char *dir, const char *sub)
+{
+  char path[PATH_MAX + 300], from[PATH_MAX + 16];
+  DIR *d;
+  struct dirent *e;
+  snprintf(from, sizeof from, "%s%s%s", dir, sub ? "/" : "", sub ? sub : "");
+  if (!(d = opendir(from))) return;
+  while ((e = readdir(d)) != NULL)
+    if (sweep_name(e->d_name, sub != NULL)) {
+      snprintf(path, sizeof path, "%s/%s", from, e->d_name);
+      unlink(path);
+    }
+  closedir(d);
+}
+
+/* A killed afv sweep (SIGKILL cannot be caught) leaves its DIR.writing-PID
+** folder (46 MB for a large grid).  The next sweep to DIR removes every
+** such folder whose process is gone (kill(PID, 0): ESRCH): only files of
+** afv sweep's names, then the empty folders, so a folder holding anything
+** else (a user's file) stays. */
+static void remove_stale_writing(const char *dir)
+{
+  char parent[PATH_MAX], path[PATH_MAX + 300];
+  const char *slash = strrchr(dir, '/'), *base = slash ? slash + 1 : dir;
+  size_t m = strlen(base);
+  DIR *d;
+  struct dirent *e;
+  int k;
+  snprintf(parent, sizeof parent, "%.*s", slash ? (int)(slash - dir) + 1
+           : 1, slash ? dir : ".");
+  if (!(d = opendir(parent))) return;
+  while ((e = readdir(d)) != NULL) {
+    const char *pid = e->d_name + m + 9;   /* after "BASE.writing-" */
+    if (strncmp(e->d_name, base, m) != 0
+        || strncmp(e->d_name + m, ".writing-", 9) != 0 || !*pid
+        || strspn(pid, "0123456789") != strlen(pid) || strlen(pid) > 9
+        || kill((pid_t)atol(pid), 0) == 0 || errno != ESRCH)
+      continue;
+    snprintf(path, sizeof path, "%s/%s", parent, e->d_name);
+    remove_sweep_names(path, "jobs");
+    remove_sweep_names(path, NULL);
+    for (k = 0; k < N_OF(sweep_dirs); k++) {
+      char sub[PATH_MAX + 320];
+      snprintf(sub, sizeof sub, "%s/%s", path, sweep_dirs[k]);
+      rmdir(sub);
+    }
+    rmdir(path);
+  }
+  closedir(d);
+}
+
 static int write_job_configs(const sweep_grid *g, const char *dir)
 {
   const char *names[SWEEP_MAX_KEYS + 1], *values[SWEEP_MAX_KEYS + 1];
@@ -989,6 +1062,7 @@ static int write_sweep(sweep_grid *g, const sweep_opts *o, const char *afv,
   int k, ok;
   snprintf(tmp, sizeof tmp, "%.*s.writing-%ld", RUN_PATH_MAX - 64, dir,
            (long)getpid());
+  remove_stale_writing(dir);
   if (mkdir(tmp, 0777) != 0)
     return !fprintf(stderr, "afv sweep: cannot create %s: %s\n", tmp,
                     strerror(errno));

@@ -1,14 +1,20 @@
 /*
 ** fuzz_collect.c -- libFuzzer harness of afv collect's inputs: the input,
 ** cut at its first NUL byte, is a sweep's points.csv and the summary.txt
-** of its job 0001, whose run (params.txt P0 4, v0 0.5, seed 1, 20 steps
-** with a frame every 10; a checkpoint at step 20; final.svg) is made once.
-** collect (collect.c, included with run.c for run_key_check) must exit 0,
+** of its job 0001, whose run (params.txt N 1, P0 4, v0 0.5, seed 1, 20
+** steps with a frame every 10; a checkpoint at step 20; final.svg; its
+** jobs/0001.conf and the sweep's analysis.txt) is made once (its
+** fingerprint, which a verified summary names: 938c2ab71e841c38).
+** collect (collect.c, included with the files of afv run for run_key_check) must exit 0,
 ** 1 or 2; on 2 it wrote no table; on 0 or 1 its table has the header of
 ** afv collect and no state point without a verified job, and exit 0
 ** means every job of points.csv was verified (missing.txt lists none).
 */
-#include "../cmd/run.c"
+#include "../cmd/run.c"          /* afv run, all its files */
+#include "../cmd/run_config.c"
+#include "../cmd/run_compute.c"
+#include "../cmd/run_dir.c"
+#include "../cmd/run_resume.c"
 #include "../cmd/collect.c"
 #include "reader_fuzz.h"
 
@@ -27,10 +33,12 @@ static void make_sweep(void)
   double r[2] = {1, 1}, theta = 0;
   FILE *fp;
   fuzz_path("sweep", sweep, sizeof sweep);
-  snprintf(path, sizeof path, "mkdir -p %s/runs/0001/analysis %s/logs",
-           sweep, sweep);
+  snprintf(path, sizeof path, "mkdir -p %s/runs/0001/analysis %s/logs "
+           "%s/jobs && echo 'P0 4' > %s/jobs/0001.conf && touch "
+           "%s/analysis.txt", sweep, sweep, sweep, sweep, sweep);
   REQUIRE(system(path) == 0);
   cfg_defaults(&cfg);
+  cfg.N = 1;   /* the checkpoint's */
   cfg.P0 = 4;
   cfg.v0 = 0.5;
   cfg.seed = 1;

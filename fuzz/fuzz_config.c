@@ -1,6 +1,7 @@
 /*
 ** fuzz_config.c -- libFuzzer harness of afv run's config reader
-** (read_config and set_key in run.c, included here so that its static
+** (read_config and set_key in run_config.c, included with the other
+** files of afv run here so that its static
 ** functions can be called; the config format belongs to the program, not
 ** to the library).  A refused input gets one line naming the file; an
 ** accepted one (with the cells key set back to none, so no other file is
@@ -8,7 +9,11 @@
 ** passes them, and then params.txt written from it reads back to the same
 ** params.txt, byte for byte.
 */
-#include "../cmd/run.c"
+#include "../cmd/run.c"          /* afv run, all its files */
+#include "../cmd/run_config.c"
+#include "../cmd/run_compute.c"
+#include "../cmd/run_dir.c"
+#include "../cmd/run_resume.c"
 #include "reader_fuzz.h"
 
 /* params.txt of cfg in the directory of name; its contents in buf. */

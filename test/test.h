@@ -97,5 +97,6 @@ void suite_paper(void);
 void suite_integrator(void);
 void suite_relax_fire(void);
 void suite_invariants(void);
+void suite_hostile(void);
 
 #endif

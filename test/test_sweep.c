@@ -352,24 +352,62 @@ static void template_run(void)
             "--svg_every 0 --quiet") == 0, "template run: %s", err_text);
 }
 
+/* The fingerprint afv analyze writes into summary.txt for the run with
+** params.txt at rel and the id id (cmd/run_config.c, THE FINGERPRINT),
+** computed here on its own from the file's text: FNV-1a 64 over "id=ID\n"
+** and "KEY=VALUE\n" for every key line but quiet, checkpoint_every and
+** cells (params.txt holds the values as afv writes them), in 16 hex
+** digits. */
+static unsigned long long fnv1a(unsigned long long h, const char *text)
+{
+  for (; *text; text++) h = (h ^ (unsigned char)*text) * 0x100000001b3ull;
+  return h;
+}
+
+static void fingerprint(const char *rel, const char *id, char *out)
+{
+  static char text[TEXT_MAX];
+  char line[8192], key[64], value[4096], *p, *end;
+  unsigned long long h = 0xcbf29ce484222325ull;
+  read_rel(rel, text);
+  snprintf(line, sizeof line, "id=%s\n", id);
+  h = fnv1a(h, line);
+  for (p = text; *p; p = *end ? end + 1 : end) {
+    if (!(end = strchr(p, '\n'))) end = p + strlen(p);
+    if (*p == '#' || sscanf(p, "%63s %4095s", key, value) != 2
+        || !strcmp(key, "quiet") || !strcmp(key, "checkpoint_every")
+        || !strcmp(key, "cells"))
+      continue;
+    snprintf(line, sizeof line, "%s=%s\n", key, value);
+    h = fnv1a(h, line);
+  }
+  snprintf(out, 17, "%016llx", h);
+}
+
 /* Job id of sweep c: the template run with P0, v0 and seed set in its
-** params.txt, and a summary.txt as afv analyze writes it, with the
-** values collect reads (of 3 frames, the whole run). */
+** params.txt, its (empty) jobs/ID.conf, and a summary.txt as afv analyze
+** writes it, with the values collect reads (of 3 frames, the whole run)
+** and the run's id and fingerprint. */
 static void fake_job(const char *id, const char *p0, const char *v0,
                      const char *seed, double ngc, double ncl, double om,
                      double deff, double tau, double t1, double beta)
 {
-  char rel[128], text[1024], cmd[4096];
+  char rel[128], text[1024], cmd[4096], print[17];
   snprintf(cmd, sizeof cmd, "rm -rf %s/c/runs/%s && mkdir -p %s/c/runs && "
            "cp -r %s/c/template %s/c/runs/%s && mkdir -p "
            "%s/c/runs/%s/analysis && sed -i -e 's/^P0 .*/P0 %s/' -e "
            "'s/^v0 .*/v0 %s/' -e 's/^seed .*/seed %s/' %s/c/runs/%s/params.txt",
            base, id, base, base, base, id, base, id, p0, v0, seed, base, id);
   CHECK(system(cmd) == 0, "%s failed", cmd);
+  snprintf(rel, sizeof rel, "c/jobs/%s.conf", id);
+  write_rel(rel, "");
+  snprintf(rel, sizeof rel, "c/runs/%s/params.txt", id);
+  fingerprint(rel, id, print);
   snprintf(text, sizeof text, "# afv analyze: fake\ncells 10\nframes 3\n"
            "ngc_frac_mean %.17g\nngc_frac_sd 0.1\nn_clusters_mean %.17g\n"
            "omega_mean %.17g\nD_eff %.17g\ntau_NGC %.17g\nt1_rate %.17g\n"
-           "msd_beta %.17g\n", ngc, ncl, om, deff, tau, t1, beta);
+           "msd_beta %.17g\nrun_id %s\nrun_fingerprint %s\n", ngc, ncl, om,
+           deff, tau, t1, beta, id, print);
   snprintf(rel, sizeof rel, "c/runs/%s/analysis/summary.txt", id);
   write_rel(rel, text);
 }
@@ -396,7 +434,8 @@ static void collect_known_summaries(void)
   char w[64];
   const double s2 = sqrt(2.0);
   if (!have_afv()) return;
-  shell("mkdir -p %s/c/logs", base);
+  shell("mkdir -p %s/c/logs %s/c/jobs", base);
+  shell("touch %s/c/analysis.txt%.0s", base);
   template_run();
   write_rel("c/points.csv", "id,P0,v0,seed\n0001,4,0,1\n0002,4,0,2\n"
             "0003,4,1,1\n0004,4,1,2\n0005,8,1,1\n0006,8,1,2\n");
@@ -578,6 +617,7 @@ static void collect_verifies_jobs(void)
 static void collect_refuses_mixed_cap(void)
 {
   shell("rm -rf %s/mc && mkdir -p %s/mc/jobs", base);
+  shell("touch %s/mc/analysis.txt%.0s", base);   /* afv sweep writes it */
   write_rel("mc/points.csv", "id,P0,seed\n0001,4,1\n0002,4,2\n");
   write_rel("mc/jobs/0001.conf", "P0 4\ncap 0\n");
   write_rel("mc/jobs/0002.conf", "P0 4\ncap 0.45\n");
