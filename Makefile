@@ -183,9 +183,7 @@ test/run_tests_assert: $(TEST_SRC) test/test.h $(ASSERT_OBJ) .build-flags
 	$(CC) $(CFLAGS) -UNDEBUG -I. -o $@ $(TEST_SRC) $(ASSERT_OBJ) $(LDLIBS)
 
 test: afv test/run_tests test/run_tests_assert
-	./test/run_tests
-	./test/run_tests_assert invariants
-	@sh test/web_needs.sh $(WEB_CC)
+	@sh test/run.sh $(WEB_CC)
 
 # The main job: afv run with its defaults (the paper's protocol and
 # parameters, 400 cells, P0 4.8, v0 0.5, 10000 steps; afv run --help), into
