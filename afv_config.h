@@ -17,7 +17,8 @@
 **   1. status codes
 **   2. contact                        AFV_CONTACT_TOL
 **   3. the cell's shape (geom.c)      AFV_ANGLE_TOL .. AFV_PRUNE_MARGIN
-**   4. the neighbour search           AFV_REACH_MARGIN, AFV_NEAR_IMAGE
+**   4. the neighbour search           AFV_REACH_MARGIN, AFV_CUT_DEPTH,
+**                                     AFV_NEAR_IMAGE
 **   5. rounding, the parameters' range, the finite-difference check
 **   6. dynamics and relaxation        AFV_MAX_STEP_DISP .. AFV_FIRE_*
 **   7. pictures (svg.c)               AFV_FULL_CIRCLE_TOL .. AFV_SVG_*
@@ -82,11 +83,19 @@
 #define AFV_PRUNE_MARGIN 1e-9
 
 /* ---- 4. the neighbour search (neighbours.c) ------------------------------ */
-/* window_around and security_radius: a reach (the bins around a point, the
-** radius of security of a cut polygon) is widened by AFV_REACH_MARGIN l to
-** cover the rounding of the positions it is computed from.  Not pinned
-** (-1e-6 passes core, geometry and perf). */
+/* window_around and reanchor: a reach (the bins around a point) is widened
+** by AFV_REACH_MARGIN l to cover the rounding of the positions it is
+** computed from.  Not pinned (-1e-6 passes core, geometry and perf). */
 #define AFV_REACH_MARGIN 1e-9
+
+/* DENSE (geom.c, afv_reach_cuts): the dense search proposes a centre to
+** cell i only if it cuts the cell the nearer ones leave deeper than
+** AFV_CUT_DEPTH l; below that its bisector only touches the cell (every
+** centre of a circle touches the others' cells at the circle's centre, to
+** rounding), and what it would cut off is a sliver narrower than
+** AFV_CUT_DEPTH l.  Pinned (-1e-9: 199 neighbours a cell on a circle of
+** 200) by test_reference.c test_degenerate_shapes_match_clipped_polygons. */
+#define AFV_CUT_DEPTH 1e-9
 
 /* NEAR: two centres closer than AFV_NEAR_IMAGE times the longer box side
 ** take their displacement from the unwrapped centres (wrapping rounds a

@@ -95,7 +95,7 @@ struct afv_geom {
   int    *nbr_start;    /* neighbours (centres closer than 2l; in dense  */
                         /* input only those that can cut: neighbours.c) */
   int    *nbr_end;      /*   nbr[nbr_start[i] .. nbr_end[i]-1]; the slots  */
-  int    *nbr;          /*   up to nbr_start[i+1] are unused (room kept)   */
+  int    *nbr;          /*   up to cand_lim[i] are unused (room kept)      */
   double *nbr_d;        /* their minimum-image displacements r_j - r_i,
                         ** interleaved, same indexing as nbr */
   int    *nbr_rev;      /* nbr_rev[s] = slot of i in the list of nbr[s] */
@@ -106,8 +106,17 @@ struct afv_geom {
   int    *bin_start, *bin_cell;
   double *bin_xy;       /* centres in bin order (wrapped if periodic) */
   int    *cand_start;   /* Verlet candidates of cell i (neighbours.c):     */
-  int    *cand;         /*   cand[cand_start[i] .. cand_start[i+1]-1]    */
-  double *cand_r0;      /* centres when the candidates were built */
+  int    *cand;         /*   cand[cand_start[i] .. cand_end[i]-1], room  */
+  int    *cand_end;     /*   up to cand_lim[i] (a re-anchored cell's     */
+  int    *cand_lim;     /*   list may move past the rebuild's ones)      */
+  int     cand_used, cand_top;  /* cand[] in use; reserved (spare room) */
+  int     moved_lists;  /* lists moved into the spare room since the rebuild */
+  double *cand_r0;      /* anchors: centres when each cell's candidates
+                        ** were made (the rebuild, or a re-anchoring) */
+  int    *anchor_node;  /* re-anchored cell: its node, else -1 (MOVERS) */
+  int    *node_head, *node_next, *node_cell;  /* re-anchored cells by bin */
+  double *node_xy;      /*   of the rebuild's grid, at their anchors */
+  int     n_nodes, cap_nodes, cap_heads;
   double *rw;           /* centres as the lists see them (wrapped) */
   afv_box cand_box;     /* box and l the candidates were built for */
   double  cand_l;
@@ -115,9 +124,9 @@ struct afv_geom {
   int     cap_cand, n_rebuilds;  /* n_rebuilds: candidate rebuilds so far */
   afv_grid cand_grid;   /* the cell list of the last rebuild */
   unsigned char *is_mover; /* 1 for a cell moved beyond the skin */
-  double  cand_checks;  /* mover pair tests since the rebuild */
-  double  cand_moved;   /* largest move of a cell since the rebuild, as of
-                        ** the last call (afv_cells_around widens by it) */
+  double  cand_checks;  /* re-anchoring work since the rebuild (MOVERS) */
+  double  cand_moved;   /* largest distance of a cell from its anchor, as
+                        ** of the last call (afv_cells_around widens by it) */
   int     max_cand;     /* most candidates of a cell (sizes the work) */
   int     cand_dense;   /* 1: the candidates are the dense search's (a
                         ** function of these very positions): rebuilt at
@@ -151,14 +160,37 @@ int  afv_neighbours(afv_geom *g, int n, const double *r, double l,
 ** many.  g must come from afv_neighbours (or afv_compute) at positions
 ** from which no cell has since moved more than `moved`.  Cost: the cells
 ** in the bins within about R + cand_moved + moved, not O(N) (cand_moved,
-** the largest move since the rebuild, is at most 0.15 l unless some
-** cells have moved farther: neighbours.c, MOVERS). */
+** the largest distance of a cell from its anchor, is at most 0.15 l:
+** neighbours.c, MOVERS). */
 int  afv_cells_around(const afv_geom *g, double x, double y, double R,
                       double moved, int *out);
 
 /* Renumbers the n centres r in place in the order of afv_spatial_order,
 ** so that cells near in space are near in memory.  AFV_OK or AFV_ENOMEM. */
 int  afv_spatial_renumber(int n, double *r, double l, const afv_box *b);
+
+/* The cell a dense search has cut so far (geom.c, afv_reach_of): its
+** vertices and arcs, in the cell's frame, for the test of the next
+** centres (neighbours.c, DENSE). */
+typedef struct afv_reach {
+  int nv, na;           /* vertices; arcs (-1: no cut, the whole disk) */
+  double l;
+  double *v;            /* vertex k at (v[2k], v[2k+1]) */
+  double *arc;          /* arc k from (arc[4k], arc[4k+1]) counter-clockwise
+                        ** to (arc[4k+2], arc[4k+3]), on the circle */
+} afv_reach;
+/* The cell cut by k centres at displacements D, sorted by direction, with
+** their edge cache edge (as afv_neighbours' lists): into R (room for
+** 2k + 2 vertices, k + 1 arcs); work: afv_reach_work(k) bytes. */
+void   afv_reach_of(const double *edge, const double *D, int k, double l,
+                    void *work, afv_reach *R);
+size_t afv_reach_work(int k);
+/* 1 if a centre at (x, y) from the cell's centre cuts R's cell deeper than
+** AFV_CUT_DEPTH l. */
+int    afv_reach_cuts(const afv_reach *R, double x, double y);
+/* 0 if no point of the rectangle q = {x0, x1, y0, y1} (cell frame) can
+** cut R's cell (a superset test: 1 may also mean none can). */
+int    afv_reach_meets_rect(const afv_reach *R, const double *q);
 
 /* 1 if cell i's list is sorted by direction, as afv_neighbours leaves it
 ** (the clipping relies on it; for assert). */

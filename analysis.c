@@ -401,8 +401,12 @@ int afv_clusters_compute(afv_clusters *c, const afv_geom *g, const double *r,
                          double l, const afv_box *b)
 {
   assert(c != NULL && g != NULL && (r != NULL || g->n == 0));
-  int n = g->n, k, st;
-  int npieces = n > 0 ? g->piece_start[n - 1] + g->n_pieces[n - 1] : 0;
+  int n = g->n, k, st, npieces = 0;
+  /* the pieces' extent: a cell's block may lie after the last cell's (a
+  ** list moved to the spare room, neighbours.c MOVERS) */
+  for (k = 0; k < n; k++)
+    if (g->piece_start[k] + g->n_pieces[k] > npieces)
+      npieces = g->piece_start[k] + g->n_pieces[k];
   if (!(l > 0)) return AFV_EINVAL;
   if (!c->work && !(c->work = calloc(1, sizeof *c->work))) return AFV_ENOMEM;
   if (grow_cells(c, n + 1) || grow_pieces(c, npieces + 1)) return AFV_ENOMEM;

@@ -38,6 +38,9 @@
 ** O(N) for the tissue.  Dense input (k > PRUNE_FROM = 16): the nearest
 ** neighbours only, as Voro++ (see "pruning"), O(k log k) per cell, the
 ** same bits (what it saves: doc/performance.md).
+** The dense search (neighbours.c, DENSE) asks this file which centres
+** can still cut a cell (afv_reach_of, afv_reach_cuts): the cell it has cut
+** so far is shaped by the same clipping, so every shape has one clipper.
 ** afv_geometry_prepare is here, not in neighbours.c: after the lists it
 ** reserves the clipping's work space, sized by this file's segment type.
 ** Different cells may be shaped on OpenMP threads at once, with the same
@@ -406,6 +409,152 @@ static int clip_chords(const afv_geom *g, int i, double l, segment *seg)
   if (clip_pairs(edge, D, s0, nn, seg, 0))
     clip_pairs(edge, D, s0, nn, seg, 1);
   return keep_parts(seg, nn, edge, s0);
+}
+
+/* ---- the reach of a cell (the dense search) ---------------------------- */
+/* Which centres can still cut a cell, given the centres that cut it so far
+** (neighbours.c, DENSE, proposes them in order of distance): the cell they
+** leave is shaped by this file's clipping (clip_pairs, keep_parts), and a
+** centre at p cuts it iff the cell reaches beyond p's bisector, i.e. its
+** support h(p) = max over the cell of x.p exceeds |p|^2 / 2.  The cell's
+** boundary is edges and arcs, so h(p) is the largest v.p over its vertices
+** v, or l|p| where p's direction lies within an arc.  (Voro++ bounds the
+** cell by its farthest vertex R and takes every centre within 2R: on a
+** line of centres or a circle of them R stays about l, and every centre
+** within 2l passed.) */
+
+/* Cell i cut by the k centres at D (cell frame, sorted by direction as the
+** slots are; edge as neighbours.c's edge cache: u, d/2, half-chord):
+** its vertices and arcs into *R (arrays of room 2k + 2 points and k + 1
+** arcs); seg: work room for k + 1 segments. */
+void afv_reach_of(const double *edge, const double *D, int k, double l,
+                  void *work, afv_reach *R)
+{
+  segment *seg = work;
+  int ns, q;
+  R->nv = R->na = 0;
+  R->l = l;
+  if (k > 0 && clip_pairs(edge, D, 0, k, seg, 0))
+    clip_pairs(edge, D, 0, k, seg, 1);
+  ns = k > 0 ? keep_parts(seg, k, edge, 0) : 0;
+  if (ns == 0) {                    /* the whole disk */
+    R->na = -1;
+    return;
+  }
+  for (q = 0; q < ns; q++) {
+    const double *e = edge + 4 * seg[q].slot;
+    double *a = R->v + 2 * R->nv;
+    a[0] = e[2] * e[0] - seg[q].tau0 * e[1];
+    a[1] = e[2] * e[1] + seg[q].tau0 * e[0];
+    a[2] = e[2] * e[0] - seg[q].tau1 * e[1];
+    a[3] = e[2] * e[1] + seg[q].tau1 * e[0];
+    R->nv += 2;
+    if (seg[q].end_on_circle) {       /* an arc to the next part's start */
+      const segment *nx = &seg[q + 1 < ns ? q + 1 : 0];
+      const double *f = edge + 4 * nx->slot;
+      double *arc = R->arc + 4 * R->na++;
+      arc[0] = a[2];
+      arc[1] = a[3];
+      arc[2] = f[2] * f[0] - nx->tau0 * f[1];
+      arc[3] = f[2] * f[1] + nx->tau0 * f[0];
+    }
+  }
+}
+
+/* 1 if the direction of (x, y) lies within arc k of R (counter-clockwise
+** from its start a to its end b), or R is the whole disk: by the signs of
+** cross products, no angle.  An arc of a point to itself counts as the
+** whole circle (a superset serves both callers). */
+static int in_arc(const afv_reach *R, int k, double x, double y)
+{
+  const double *a = R->arc + 4 * k;
+  double ab = a[0] * a[3] - a[1] * a[2];           /* a x b */
+  double ap = a[0] * y - a[1] * x, pb = x * a[3] - y * a[2];
+  if (R->na < 0) return 1;
+  if (ab > 0) return ap >= 0 && pb >= 0;           /* less than a half */
+  if (ab < 0) return !(ap < 0 && pb < 0);          /* more than a half */
+  if (a[0] * a[2] + a[1] * a[3] < 0) return ap >= 0;   /* a half */
+  return 1;
+}
+
+/* 1 if a centre at (x, y) cuts the cell of R deeper than AFV_CUT_DEPTH l:
+** h(p) - |p|^2 / 2 > AFV_CUT_DEPTH l |p| (a centre on the cell's boundary
+** circle, as every centre of a circle is for the others, is not taken:
+** its bisector only touches the cell). */
+int afv_reach_cuts(const afv_reach *R, double x, double y)
+{
+  double p2 = x * x + y * y, p = sqrt(p2), h = -HUGE_VAL;
+  double need = 0.5 * p2 + AFV_CUT_DEPTH * R->l * p;
+  int k;
+  for (k = 0; k < R->nv; k++) {
+    double s = R->v[2*k] * x + R->v[2*k+1] * y;
+    if (s > h) h = s;
+  }
+  if (h > need) return 1;
+  if (!(R->l * p > need)) return 0;  /* nor can an arc */
+  for (k = 0; k < (R->na < 0 ? 1 : R->na); k++)
+    if (in_arc(R, k, x, y)) return 1;
+  return 0;
+}
+
+/* The squared distance from (x, y) to the rectangle [x0, x1] x [y0, y1]. */
+static double rect_dist2(double x, double y, double x0, double x1, double y0,
+                         double y1)
+{
+  double dx = x < x0 ? x0 - x : x > x1 ? x - x1 : 0;
+  double dy = y < y0 ? y0 - y : y > y1 ? y - y1 : 0;
+  return dx * dx + dy * dy;
+}
+
+/* 1 if the ray from the origin in direction (x, y) meets the rectangle
+** (slab test). */
+static int ray_meets_rect(double x, double y, const double *q)
+{
+  double t0 = 0, t1 = HUGE_VAL;
+  int a;
+  for (a = 0; a < 2; a++) {
+    double d = a ? y : x, lo = q[2*a], hi = q[2*a+1];
+    if (d == 0) {
+      if (lo > 0 || hi < 0) return 0;
+    } else {
+      double s = lo / d, t = hi / d;
+      if (s > t) { double w = s; s = t; t = w; }
+      if (s > t0) t0 = s;
+      if (t < t1) t1 = t;
+    }
+  }
+  return t0 <= t1;
+}
+
+/* 1 if some point of the rectangle q = {x0, x1, y0, y1} (cell frame) may
+** cut the cell of R: it comes within |v| of a vertex v (the points that
+** cut by a vertex form the disk about v through the centre), or within 2l
+** of the centre in the directions of an arc (the points that cut by an
+** arc's inner points).  A superset, for the bins of the walk. */
+int afv_reach_meets_rect(const afv_reach *R, const double *q)
+{
+  double l = R->l;
+  int k, c;
+  if (q[0] <= 0 && q[1] >= 0 && q[2] <= 0 && q[3] >= 0) return 1;
+  for (k = 0; k < R->nv; k++) {
+    double vx = R->v[2*k], vy = R->v[2*k+1];
+    if (rect_dist2(vx, vy, q[0], q[1], q[2], q[3]) < vx * vx + vy * vy)
+      return 1;
+  }
+  if (!(rect_dist2(0, 0, q[0], q[1], q[2], q[3]) < 4 * l * l)) return 0;
+  for (k = 0; k < (R->na < 0 ? 1 : R->na); k++) {
+    if (R->na < 0) return 1;
+    for (c = 0; c < 4; c++)
+      if (in_arc(R, k, q[c & 1], q[2 + (c >> 1)])) return 1;
+    if (ray_meets_rect(R->arc[4*k], R->arc[4*k+1], q)) return 1;
+  }
+  return 0;
+}
+
+/* The size of afv_reach_of's work room for k centres, in bytes. */
+size_t afv_reach_work(int k)
+{
+  return (size_t)(k + 1) * sizeof(segment);
 }
 
 /* The point at parameter tau on the line of B (cell frame). */

@@ -17,16 +17,21 @@
 **   - a cell list ("cell list": grid_periodic / grid_open, fill_bins) of
 **     reach (2 + SKIN) l, scanned without a branch on the distance
 **     (scan_cell), gives every cell its Verlet candidates ("Verlet
-**     candidates"), rebuilt only when cells have moved farther than
-**     SKIN l / 2, or a few "MOVERS" have a pair that is not a candidate;
+**     candidates"), rebuilt only when many cells have moved farther than
+**     SKIN l / 2 from their anchors (a few such "MOVERS" are re-anchored
+**     one by one);
 **   - at every call each cell's candidates are filtered by the exact
 **     distance and sorted (filter_cell), written in place ("neighbour
 **     lists"), and the pairs linked.
 ** Cost: O(N) time and memory.  Dense input (a cell with more than
-** DENSE_CANDIDATES candidates) takes the dense search instead: candidates
-** in order of distance, with Voro++'s radius test as the stop (DENSE,
-** dense_candidates); long lists are merge-sorted and reverse slots found
-** by binary search.
+** DENSE_CANDIDATES candidates) takes the dense search instead: centres
+** proposed in order of distance, each taken only if it cuts the cell
+** the nearer ones leave, as geom.c clips it (DENSE, dense_candidates);
+** long lists are merge-sorted and reverse slots found by binary search.
+** These two searches, and no other: the dense one costs about twice the
+** cell list's at the paper's densities, the cell list is quadratic on
+** dense input (doc/performance.md, "Dense and degenerate input").  Every
+** shape is computed by geom.c's clipping from the lists either gives.
 ** afv_cells_around reads the cell list for afv_force_check;
 ** afv_spatial_order numbers cells in its order, afv_spatial_renumber
 ** renumbers centres so (afv_protocol_start's generated starts, make
@@ -113,6 +118,13 @@ static int grow_cells(afv_geom *g, int n)
   c = cap;
   if (afv_grow((void **)&g->cand_start, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
   c = cap;
+  if (afv_grow((void **)&g->cand_end, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->cand_lim, &c, n + 1, sizeof(int))) return AFV_ENOMEM;
+  c = cap;
+  if (afv_grow((void **)&g->anchor_node, &c, n + 1, sizeof(int)))
+    return AFV_ENOMEM;
+  c = cap;
   if (afv_grow((void **)&g->is_mover, &c, n + 1, 1)) return AFV_ENOMEM;
   g->cap_cells = c;
   return AFV_OK;
@@ -147,6 +159,9 @@ void afv_geom_free(afv_geom *g)
   free(g->bin_start); free(g->bin_cell); free(g->bin_xy); free(g->edge);
   free(g->cand_start); free(g->cand); free(g->cand_r0); free(g->rw);
   free(g->grad); free(g->work); free(g->is_mover);
+  free(g->cand_end); free(g->cand_lim); free(g->anchor_node);
+  free(g->node_head); free(g->node_next); free(g->node_cell);
+  free(g->node_xy);
   memset(g, 0, sizeof *g);
 }
 
@@ -208,6 +223,22 @@ static void grid_periodic(grid *G, const afv_box *b, double half_range,
   G->wy = b->Ly / G->nby;
   G->Lx = b->Lx;
   G->Ly = b->Ly;
+}
+
+/* The spans of the centres, xmax - xmin and ymax - ymin (halved and
+** doubled back: no overflow; inf for centres near +-DBL_MAX). */
+static void grid_span(int n, const double *r, double *sx, double *sy)
+{
+  double xmin = r[0], xmax = r[0], ymin = r[1], ymax = r[1];
+  int i;
+  for (i = 1; i < n; i++) {
+    xmin = fmin(xmin, r[2*i]);
+    xmax = fmax(xmax, r[2*i]);
+    ymin = fmin(ymin, r[2*i+1]);
+    ymax = fmax(ymax, r[2*i+1]);
+  }
+  *sx = 2 * (0.5 * xmax - 0.5 * xmin);
+  *sy = 2 * (0.5 * ymax - 0.5 * ymin);
 }
 
 static void grid_open(grid *G, int n, const double *r, double half_range)
@@ -518,29 +549,65 @@ static void bin_range(double x, double Q, double x0, double w, int nb,
   *count = (int)(hi - lo) + 1;
 }
 
-/* The bins of the rebuild's cell list that may hold a cell now within R of
-** (x, y): nx by ny bins from (fx, fy) on (wrapped mod the grid if
-** periodic).  A cell now within R was binned within Q of (x, y): since the
-** rebuild it moved at most cand_moved up to the last afv_neighbours
-** (candidates_valid), then at most `moved`; AFV_REACH_MARGIN l covers
-** rounding. */
+/* A window of bins of the rebuild's cell list: nx by ny bins from (fx, fy)
+** on (wrapped mod the grid if periodic). */
 typedef struct bin_window {
   int fx, nx, fy, ny;
 } bin_window;
 
+/* MOVERS.  The candidates hold every pair whose anchors are closer than
+** (2 + SKIN) l, a cell's anchor (cand_r0) being its centre when its list
+** was made.  While every cell lies within SKIN l / 2 of its anchor, a pair
+** closer than 2l has anchors closer than (2 + SKIN) l, so it is a candidate
+** pair.  A cell farther from its anchor (a "mover": a cell thrown far by a
+** large force, which the paper's Euler step moves by F dt however far) is
+** re-anchored (reanchor): its list is made anew about its centre, and it
+** is added to the lists of the cells now within reach and taken out of
+** those no longer within it; so one fast cell anywhere costs a few
+** updates, not a rebuild of the whole tissue.  (The Euler step of afv
+** 0.3.0 moves a cell of the benchmark's random state by up to 8 l in one
+** step, hundreds of cells a step at N = 400000: with a rebuild whenever a
+** mover had a pair that was not a candidate, the candidates were rebuilt
+** at nearly every step there, and a step cost 2.5x its N = 400 cost per
+** cell: doc/performance.md, "Movers".)
+** The anchors of the cells not re-anchored since the rebuild are their
+** places in the rebuild's bins (bin_xy); a re-anchored cell is found in a
+** second index on the same bins (anchor_node, node_*: a list of nodes per
+** bin, a cell's node replaced when it is re-anchored again).  A list that
+** outgrows its room moves to the spare room after the rebuild's lists,
+** with twice the room.  The candidates are rebuilt instead when the movers
+** are more than MOVERS_MAX, or the re-anchoring work since the rebuild
+** reaches CHECKS_PER_CELL per cell (about the cost of a rebuild: the
+** ski-rental rule, never more than twice the cost of the better choice
+** made in hindsight), or the spare room or the nodes run out. */
+#define MOVERS_MAX(n) ((n) / 8 + 16)
+#define CHECKS_PER_CELL 25
+#define SPARE_ROOM(used) ((used) / 4 + 64)   /* cand[] slots after the lists */
+#define NODES_MAX(n) ((n) / 4 + 16)
+#define REANCHOR_MOST 256      /* candidates a re-anchored cell may have */
+
+/* The bins of the rebuild's grid within Q of (x, y) (wrapped, if periodic). */
+static bin_window window_at(const afv_geom *g, double x, double y, double Q)
+{
+  const grid *G = &g->cand_grid;
+  bin_window w;
+  bin_range(x, Q, G->x0, G->wx, G->nbx, G->periodic, &w.fx, &w.nx);
+  bin_range(y, Q, G->y0, G->wy, G->nby, G->periodic, &w.fy, &w.ny);
+  return w;
+}
+
+/* The bins that may hold a cell now within R of (x, y): every anchor lies
+** within cand_moved of its cell, and cells moved at most `moved` since. */
 static bin_window window_around(const afv_geom *g, double x, double y,
                                 double R, double moved)
 {
   const grid *G = &g->cand_grid;
-  double Q = R + g->cand_moved + moved + AFV_REACH_MARGIN * g->cand_l;
-  bin_window w;
   if (G->periodic) {
     x = wrap1(x, G->Lx);
     y = wrap1(y, G->Ly);
   }
-  bin_range(x, Q, G->x0, G->wx, G->nbx, G->periodic, &w.fx, &w.nx);
-  bin_range(y, Q, G->y0, G->wy, G->nby, G->periodic, &w.fy, &w.ny);
-  return w;
+  return window_at(g, x, y, R + g->cand_moved + moved
+                            + AFV_REACH_MARGIN * g->cand_l);
 }
 
 /* Bin q (0 <= q < nx ny) of the window, row by row. */
@@ -551,103 +618,199 @@ static int window_bin(const afv_geom *g, const bin_window *w, int q)
   return by * G->nbx + bx;
 }
 
+/* Calls visit(ctx, j, x, y) for every cell j anchored in bin `bin`, at
+** its anchor (x, y) (wrapped): the cells still at their rebuild places,
+** then the re-anchored ones (their current nodes only). */
+typedef int (*anchor_visit)(void *ctx, int j, double x, double y);
+
+static int visit_bin(const afv_geom *g, int bin, anchor_visit visit,
+                     void *ctx)
+{
+  int k, node;
+  for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++) {
+    int j = g->bin_cell[k];
+    if (g->anchor_node[j] < 0
+        && visit(ctx, j, g->bin_xy[2*k], g->bin_xy[2*k+1]))
+      return 1;
+  }
+  for (node = g->node_head[bin]; node >= 0; node = g->node_next[node]) {
+    int j = g->node_cell[node];
+    if (g->anchor_node[j] == node
+        && visit(ctx, j, g->node_xy[2*node], g->node_xy[2*node+1]))
+      return 1;
+  }
+  return 0;
+}
+
+typedef struct around_ctx {
+  int *out, m;
+} around_ctx;
+
+static int put_cell(void *ctx, int j, double x, double y)
+{
+  around_ctx *c = ctx;
+  (void)x; (void)y;
+  c->out[c->m++] = j;
+  return 0;
+}
+
 int afv_cells_around(const afv_geom *g, double x, double y, double R,
                      double moved, int *out)
 {
   bin_window w = window_around(g, x, y, R, moved);
-  int q, k, m = 0;
-  for (q = 0; q < w.nx * w.ny; q++) {
-    int bin = window_bin(g, &w, q);
-    for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++)
-      out[m++] = g->bin_cell[k];
-  }
-  return m;
+  around_ctx c;
+  int q;
+  c.out = out;
+  c.m = 0;
+  for (q = 0; q < w.nx * w.ny; q++) visit_bin(g, window_bin(g, &w, q),
+                                              put_cell, &c);
+  return c.m;
 }
 
-/* MOVERS.  A cell that has moved more than SKIN l / 2 since the rebuild
-** (a "mover": typically a cell thrown far by a breaking contact) does not by itself
-** invalidate the candidates; a pair closer than 2l that is not a candidate
-** pair does.  A pair of two other cells is a candidate pair (each moved at
-** most SKIN l / 2, so it approached by at most SKIN l), so while the
-** movers are few the pairs that involve them are checked one by one: each
-** mover's cells within 2l, movers included, are found in the cell list of
-** the rebuild (window_around, which widens its search by the largest move
-** since the rebuild, g->cand_moved).  Without this, one fast cell
-** anywhere would force a rebuild of the whole tissue, and large tissues
-** always have one.  Both the marking of the movers and their checks are
-** parallel loops (a serial scan would hold the other threads up).  The
-** checks cost O(movers), so MOVERS_MAX is a fixed fraction of the cells
-** and the rebuilds come as often at every N.  And the movers are checked
-** again at every call, as they go on moving: once the pair tests since
-** the rebuild reach CHECKS_PER_CELL per cell, about the cost of a rebuild
-** (a pair test against a rebuild's work per cell, counted:
-** doc/performance.md), the candidates are rebuilt (the ski-rental rule:
-** never more than twice the cost of the better choice made in
-** hindsight). */
-#define MOVERS_MAX(n) ((n) / 8 + 16)
-#define CHECKS_PER_CELL 25
+/* The search of a re-anchored cell m: the cells whose anchors lie within
+** range of (x, y), m's new anchor, into found[] (at most REANCHOR_MOST). */
+typedef struct reach_ctx {
+  const afv_geom *g;
+  int m, count, found[REANCHOR_MOST];
+  double x, y, range2, tests;
+} reach_ctx;
 
-static int is_candidate(const afv_geom *g, int i, int j)
+static int reach_cell(void *ctx, int j, double x, double y)
 {
-  int c;
-  for (c = g->cand_start[i]; c < g->cand_start[i + 1]; c++)
-    if (g->cand[c] == j) return 1;
+  reach_ctx *c = ctx;
+  const grid *G = &c->g->cand_grid;
+  double dx = x - c->x, dy = y - c->y;
+  c->tests++;
+  if (G->periodic) {
+    dx = fold(dx, G->Lx);
+    dy = fold(dy, G->Ly);
+  }
+  if (j == c->m || !(dx * dx + dy * dy < c->range2)) return 0;
+  if (c->count == REANCHOR_MOST) return 1;         /* too many: rebuild */
+  c->found[c->count++] = j;
   return 0;
 }
 
-/* 1 if cells i and j are closer than 2l and not a candidate pair: the
-** same distance test, on the same wrapped centres, as filter_cell's. */
-static int missing_pair(const afv_geom *g, double l, const afv_box *b, int i,
-                        int j)
+static int in_list(const int *a, int m, int j)
 {
-  double dx, dy;
-  displacement(g, i, j, b, &dx, &dy);
-  return i != j && dx * dx + dy * dy < 4 * l * l && !is_candidate(g, i, j);
-}
-
-/* 1 if mover m has a pair closer than 2l that is not a candidate pair;
-** adds the cells it tests to *tests. */
-static int mover_missing_pair(const afv_geom *g, int m, const double *r,
-                              double l, const afv_box *b, double *tests)
-{
-  bin_window w = window_around(g, r[2*m], r[2*m+1], 2 * l, 0);
-  int q, k;
-  for (q = 0; q < w.nx * w.ny; q++) {
-    int bin = window_bin(g, &w, q);
-    *tests += g->bin_start[bin + 1] - g->bin_start[bin];
-    for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++)
-      if (missing_pair(g, l, b, m, g->bin_cell[k])) return 1;
-  }
+  int k;
+  for (k = 0; k < m; k++)
+    if (a[k] == j) return 1;
   return 0;
 }
 
-/* 1 if every pair closer than 2l that involves a mover (is_mover) is a
-** candidate pair (rw: the wrapped centres, wrap_all; g->cand_moved set).
-** The movers are shared among threads; each thread stops testing at its
-** first missing pair. */
-static int movers_covered(afv_geom *g, int n, const double *r, double l,
-                          const afv_box *b)
+/* Gives cell i's list room for `need` candidates: moved, if it has not,
+** to the spare room with twice that.  0 if the spare room is used up. */
+static int make_room(afv_geom *g, int i, int need)
 {
-  double tests = 0;           /* an integer: the same sum in any order */
-  int i, missing = 0;
-  AFV_PARALLEL_REDUCE(n, reduction(+: tests) reduction(|: missing))
-  for (i = 0; i < n; i++)
-    if (g->is_mover[i] && !missing)
-      missing = mover_missing_pair(g, i, r, l, b, &tests);
-  g->cand_checks += tests;
-  return !missing;
+  int len = g->cand_end[i] - g->cand_start[i], room = 2 * need + 2;
+  int at = g->cand_used;
+  if (g->cand_start[i] + need <= g->cand_lim[i]) return 1;
+  if (at + room > g->cand_top) return 0;
+  memcpy(g->cand + at, g->cand + g->cand_start[i], (size_t)len * sizeof(int));
+  g->cand_start[i] = at;
+  g->cand_end[i] = at + len;
+  g->cand_lim[i] = at + room;
+  g->moved_lists++;
+  g->cand_used = at + room;
+  return 1;
 }
 
-/* 1 if the candidates were built for this n, l and box and still hold
-** every pair closer than 2l: no cell has moved more than SKIN l / 2 since,
-** or a few have (MOVERS) and their pairs are candidates.  Sets
-** g->cand_moved, the largest distance of a cell from where it was at the
-** rebuild, and marks the movers in is_mover. */
+/* Adds j to cell i's list (room permitting: 0 if not). */
+static int add_candidate(afv_geom *g, int i, int j)
+{
+  if (!make_room(g, i, g->cand_end[i] - g->cand_start[i] + 1)) return 0;
+  g->cand[g->cand_end[i]++] = j;
+  return 1;
+}
+
+/* Takes j out of cell i's list (keeping the order of the others, which
+** the sort after the rebuild left nearly sorted). */
+static void remove_candidate(afv_geom *g, int i, int j)
+{
+  int *c = g->cand + g->cand_start[i], m = g->cand_end[i] - g->cand_start[i];
+  int k;
+  for (k = 0; k < m && c[k] != j; k++) {}
+  if (k == m) return;
+  memmove(c + k, c + k + 1, (size_t)(m - k - 1) * sizeof(int));
+  g->cand_end[i]--;
+}
+
+/* Re-anchors mover m at its centre r_m (wrapped: g->rw): its list made
+** anew from the anchors within (2 + SKIN) l, the pair added to or taken
+** from the lists of the others, a node for m's new anchor.  0 if the
+** candidates must be rebuilt instead (too many found, no room left). */
+static int reanchor(afv_geom *g, int m, const double *r, double l)
+{
+  const grid *G = &g->cand_grid;
+  double range = (2 + SKIN) * l + AFV_REACH_MARGIN * l;
+  reach_ctx c;
+  bin_window w;
+  int q, k, *old = g->cand + g->cand_start[m];
+  int n_old = g->cand_end[m] - g->cand_start[m], node, bin;
+  if (g->n_nodes == g->cap_nodes) return 0;
+  c.g = g;
+  c.m = m;
+  c.count = 0;
+  c.x = g->rw[2*m];
+  c.y = g->rw[2*m+1];
+  c.range2 = range * range;
+  c.tests = 0;
+  w = window_at(g, c.x, c.y, range);
+  for (q = 0; q < w.nx * w.ny; q++)
+    if (visit_bin(g, window_bin(g, &w, q), reach_cell, &c)) return 0;
+  g->cand_checks += c.tests + n_old + c.count;
+  for (k = 0; k < n_old; k++)
+    if (!in_list(c.found, c.count, old[k])) remove_candidate(g, old[k], m);
+  for (k = 0; k < c.count; k++)
+    if (!in_list(old, n_old, c.found[k])
+        && !add_candidate(g, c.found[k], m))
+      return 0;
+  if (!make_room(g, m, c.count)) return 0;
+  memcpy(g->cand + g->cand_start[m], c.found, (size_t)c.count * sizeof(int));
+  g->cand_end[m] = g->cand_start[m] + c.count;
+  node = g->n_nodes++;
+  bin = bin_of(G, c.x, c.y);
+  g->node_cell[node] = m;
+  g->node_xy[2*node] = c.x;
+  g->node_xy[2*node+1] = c.y;
+  g->node_next[node] = g->node_head[bin];
+  g->node_head[bin] = node;
+  g->anchor_node[m] = node;
+  g->cand_r0[2*m] = r[2*m];
+  g->cand_r0[2*m+1] = r[2*m+1];
+  return 1;
+}
+
+/* Piece storage: cell i with room for k candidates has at most k
+** neighbours and 2k + 1 pieces (an edge per neighbour, an arc after each,
+** or one full circle), so its pieces go at piece_start[i], the sum of
+** 2k + 1 over the cells before it: in cell order whichever lists have moved
+** (afv_clusters_compute's junctions are numbered in the pieces' order).
+** Placed at a rebuild, and again only when a list has moved: no pass per
+** call.  g->max_cand sizes the work space. */
+static void place_pieces(afv_geom *g, int n)
+{
+  int i, at = 0;
+  g->max_cand = 0;
+  for (i = 0; i < n; i++) {
+    int k = g->cand_lim[i] - g->cand_start[i];
+    if (k > g->max_cand) g->max_cand = k;
+    g->piece_start[i] = at;
+    at += 2 * k + 1;
+  }
+  g->piece_start[n] = at;
+}
+
+/* 1 if the candidates were built for this n, l and box and hold every
+** pair closer than 2l: no cell lies farther than SKIN l / 2 from its
+** anchor, or the few that do (is_mover) have been re-anchored.  Sets
+** g->cand_moved, the largest distance of a cell from its anchor. */
 static int candidates_valid(afv_geom *g, int n, const double *r, double l,
                             const afv_box *b)
 {
   double lim2 = 0.25 * SKIN * SKIN * l * l, most2 = 0;
-  int i, movers = 0, nonfinite = 0;
+  int i, movers = 0, nonfinite = 0, moved;
   if (g->cand_n != n || g->cand_l != l || !same_box(&g->cand_box, b)
       || g->cand_dense)
     return 0;
@@ -659,85 +822,52 @@ static int candidates_valid(afv_geom *g, int n, const double *r, double l,
     g->is_mover[i] = !(d2 <= lim2);
     movers += g->is_mover[i];
     if (!isfinite(d2)) nonfinite = 1;
-    else if (d2 > most2) most2 = d2;
+    else if (d2 > most2 && d2 <= lim2) most2 = d2;
   }
   if (nonfinite || movers > MOVERS_MAX(n)) return 0;
-  g->cand_moved = sqrt(most2);
-  if (movers == 0) return 1;
-  return g->cand_checks < (double)CHECKS_PER_CELL * n
-         && movers_covered(g, n, r, l, b);
+  g->cand_moved = sqrt(most2);      /* a re-anchored mover is at 0 */
+  moved = g->moved_lists;
+  for (i = 0; i < n && movers > 0; i++)
+    if (g->is_mover[i]) {
+      if (g->cand_checks >= (double)CHECKS_PER_CELL * n
+          || !reanchor(g, i, r, l))
+        return 0;
+      movers--;
+    }
+  if (g->moved_lists > moved) place_pieces(g, n);
+  return 1;
 }
 
 /* ---- dense input ------------------------------------------------------ */
 /* DENSE.  Far above the paper's densities (8000 cells in a 12 x 12 box: 55
-** per l^2), each cell has hundreds of centres within 2l, nearly all of
-** which cannot reach it: its cell is far smaller than the disk.  There
-** the candidates come from a search in order of distance with a stop,
-** Voro++'s "radius of security": cell i's shape lies within R_i of r_i,
-** R_i the largest distance of a vertex of the polygon cut so far (at most
-** l), and a centre at d >= 2 R_i has its bisector at d/2 >= R_i, so it
-** cannot cut the cell.  The bins of a fine grid (about a cell each) are
-** visited ring by ring about i's bin, each centre met cuts the polygon,
-** and the walk stops when the next ring lies beyond 2 R_i.  The
-** candidates of i are the centres j with d < 2 R_i or d < 2 R_j (so the
-** lists are symmetric, as link_cell needs), a superset of the cells that
-** cut: the same shapes.  These lists depend on the positions (no skin),
-** so they are rebuilt at every call (cand_dense).  Cost O(N) in time and
-** memory for any density.  DENSE_CANDIDATES: a cell of a tissue at the
-** paper's densities has 6 to 20 centres within (2 + SKIN) l; 64 is
-** three times that, so their lists never take this path. */
+** per l^2), or on degenerate layouts (thousands of centres on a line or a
+** circle, or in a square of 0.01 l), each cell has hundreds or thousands
+** of centres within 2l, nearly all of which cannot reach it.  There the
+** candidates are proposed in order of distance, with a stop: the bins of
+** a fine grid (about a cell each) are visited ring by ring about cell i's
+** bin; a centre is taken if it cuts the cell that the centres taken so far
+** leave (geom.c's clipping shapes that cell, afv_reach_of, and decides,
+** afv_reach_cuts); a bin none of whose points can cut that cell is
+** skipped (afv_reach_meets_rect), and the walk stops at the first ring of
+** skipped bins (the points that cut a cell form a region star-shaped about
+** its centre, so no farther ring can hold one).  Within a bin the centres
+** that cut are taken nearest first, so that later ones are tested against
+** the cell the nearer ones left.  Every centre that cuts the final cell
+** cuts each larger cell before it, so it is taken: the candidates of i
+** hold every centre that cuts cell i (but those that cut it by less than
+** AFV_CUT_DEPTH l, as every other centre of a circle does at its centre
+** by rounding), and the lists, made symmetric, are clipped by geom.c as
+** any others.  These lists depend on the positions (no skin), so they are
+** made at every call (cand_dense).  Cost O(N) in time and memory for the
+** layouts measured (doc/performance.md, "Dense and degenerate input").
+** DENSE_CANDIDATES: a cell of a tissue at the paper's densities has 6 to
+** 20 centres within (2 + SKIN) l (the authors' compressed start about 28);
+** 64 is more than twice that, so their lists never take this path. */
 #define DENSE_CANDIDATES 64
 
-/* The polygon cut so far has at most this many vertices (each cut adds at
-** most one); a cell that would need more keeps R = l: no pruning. */
-#define DENSE_VERTICES 64
-
-/* A convex polygon about the origin (cell i's centre) containing the
-** cell: vertices v[0 .. m-1], counter-clockwise. */
-typedef struct cut_polygon {
-  int m;
-  double v[2 * DENSE_VERTICES];
-} cut_polygon;
-
-/* Cuts P by the half-plane x . D <= |D|^2 / 2 (the side of i of the
-** bisector of i and a centre at D).  Returns 0 if the result would have
-** too many vertices (P is then left as it was). */
-static int cut_by_bisector(cut_polygon *P, double dx, double dy)
-{
-  double c = 0.5 * (dx * dx + dy * dy), w[2 * DENSE_VERTICES];
-  int k, m = 0;
-  for (k = 0; k < P->m; k++) {
-    const double *p = P->v + 2 * k, *q = P->v + 2 * ((k + 1) % P->m);
-    double sp = p[0] * dx + p[1] * dy - c, sq = q[0] * dx + q[1] * dy - c;
-    if (sp <= 0) {
-      if (m == DENSE_VERTICES) return 0;
-      w[2*m] = p[0];
-      w[2*m+1] = p[1];
-      m++;
-    }
-    if ((sp < 0 && sq > 0) || (sp > 0 && sq < 0)) {   /* the edge crosses */
-      double t = sp / (sp - sq);
-      if (m == DENSE_VERTICES) return 0;
-      w[2*m] = p[0] + t * (q[0] - p[0]);
-      w[2*m+1] = p[1] + t * (q[1] - p[1]);
-      m++;
-    }
-  }
-  P->m = m;
-  memcpy(P->v, w, (size_t)(2 * m) * sizeof(double));
-  return 1;
-}
-
-/* The radius of security of P: its farthest vertex, at most l, widened by
-** AFV_REACH_MARGIN l for the rounding of the vertices. */
-static double security_radius(const cut_polygon *P, double l)
-{
-  double most = 0;
-  int k;
-  for (k = 0; k < P->m; k++)
-    most = fmax(most, P->v[2*k] * P->v[2*k] + P->v[2*k+1] * P->v[2*k+1]);
-  return fmin(l, sqrt(most) + AFV_REACH_MARGIN * l);
-}
+static void sort_slots(int *nbr, double *d, int m);
+static inline void edge_entry(double dx, double dy, double l, double *e);
+static double near_limit2(const afv_box *b);
 
 /* The bin offsets along one axis of nb bins that a walk may visit, each
 ** bin once: -lo .. hi (periodic: at most half the bins each way; open:
@@ -753,23 +883,81 @@ static void walk_range(int c, int nb, int periodic, int *lo, int *hi)
   }
 }
 
-/* Walk state for cell i: its wrapped centre, bin, polygon and radius, and
-** the centres met that were within 2R then (j, d^2). */
+/* A centre met in a bin that cuts the cell: its displacement, d^2. */
+typedef struct cutter {
+  double dx, dy, d2;
+  int j;
+} cutter;
+
+/* Nearest first, ties by cell: a total order, so the walk takes the same
+** centres whatever the sort. */
+static int nearer(const void *a, const void *b)
+{
+  const cutter *p = a, *q = b;
+  if (p->d2 != q->d2) return p->d2 < q->d2 ? -1 : 1;
+  return (p->j > q->j) - (p->j < q->j);
+}
+
+/* Walk state for cell i: its wrapped centre; the centres taken (cell,
+** displacement, edge cache, sorted by direction) and the reach of the
+** cell they leave; the centres closer than the NEAR limit, taken without
+** a test (filter_cell decides on them); the centres of one bin that cut. */
 typedef struct dense_walk {
-  double x, y, R, l;
-  cut_polygon P;
-  int pruned;           /* 0 once the polygon overflowed: R stays l */
-  int *met;             /* cells met within 2R, and their d^2 */
-  double *met_d2;
-  int n_met, cap_met, cap_met_d2;
+  double x, y, l, near2;
+  int *take, n_take, cap_take, cap_d, cap_e, cap_v, cap_a, cap_w;
+  double *take_d, *take_e;
+  afv_reach R;
+  void *work;
+  struct cutter *cut;        /* the cutters met in one bin */
+  int n_cut, cap_cut;
+  int *near, n_near, cap_near;
 } dense_walk;
 
-/* Visits bin (cx, cy) (already wrapped or on the grid) for walk W of cell
-** i: each centre within 2R is kept and cuts the polygon. */
+/* Keeps a centre nearly on cell i's (NEAR), untested. */
+static int take_near(dense_walk *W, int j)
+{
+  if (afv_grow((void **)&W->near, &W->cap_near, W->n_near + 1, sizeof(int)))
+    return AFV_ENOMEM;
+  W->near[W->n_near++] = j;
+  return AFV_OK;
+}
+
+static int grow_walk(dense_walk *W, int k)
+{
+  if (afv_grow((void **)&W->take, &W->cap_take, k, sizeof(int))
+      || afv_grow((void **)&W->take_d, &W->cap_d, k, 2 * sizeof(double))
+      || afv_grow((void **)&W->take_e, &W->cap_e, k, 4 * sizeof(double))
+      || afv_grow((void **)&W->R.v, &W->cap_v, 2 * k + 2, 2 * sizeof(double))
+      || afv_grow((void **)&W->R.arc, &W->cap_a, k + 1, 4 * sizeof(double))
+      || afv_grow((void **)&W->work, &W->cap_w, (int)afv_reach_work(k) + 1,
+                  1))
+    return AFV_ENOMEM;
+  return AFV_OK;
+}
+
+/* Takes centre j at (dx, dy): into the sorted lists, and the reach anew. */
+static int take_centre(dense_walk *W, int j, double dx, double dy)
+{
+  int k = W->n_take, q;
+  if (grow_walk(W, k + 1)) return AFV_ENOMEM;
+  W->take[k] = j;
+  W->take_d[2*k] = dx;
+  W->take_d[2*k+1] = dy;
+  W->n_take = k + 1;
+  sort_slots(W->take, W->take_d, W->n_take);  /* one insertion */
+  for (q = 0; q < W->n_take; q++)
+    edge_entry(W->take_d[2*q], W->take_d[2*q+1], W->l, W->take_e + 4 * q);
+  afv_reach_of(W->take_e, W->take_d, W->n_take, W->l, W->work, &W->R);
+  return AFV_OK;
+}
+
+/* Visits bin `bin` for the walk W of cell i: each centre that cuts the
+** cell is taken, nearest first; a NEAR one is kept untested. */
 static int walk_bin(const afv_geom *g, const grid *G, int i, int bin,
                     dense_walk *W)
 {
-  int k;
+  int k, st;
+  W->n_cut = 0;
   for (k = g->bin_start[bin]; k < g->bin_start[bin + 1]; k++) {
     int j = g->bin_cell[k];
     double dx = g->bin_xy[2*k] - W->x, dy = g->bin_xy[2*k+1] - W->y, d2;
@@ -779,18 +967,24 @@ static int walk_bin(const afv_geom *g, const grid *G, int i, int bin,
       dy = fold(dy, G->Ly);
     }
     d2 = dx * dx + dy * dy;
-    if (!(d2 < 4 * W->R * W->R)) continue;
-    if (afv_grow((void **)&W->met, &W->cap_met, W->n_met + 1, sizeof(int))
-        || afv_grow((void **)&W->met_d2, &W->cap_met_d2, W->n_met + 1,
-                    sizeof(double)))
-      return AFV_ENOMEM;
-    W->met[W->n_met] = j;
-    W->met_d2[W->n_met++] = d2;
-    if (W->pruned && !cut_by_bisector(&W->P, dx, dy)) {
-      W->pruned = 0;
-      W->R = W->l;
+    if (d2 < W->near2) {
+      if ((st = take_near(W, j)) != AFV_OK) return st;
+      continue;
     }
-    if (W->pruned) W->R = security_radius(&W->P, W->l);
+    if (!(d2 < 4 * W->l * W->l) || !afv_reach_cuts(&W->R, dx, dy)) continue;
+    if (afv_grow((void **)&W->cut, &W->cap_cut, W->n_cut + 1,
+                 sizeof(cutter)))
+      return AFV_ENOMEM;
+    W->cut[W->n_cut].dx = dx;
+    W->cut[W->n_cut].dy = dy;
+    W->cut[W->n_cut].d2 = d2;
+    W->cut[W->n_cut++].j = j;
+  }
+  if (W->n_cut > 1) qsort(W->cut, (size_t)W->n_cut, sizeof(cutter), nearer);
+  for (k = 0; k < W->n_cut; k++) {
+    const cutter *c = &W->cut[k];
+    if (k > 0 && !afv_reach_cuts(&W->R, c->dx, c->dy)) continue;
+    if ((st = take_centre(W, c->j, c->dx, c->dy)) != AFV_OK) return st;
   }
   return AFV_OK;
 }
@@ -808,33 +1002,30 @@ static int offset_bin(const grid *G, int bx, int by, int ox, int oy)
   return cy * G->nbx + cx;
 }
 
-/* The walk of cell i (bin-order position q): rings of bins about its bin
-** until the next ring lies beyond 2R (each cell of ring k is at least
-** (k - 1) w away, w the smaller bin side; where rings wrap around a
-** periodic box past half of it, the walk goes on to the end); W->R and
-** W->met as it stopped. */
+/* The walk of cell i (bin-order position q): rings of bins about its bin;
+** a bin whose rectangle cannot hold a cutter is skipped, and the walk
+** stops after a ring of such bins.  Where a ring's centres may lie half a
+** periodic box away (the minimum image could then be another image than
+** the bin's), its bins are all visited and the walk goes on to the end. */
 static int walk_cell(const afv_geom *g, const grid *G, int q, dense_walk *W)
 {
   int i = g->bin_cell[q], bin = bin_of(G, g->bin_xy[2*q], g->bin_xy[2*q+1]);
   int bx = bin % G->nbx, by = bin / G->nbx, xlo, xhi, ylo, yhi, k, K, st;
-  double w = fmin(G->wx, G->wy);
   W->x = g->bin_xy[2*q];
   W->y = g->bin_xy[2*q+1];
-  W->R = W->l;
-  W->pruned = 1;
-  W->n_met = 0;
-  W->P.m = 4;                       /* the square about the disk */
-  W->P.v[0] = -W->l; W->P.v[1] = -W->l; W->P.v[2] = W->l; W->P.v[3] = -W->l;
-  W->P.v[4] = W->l; W->P.v[5] = W->l; W->P.v[6] = -W->l; W->P.v[7] = W->l;
+  W->n_take = W->n_near = 0;
+  W->R.nv = 0;
+  W->R.na = -1;                     /* the whole disk */
+  W->R.l = W->l;
   walk_range(bx, G->nbx, G->periodic, &xlo, &xhi);
   walk_range(by, G->nby, G->periodic, &ylo, &yhi);
   K = xlo > xhi ? xlo : xhi;
   if (ylo > K) K = ylo;
   if (yhi > K) K = yhi;
   for (k = 0; k <= K; k++) {
-    int ox, oy;
-    int unwrapped = !G->periodic || (2 * k <= G->nbx && 2 * k <= G->nby);
-    if (k >= 2 && unwrapped && (k - 1) * w >= 2 * W->R) break;
+    int ox, oy, met = 0;
+    int exact = !G->periodic || ((k + 1) * G->wx < 0.5 * G->Lx
+                                 && (k + 1) * G->wy < 0.5 * G->Ly);
     for (oy = -k; oy <= k; oy++) {
       int step = (oy == -k || oy == k) ? 1 : 2 * k;   /* the ring only */
       if (oy < -ylo || oy > yhi) continue;
@@ -842,9 +1033,19 @@ static int walk_cell(const afv_geom *g, const grid *G, int q, dense_walk *W)
         int b2;
         if (ox < -xlo || ox > xhi) continue;
         if ((b2 = offset_bin(G, bx, by, ox, oy)) < 0) continue;
+        if (exact) {
+          double rect[4];
+          rect[0] = G->x0 + (bx + ox) * G->wx - W->x;
+          rect[1] = rect[0] + G->wx;
+          rect[2] = G->y0 + (by + oy) * G->wy - W->y;
+          rect[3] = rect[2] + G->wy;
+          if (!afv_reach_meets_rect(&W->R, rect)) continue;
+        }
+        met = 1;
         if ((st = walk_bin(g, G, i, b2, W)) != AFV_OK) return st;
       }
     }
+    if (exact && !met) break;
   }
   return AFV_OK;
 }
@@ -877,29 +1078,34 @@ static void sort_ints(int *a, int m)
   }
 }
 
-/* Every cell's walk: the centres j within 2 R_i of cell i go to
-** out[first[i] .. first[i] + len[i] - 1] (out grown as needed). */
+/* Every cell's walk: the centres that cut cell i (and the NEAR ones) go
+** to out[first[i] .. first[i] + len[i] - 1] (out grown as needed). */
 static int walk_all(const afv_geom *g, const grid *G, int n, double l,
-                    int **out, int *cap_out, int *first, int *len)
+                    double near2, int **out, int *cap_out, int *first,
+                    int *len)
 {
   dense_walk W;
-  int q, c, total = 0, st = AFV_OK;
+  int q, total = 0, st = AFV_OK;
   memset(&W, 0, sizeof W);
   W.l = l;
+  W.near2 = near2;
+  st = grow_walk(&W, 16);
   for (q = 0; q < n && st == AFV_OK; q++) {   /* in bin order */
     int i = g->bin_cell[q];
     if ((st = walk_cell(g, G, q, &W)) != AFV_OK) break;
-    if (afv_grow((void **)out, cap_out, total + W.n_met + 1, sizeof(int))) {
+    if (afv_grow((void **)out, cap_out, total + W.n_take + W.n_near + 1,
+                 sizeof(int))) {
       st = AFV_ENOMEM;
       break;
     }
     first[i] = total;
-    for (c = 0; c < W.n_met; c++)
-      if (W.met_d2[c] < 4 * W.R * W.R) (*out)[total++] = W.met[c];
+    memcpy(*out + total, W.take, (size_t)W.n_take * sizeof(int));
+    memcpy(*out + total + W.n_take, W.near, (size_t)W.n_near * sizeof(int));
+    total += W.n_take + W.n_near;
     len[i] = total - first[i];
   }
-  free(W.met);
-  free(W.met_d2);
+  free(W.take); free(W.take_d); free(W.take_e); free(W.R.v); free(W.R.arc);
+  free(W.work); free(W.cut); free(W.near);
   return st;
 }
 
@@ -941,19 +1147,22 @@ static int symmetric_lists(afv_geom *g, int n, const int *out,
   return AFV_OK;
 }
 
-/* The dense search: every cell's walk (R_i, and the centres j within
-** 2 R_i), then the lists made symmetric.  G is replaced by the fine grid
+/* The dense search: every cell's walk (the centres that cut it), then the
+** lists made symmetric.  G is replaced by the fine grid
 ** (about one cell a bin), whose bins stay in g for afv_cells_around. */
 static int dense_candidates(afv_geom *g, int n, const double *r, double l,
                             const afv_box *b, grid *G)
 {
   int *out = NULL, *first, *len, cap_out = 0, st;
-  double area = b && b->periodic ? b->Lx * b->Ly : 0, half;
-  if (!(b && b->periodic)) {           /* open: the centres' bounding box */
-    grid_open(G, n, r, l);
-    area = (G->nbx * G->wx) * (G->nby * G->wy);
+  double half;
+  if (b && b->periodic) {
+    half = 0.5 * sqrt(b->Lx * b->Ly / n);
+  } else {      /* open: bins of the centres' bounding box, about n of
+                ** them (n along a line of centres) */
+    double sx, sy;
+    grid_span(n, r, &sx, &sy);
+    half = 0.5 * fmax(sqrt(sx / n * sy), fmax(sx, sy) / n);
   }
-  half = 0.5 * sqrt(area / n);
   if (!(half > 0) || !isfinite(half) || half > l) half = l;
   if (b && b->periodic) grid_periodic(G, b, half, n);
   else grid_open(G, n, r, half);
@@ -961,11 +1170,38 @@ static int dense_candidates(afv_geom *g, int n, const double *r, double l,
   first = malloc((size_t)(2 * n + 2) * sizeof(int));
   if (!first) return AFV_ENOMEM;
   len = first + n + 1;
-  st = walk_all(g, G, n, l, &out, &cap_out, first, len);
+  st = walk_all(g, G, n, l, near_limit2(b), &out, &cap_out, first, len);
   if (st == AFV_OK) st = symmetric_lists(g, n, out, first, len);
   free(first);
   free(out);
   return st;
+}
+
+/* After a rebuild: every cell anchored at its place in the bins, its list
+** with no room beyond it; the spare room and the nodes (MOVERS) unused. */
+static int reset_anchors(afv_geom *g, const grid *G, int n)
+{
+  int nb = G->nbx * G->nby, i, c = g->cap_nodes;
+  if (afv_grow((void **)&g->node_head, &g->cap_heads, nb + 1, sizeof(int)))
+    return AFV_ENOMEM;
+  if (afv_grow((void **)&g->node_next, &c, NODES_MAX(n), sizeof(int)))
+    return AFV_ENOMEM;
+  c = g->cap_nodes;
+  if (afv_grow((void **)&g->node_cell, &c, NODES_MAX(n), sizeof(int)))
+    return AFV_ENOMEM;
+  c = g->cap_nodes;
+  if (afv_grow((void **)&g->node_xy, &c, NODES_MAX(n), 2 * sizeof(double)))
+    return AFV_ENOMEM;
+  g->cap_nodes = c;
+  for (i = 0; i < nb; i++) g->node_head[i] = -1;
+  for (i = 0; i < n; i++) {
+    g->anchor_node[i] = -1;
+    g->cand_end[i] = g->cand_lim[i] = g->cand_start[i + 1];
+  }
+  g->n_nodes = 0;
+  g->moved_lists = 0;
+  g->cand_used = g->cand_start[n];
+  return AFV_OK;
 }
 
 /* Two passes over the cell list (count, then fill) let every cell write its
@@ -994,12 +1230,15 @@ static int build_candidates(afv_geom *g, int n, const double *r, double l,
   g->cand_dense = probed || most > DENSE_CANDIDATES;
   if (g->cand_dense) {
     if ((st = dense_candidates(g, n, r, l, b, &G)) != AFV_OK) return st;
+    g->cand_top = g->cand_start[n];       /* no re-anchoring (DENSE) */
   } else {
-    if (afv_grow((void **)&g->cand, &g->cap_cand, g->cand_start[n] + 1,
+    g->cand_top = g->cand_start[n] + SPARE_ROOM(g->cand_start[n]);
+    if (afv_grow((void **)&g->cand, &g->cap_cand, g->cand_top + 1,
                  sizeof(int)))
       return AFV_ENOMEM;
     scan_all(g, &G, range, 1);
   }
+  if ((st = reset_anchors(g, &G, n)) != AFV_OK) return st;
   g->cand_grid = G;
   memcpy(g->cand_r0, r, (size_t)(2 * n) * sizeof(double));
   g->cand_box.periodic = b && b->periodic;
@@ -1157,7 +1396,7 @@ static void sort_candidates(afv_geom *g, int n, const afv_box *b)
   int i;
   AFV_PARALLEL_FOR(n)
   for (i = 0; i < n; i++) {
-    int *c = g->cand + g->cand_start[i], m = g->cand_start[i + 1]
+    int *c = g->cand + g->cand_start[i], m = g->cand_end[i]
              - g->cand_start[i], k, q;
     if (m > LONG_LIST && merge_sort_cell(g, i, b, c, m)) continue;
     for (k = 1; k < m; k++) {
@@ -1237,7 +1476,7 @@ static int filter_cell(const afv_geom *g, int i, const double *r, double l,
                        const afv_box *b, int *nbr, double *nbr_d)
 {
   double xi = g->rw[2*i], yi = g->rw[2*i+1], range2 = 4 * l * l;
-  int periodic = b && b->periodic, count = 0, c, end = g->cand_start[i + 1];
+  int periodic = b && b->periodic, count = 0, c, end = g->cand_end[i];
   double Lx = periodic ? b->Lx : 0, Ly = periodic ? b->Ly : 0;
   double near2 = near_limit2(b);
   int near = 0;
@@ -1273,17 +1512,11 @@ static COLD double tiny_length(double dx, double dy)
   return ldexp(sqrt(x * x + y * y), e);
 }
 
-/* The edge cache of slot s (g->edge, 4 doubles per slot: u = D/d, h = d/2,
-** sc = sqrt(l^2 - h^2)) and of its reverse slot t, from the displacement
-** D of s: the clipping, the boundary assembly and the forces (afv.c) all
-** need these.  D_t = -D_s exactly (fold is odd), so d, h and sc are the
-** same bits from both cells and u_t = -u_s exactly: one computation (two
-** square roots, two divisions) serves the pair. */
-static inline void fill_edge_pair(afv_geom *g, int s, int t, double l)
+/* The edge cache of a displacement D = (dx, dy) of a pair closer than 2l
+** (4 doubles: u = D/d, h = d/2, sc = sqrt(l^2 - h^2)). */
+static inline void edge_entry(double dx, double dy, double l, double *e)
 {
-  double dx = g->nbr_d[2*s], dy = g->nbr_d[2*s+1], d2 = dx * dx + dy * dy;
-  double d, h;
-  double *e = g->edge + 4 * s, *f = g->edge + 4 * t;
+  double d2 = dx * dx + dy * dy, d, h;
   if (d2 >= DBL_MIN) {
     d = sqrt(d2);
     h = 0.5 * d;
@@ -1299,6 +1532,18 @@ static inline void fill_edge_pair(afv_geom *g, int s, int t, double l)
                                     ** needs h; d = 2h is exact */
   e[3] = sqrt((l - h) * (l + h));   /* (l-h)(l+h) is exact where l*l - h*h
                                     ** would cancel for h near l */
+}
+
+/* The edge cache of slot s (g->edge, 4 doubles per slot: u = D/d, h = d/2,
+** sc = sqrt(l^2 - h^2)) and of its reverse slot t, from the displacement
+** D of s: the clipping, the boundary assembly and the forces (afv.c) all
+** need these.  D_t = -D_s exactly (fold is odd), so d, h and sc are the
+** same bits from both cells and u_t = -u_s exactly: one computation (two
+** square roots, two divisions) serves the pair. */
+static inline void fill_edge_pair(afv_geom *g, int s, int t, double l)
+{
+  double *e = g->edge + 4 * s, *f = g->edge + 4 * t;
+  edge_entry(g->nbr_d[2*s], g->nbr_d[2*s+1], l, e);
   f[0] = -e[0];
   f[1] = -e[1];
   f[2] = e[2];
@@ -1397,24 +1642,14 @@ static int list_cell(afv_geom *g, int i, const double *r, double l,
   return count < 0 ? count : 0;
 }
 
-/* Piece storage, set when the candidates are rebuilt: cell i with k
-** candidates has at most k neighbours and 2k + 1 pieces (an edge per
-** neighbour, an arc after each, or one full circle), so its pieces go at
-** piece_start[i] = 2 cand_start[i] + i, like its list at its candidate
-** offset: no pass per call to place them.  g->max_cand sizes the work
-** space. */
+/* The pieces placed after a rebuild (place_pieces: at 2 cand_start[i] + i,
+** the lists being packed), with room for 2 cand_top + n: the rooms of the
+** lists, moved or not, never sum to more than cand_top. */
 static int reserve_pieces(afv_geom *g, int n)
 {
-  int i;
-  g->max_cand = 0;
-  for (i = 0; i < n; i++) {
-    int k = g->cand_start[i + 1] - g->cand_start[i];
-    if (k > g->max_cand) g->max_cand = k;
-    g->piece_start[i] = 2 * g->cand_start[i] + i;
-  }
-  g->piece_start[n] = 2 * g->cand_start[n] + n;
-  return afv_grow((void **)&g->pieces, &g->cap_pieces, g->piece_start[n] + 1,
-              sizeof(afv_piece));
+  place_pieces(g, n);
+  return afv_grow((void **)&g->pieces, &g->cap_pieces, 2 * g->cand_top + n + 1,
+                  sizeof(afv_piece));
 }
 
 /* The exact lists from the candidates, then the pairs linked.  Serially,
@@ -1434,7 +1669,7 @@ int afv_neighbours(afv_geom *g, int n, const double *r, double l,
   wrap_all(g, n, r, b);
   if (!candidates_valid(g, n, r, l, b)) {
     if ((st = build_candidates(g, n, r, l, b)) != AFV_OK) return st;
-    if (grow_nbr(g, g->cand_start[n] + 1) || reserve_pieces(g, n)) {
+    if (grow_nbr(g, g->cand_top + 1) || reserve_pieces(g, n)) {
       g->cand_n = 0;                /* no space: rebuild at the next call */
       return AFV_ENOMEM;
     }

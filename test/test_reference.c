@@ -245,8 +245,83 @@ static void test_shapes_match_clipped_polygons(void)
          "(bound %.3g)\n", BRUTE_M, eA, 1 / (cm * cm) - 1, eP, 1 / cm - 1);
 }
 
+/* Degenerate dense layouts (neighbours.c, DENSE: the candidates proposed
+** by the cut test): centres evenly on a line (300 on 0.3 l), on a circle
+** (200 on a radius of 1 l: every cell's vertex at the circle's centre is
+** shared by all), and at random in a square of 0.001 l (300: inner cells
+** tiny, outer ones reaching the circle), open space, and the line and
+** circle in a periodic box: each cell's area and perimeter within the
+** error of the all-pairs polygon twin.  (Not timed; their cost is in
+** doc/performance.md.  A walk stopped after the first ring, or a bin test
+** that ignores the arcs, fails this.) */
+static void degenerate_config(int kind, int n, int periodic, test_config *c)
+{
+  int i;
+  c->n = n;
+  c->r = malloc((size_t)(2 * n) * sizeof(double));
+  c->box.periodic = periodic;
+  c->box.Lx = c->box.Ly = periodic ? 5 : 0;
+  c->name = kind == 0 ? "line" : kind == 1 ? "circle" : "square";
+  if (!c->r) return;
+  test_rng_seed(38);
+  for (i = 0; i < n; i++) {
+    double x = 0.3 * i / n, y = 0;
+    if (kind == 1) {
+      x = cos(2 * PI * i / n);
+      y = sin(2 * PI * i / n);
+    } else if (kind == 2) {
+      x = 0.001 * test_rng_uniform();
+      y = 0.001 * test_rng_uniform();
+    }
+    c->r[2*i] = x + (periodic ? 2.5 : 0);
+    c->r[2*i+1] = y + (periodic ? 2.5 : 0);
+  }
+}
+
+/* The most neighbour slots a cell of c has (the lists are linear in N
+** only if this stays small: on the circle every centre touches every
+** cell at the circle's centre; 2, 5 and 15 on the line, circle and
+** square, 199 on the circle if the cut test takes the centres that only
+** touch, AFV_CUT_DEPTH -1e-9). */
+static double most_slots(const test_config *c)
+{
+  afv_params p;
+  afv_geom g = {0};
+  int i, most = -1;
+  afv_params_default(&p);
+  if (afv_geometry(&g, c->n, c->r, &p, &c->box) == AFV_OK)
+    for (i = 0, most = 0; i < c->n; i++)
+      if (g.nbr_end[i] - g.nbr_start[i] > most)
+        most = g.nbr_end[i] - g.nbr_start[i];
+  afv_geom_free(&g);
+  return most < 0 ? HUGE_VAL : most;
+}
+
+static void test_degenerate_shapes_match_clipped_polygons(void)
+{
+  static const int kinds[5][3] = {{0, 300, 0}, {1, 200, 0}, {2, 300, 0},
+                                  {0, 300, 1}, {1, 200, 1}};
+  double eA = 0, eP = 0, most = 0;
+  int k;
+  for (k = 0; k < 5; k++) {
+    test_config c;
+    degenerate_config(kinds[k][0], kinds[k][1], kinds[k][2], &c);
+    CHECK(c.r != NULL, "out of memory");
+    if (c.r) {
+      check_brute(&c, &eA, &eP);
+      most = fmax(most, most_slots(&c));
+    }
+    test_config_free(&c);
+  }
+  printf("  degenerate layouts: largest A/A_M - 1 = %.3g, P/P_M - 1 = %.3g, "
+         "at most %g neighbour slots a cell\n", eA, eP, most);
+  CHECK(most <= 32, "a cell lists %g neighbours (the cut test keeps the "
+        "lists short: AFV_CUT_DEPTH)", most);
+}
+
 void suite_reference(void)
 {
   RUN(test_step_is_the_papers_equations);
   RUN(test_shapes_match_clipped_polygons);
+  RUN(test_degenerate_shapes_match_clipped_polygons);
 }
