@@ -14,6 +14,8 @@
 #                   against 0.0025 by the same rule; "missing" without
 #                   two seeds at both
 #   cap_table.csv   the same as dt_table.csv for the cap sweeps (cap column)
+#   fss_table.csv   the same for the finite-size sweeps (N column)
+#   progress.txt    how many runs of each sweep are in
 #
 # Observables: ngc_frac, n_clusters, omega (steady means), D_eff (the
 # summary's, lag 5000), msd_beta, beta_long, t1_rate (T1 events per cell
@@ -134,11 +136,24 @@ if [ -x "$PLOT" ] && [ "$(wc -l < "$DEST/dt_table.csv")" -gt 1 ]; then
   mkdir -p "$DEST/figures"
   for o in msd_beta beta_long D_eff t1_rate omega_mean; do
     "$PLOT" "$DEST/dt_table.csv" dt "$o" v0=0.4 "$DEST/figures/dt_glass_$o.svg" \
-      "glass states (v0 0.4): $o against dt (mean, markers +- sem of 2 seeds)" || true
+      "glass states (v0 0.4): $o against dt (seed mean; markers: +- sem where 2 seeds are in)" || true
   done
   for o in ngc_frac_mean n_clusters_mean omega_mean csd_exponent; do
     "$PLOT" "$DEST/dt_table.csv" dt "$o" 'v0!=0.4' "$DEST/figures/dt_dispersal_$o.svg" \
-      "dispersal states: $o against dt (mean, markers +- sem of 2 seeds)" || true
+      "dispersal states: $o against dt (seed mean; markers: +- sem where 2 seeds are in)" || true
   done
 fi
+# progress.txt: how many runs of each sweep are in, and who ran them
+{
+  for dir in "$OUT"/*/; do
+    [ -f "$dir/points.csv" ] || continue
+    s=$(basename "$dir")
+    total=$(($(wc -l < "$dir/points.csv") - 1))
+    done_=$(awk -F, -v s="$s" '$1 == s' "$DEST/runs.csv" | wc -l)
+    echo "$s: $done_ of $total runs finished and analysed"
+  done
+  echo "runs by: $("$OUT/afv" --version 2>/dev/null | head -1)"
+  echo "tabled: $(date -u +%Y-%m-%d)"
+} > "$DEST/progress.txt.tmp"
+mv "$DEST/progress.txt.tmp" "$DEST/progress.txt"
 echo "tools/model_table.sh: $(($(wc -l < "$DEST/runs.csv") - 1)) runs tabled into $DEST"
