@@ -21,6 +21,7 @@
 #include "afv.h"
 #include "test.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -990,6 +991,85 @@ static void test_reproduction_names_versions(void)
   free(text);
 }
 
+/* ---- the docs name this version and real make targets --------------------- */
+/* README.md, the .md files of doc/ (not doc/reproduction, whose runs were
+** made by earlier versions) and the program's help name the shared
+** library with its version, and make targets in commands; a release or a
+** renamed target leaves them behind.  Checked: every "libafv.so.X.Y.Z"
+** names AFV_VERSION; every command "make TARGET" (after a backtick, or
+** first on a line of code: indented) is a target of the Makefile (a line
+** "TARGET:" or "TARGET ...:"). */
+static int makefile_has_target(const char *makefile, const char *target)
+{
+  const char *p = makefile;
+  size_t n = strlen(target);
+  for (; p; p = strchr(p, '\n')) {
+    if (*p == '\n') p++;
+    if (strncmp(p, target, n) == 0 && (p[n] == ':' || p[n] == ' ')) {
+      const char *colon = strchr(p, ':'), *end = strchr(p, '\n');
+      if (colon && (!end || colon < end) && colon[1] != '=') return 1;
+    }
+  }
+  return 0;
+}
+
+static void check_versions_and_targets(const char *path, const char *text,
+                                       const char *makefile, int *bad)
+{
+  const char *p;
+  for (p = strstr(text, "libafv.so."); p; p = strstr(p + 1, "libafv.so.")) {
+    const char *v = p + strlen("libafv.so.");
+    if (v[0] >= '0' && v[0] <= '9' && strchr(v, '.') - v < 4
+        && strncmp(v, AFV_VERSION, strlen(AFV_VERSION)) != 0) {
+      CHECK(0, "%s: '%.20s' is not libafv.so.%s", path, p, AFV_VERSION);
+      (*bad)++;
+    }
+  }
+  for (p = strstr(text, "make "); p; p = strstr(p + 1, "make ")) {
+    char target[64];
+    int n = 0;
+    const char *q = p;
+    while (q > text && q[-1] == ' ') q--;
+    if (!(p > text && p[-1] == '`') && !(q < p && (q == text || q[-1] == '\n')))
+      continue;                              /* prose: "make it", "make the" */
+    while (n < 63 && (islower((unsigned char)p[5 + n]) || p[5 + n] == '-'
+                      || (n > 0 && isdigit((unsigned char)p[5 + n]))))
+      target[n] = p[5 + n], n++;
+    target[n] = 0;
+    if (n < 2 || !islower((unsigned char)target[0])
+        || (p[5 + n] && !strchr(" \n`.,;:)'", p[5 + n])))
+      continue;
+    if (!makefile_has_target(makefile, target)) {
+      CHECK(0, "%s: 'make %s': the Makefile has no target %s", path, target,
+            target);
+      (*bad)++;
+    }
+  }
+}
+
+static void test_docs_name_version_and_targets(void)
+{
+  static const char *const extra[] = {"README.md", "cmd/cli.c", "cmd/main.c"};
+  char *text = malloc(TEXT_MAX * 4), *makefile = malloc(TEXT_MAX * 4);
+  glob_t docs;
+  size_t k;
+  int bad = 0, files = 0;
+  if (!text || !makefile) { free(text); free(makefile); return; }
+  read_text("Makefile", makefile, TEXT_MAX * 4);
+  if (glob("doc/*.md", 0, NULL, &docs) != 0) docs.gl_pathc = 0;
+  for (k = 0; k < docs.gl_pathc + 3; k++) {
+    const char *path = k < 3 ? extra[k] : docs.gl_pathv[k - 3];
+    read_text(path, text, TEXT_MAX * 4);
+    check_versions_and_targets(path, text, makefile, &bad);
+    files++;
+  }
+  if (docs.gl_pathc) globfree(&docs);
+  printf("  %d files, %d stale versions or targets\n", files, bad);
+  CHECK(files > 3, "no doc/*.md read");
+  free(text);
+  free(makefile);
+}
+
 void suite_docs(void)
 {
   char cmd[96];
@@ -1008,6 +1088,7 @@ void suite_docs(void)
   RUN(test_parameter_change_needs_refresh);
   RUN(test_doc_names_exist);
   RUN(test_reproduction_names_versions);
+  RUN(test_docs_name_version_and_targets);
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);   /* mkdtemp's own dir */
   if (system(cmd) != 0) printf("  note: could not remove %s\n", tmp);
 }

@@ -152,7 +152,7 @@ fi
     done_=$(awk -F, -v s="$s" '$1 == s' "$DEST/runs.csv" | wc -l)
     echo "$s: $done_ of $total runs finished and analysed"
   done
-  echo "runs by: $("$OUT/afv" --version 2>/dev/null | head -1)"
+  echo "runs by: $("$OUT/afv" --version 2>/dev/null | head -1 | cut -d" " -f1,2)"
   echo "tabled: $(date -u +%Y-%m-%d)"
 } > "$DEST/progress.txt.tmp"
 mv "$DEST/progress.txt.tmp" "$DEST/progress.txt"
