@@ -498,7 +498,10 @@ void afv_msd_free(afv_msd *m)
 }
 
 /* Log-spaced frame lags 1 .. maxlag: round(10^(k / per_decade)), distinct,
-** plus maxlag itself. */
+** plus maxlag itself.  The C library's pow may differ between machines in
+** its last bit, but not the lags: for per_decade 10 and every lag up to
+** 2^31, 10^(k/10) lies at least 1.6e-11 of itself (k = 83) from a half
+** integer (computed to 40 digits), far beyond an ulp (2.2e-16). */
 static int make_lags(afv_msd *m, int maxlag)
 {
   int k = 0, last = 0, cap = 0;
