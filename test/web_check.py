@@ -58,6 +58,7 @@ LONG_PRESET, LONG_STEPS = "detach-dt-0.01", 20000
 COMPARED = [("energy", "energy"), ("ngc_frac", "giant"), ("omega", "omega"),
             ("n_clusters", "clusters")]
 TIMEOUT = 120          # seconds for one browser call
+RUNAWAY_LAMBDA = "1e20"  # a runaway step: the page must stop and say where
 
 
 class Fail(Exception):
@@ -308,14 +309,16 @@ def check_bad_input(browser):
             raise Fail("%s = %s: the page shows %r (reason %r), wanted %s "
                        "with a reason" % (name, text, value, why, want))
         print("  %s = %-5s -> %-6s %s" % (name, text, value, why))
-    set_control("Lambda", "1e300")
+    # a Lambda that afv run accepts (1e300 it refuses: the sums of the
+    # energy could overflow) but whose force moves a cell 1e18 l in a step
+    set_control("Lambda", RUNAWAY_LAMBDA)
     browser.js("afvPage.run(1).then(() => 0)")
     st = browser.js("afvPage.state()")
     if not st["broken"] or "cell" not in st["status"] \
             or "step 1" not in st["status"]:
-        raise Fail("Lambda 1e300: the page did not stop naming the cell and "
-                   "step: %r" % st["status"])
-    print("  Lambda = 1e300: %s" % st["status"])
+        raise Fail("Lambda %s: the page did not stop naming the cell and "
+                   "step: %r" % (RUNAWAY_LAMBDA, st["status"]))
+    print("  Lambda = %s: %s" % (RUNAWAY_LAMBDA, st["status"]))
     set_control("Lambda", "0.2")
     browser.js("afvPage.reset({relax_max_steps: 200}).then(() => 0)")
     check_state(browser, "Reset after the runaway")
