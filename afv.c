@@ -82,6 +82,7 @@
 ** s (gather_forces pairs G_js with G_rev(s); neighbours.c).
 */
 #include "afv_internal.h"
+#include "fastmath.h"
 
 #include <assert.h>
 #include <float.h>
@@ -257,7 +258,7 @@ static void area_terms(const afv_piece *pc, double wA, double *ab)
 static double arc_end_radial(const edge *E, double l, double cap, double wA,
                              double wP, double wL, double arc)
 {
-  double s = E->s, h = E->h, excess;
+  double s = E->s, h = E->h, excess, sin_arc, cos_arc;
   if (!(s > 0)) return 0;              /* a chord of length 0 makes no edge */
   if (2 * s >= cap)                    /* (V1): a += (wP (l-h) + wL l) / 2s */
     return (wP * (l - h) + wL * l) * (0.5 / s);
@@ -267,10 +268,11 @@ static double arc_end_radial(const edge *E, double l, double cap, double wA,
   ** (s/d - l^2/(d s)) t.w, with l^2/(d s) -> l^2/(d cap/2); at either
   ** end -sigma t.w = (wP (h - l) + wL h) / l and w.u = (wP + wL) s / l */
   excess = l * l / (2 * h) * (1 / s - 2 / cap);        /* (V1c): -Delta */
+  afv_sincos_inline(arc / l, &sin_arc, &cos_arc);     /* own: same bits */
   return (wP + wL) * s / (2 * l)                       /* (V1c): w.u / 2 */
          + (wP * (h - l) + wL * h) / l * (l * l - s * 0.5 * cap)
            / (2 * h * 0.5 * cap)                       /* (V1c): capped */
-         + wA * 0.5 * s * excess * sin(arc / l);       /* the chord's area */
+         + wA * 0.5 * s * excess * sin_arc;             /* the chord's area */
 }
 
 static double arc_turn(const edge *E, double l, double wP, double wL)
@@ -605,7 +607,7 @@ static double kink_distance(const double *x, int m, double l)
   double delta = HUGE_VAL;
   int k;
   for (k = 1; k < m; k++) {
-    double d = hypot(x[2*k], x[2*k+1]);
+    double d = afv_hypot_inline(x[2*k], x[2*k+1]);
     delta = fmin(delta, fmin(d, fabs(d - 2 * l)));
   }
   return delta;
@@ -621,7 +623,7 @@ static double kink_distance_global(int n, const double *r, const afv_box *b,
     double dx = r[2*j] - r[2*c], dy = r[2*j+1] - r[2*c+1], d;
     if (j == c) continue;
     afv_min_image(b, &dx, &dy);
-    d = hypot(dx, dy);
+    d = afv_hypot_inline(dx, dy);
     delta = fmin(delta, fmin(d, fabs(d - 2 * l)));
   }
   return delta;

@@ -49,9 +49,9 @@
 /* The library's version (semantic versioning); the program prints it with
 ** `afv --version`, and the Makefile reads it from here. */
 #define AFV_VERSION_MAJOR 0
-#define AFV_VERSION_MINOR 4
+#define AFV_VERSION_MINOR 5
 #define AFV_VERSION_PATCH 0
-#define AFV_VERSION "0.4.0"
+#define AFV_VERSION "0.5.0"
 
 /* ---- status codes and tolerances (afv_config.h) ------------------------- */
 /* The status codes AFV_OK, AFV_ENOMEM, ..., AFV_EUNSTABLE and every

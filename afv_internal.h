@@ -19,7 +19,7 @@
 /* The tolerances of the library are in afv_config.h (through afv.h),
 ** each with its meaning and the test that pins it. */
 
-/* ---- fast sin, cos and atan2 (fastmath.c); random streams (rng.c) ------ */
+/* ---- fast sin, cos, atan2, log, hypot (fastmath.c); random streams ---- */
 /* The counter-clockwise angle from +x to the vector (x, y), in [0, 2 pi]
 ** (2 pi only by rounding, for y a hair below 0): atan2(y, x) + (2 pi if
 ** negative), within 8.9e-16 (measured), in plain arithmetic (fastmath.h);
@@ -29,6 +29,12 @@ double afv_angle(double y, double x);
 ** plain arithmetic without a branch (fastmath.h); |x| >= 1e6, inf and
 ** NaN are passed to sin and cos. */
 void afv_sincos(double x, double *sin_x, double *cos_x);
+/* log x within 1 ulp (fdlibm's e_log.c, fastmath.h), the same bits on
+** every IEEE 754 machine: the Box-Muller radius uses it. */
+double afv_log(double x);
+/* sqrt(x^2 + y^2) without overflow or underflow, within about 1 ulp, in
+** plain arithmetic (fastmath.h): inf if a component is infinite. */
+double afv_hypot(double x, double y);
 
 /* Philox4x32-10 (Salmon et al., SC'11; Random123): out = bijection of the
 ** 128-bit counter ctr under the 64-bit key. */

@@ -421,7 +421,8 @@ static double largest_mean_move(int n, const double *a, const double *b,
   double most = 0;
   int i;
   for (i = 0; i < n; i++) {
-    double d = hypot(a[2*i] - b[2*i], a[2*i+1] - b[2*i+1]) / (double)m;
+    double d = afv_hypot_inline(a[2*i] - b[2*i], a[2*i+1] - b[2*i+1])
+               / (double)m;
     if (!(d <= most)) most = d;
   }
   return most;

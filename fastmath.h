@@ -1,15 +1,23 @@
 /*
-** fastmath.h -- the two functions of libm that the hot path computes in
-** its own arithmetic:
+** fastmath.h -- the functions of libm whose results feed the state (or an
+** analysis result), computed in the library's own arithmetic:
 **   afv_angle    the counter-clockwise angle of a vector, atan2(y, x) + 2 pi
 **                if negative: every arc of every cell (geom.c, gap_angle);
-**   afv_sincos   sin x and cos x: every cell's polarity n_i and every
-**                Box-Muller angle (dynamics.c).
-** Both are plain C99 arithmetic, so they give the same bits on every
-** machine whose double arithmetic is IEEE 754 (the C library's functions
-** need not); both are checked against the C library in the tests
-** (test_core.c, test_dynamics.c) and through the twins (make twins: the
-** plain file, reference/afv_plain.c, uses the C library's).
+**   afv_sincos   sin x and cos x: every cell's polarity n_i, every
+**                Box-Muller angle (dynamics.c), the cap's chord term
+**                (afv.c) and the hexagonal mean field (analysis.c);
+**   afv_log      the natural logarithm: every Box-Muller radius (rng.h)
+**                and the MSD exponent's fit (analysis.c);
+**   afv_hypot    the length of a vector: the relaxation's stopping test
+**                (dynamics.c), FIRE's capped move (relax_fire.c).
+** All are plain C99 arithmetic, so they give the same bits on every
+** machine whose double arithmetic is IEEE 754 and that does not fuse a
+** multiply and an add (the C library's functions need not: glibc picks an
+** FMA variant of log on a CPU that has FMA, and wasi-libc, the browser
+** build's (doc/web.md), differs from glibc in the last bit of log, sin and
+** hypot for some inputs); all are checked against the C library in the
+** tests (test_core.c, test_dynamics.c) and through the twins (make twins:
+** the plain file, reference/afv_plain.c, uses the C library's).
 ** The code is here, as static inline functions, so that the files of the
 ** hot path (geom.c, dynamics.c) compile it into their own code: a call
 ** across files makes the caller save every floating-point register around
@@ -23,6 +31,8 @@
 #include "afv_internal.h"
 
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 /* ---- the angle of a vector ---------------------------------------------- */
 /* The angle of every arc is an atan2.  What it costs is its latency more
@@ -136,6 +146,116 @@ static inline void afv_sincos_inline(double x, double *sin_x, double *cos_x)
   ** cos(r + q pi/2) = sin(r + (q + 1) pi/2) */
   *sin_x = sa[q] * sr + sb[q] * cr;
   *cos_x = sa[q + 1] * sr + sb[q + 1] * cr;
+}
+
+/* ---- the natural logarithm --------------------------------------------- */
+/* fdlibm's e_log.c (Sun Microsystems, 1993: "Permission to use, copy,
+** modify, and distribute this software is freely granted, provided that
+** this notice is preserved"), in C99 (the words of x through memcpy):
+**   1. x = 2^k (1 + f) with sqrt(2)/2 < 1 + f < sqrt(2);
+**   2. log(1 + f) = 2s + 2/3 s^3 + 2/5 s^5 + ..., s = f / (2 + f), by the
+**      polynomial Lg1 .. Lg7 in s^2 (Remez, |error| < 2^-58.45 on
+**      [0, 0.1716]), with f - f^2/2 kept exact enough to add last;
+**   3. log x = k ln2_hi + (log(1 + f) + k ln2_lo), ln2_hi with 32 bits, so
+**      k ln2_hi is exact for |k| < 2000.
+** Its error is below 1 ulp (fdlibm's statement; test_dynamics.c checks it
+** against the C library, to 1 ulp, over 10^6 inputs in (0, 1], the
+** Box-Muller range, and over the normal doubles).  0 gives -inf, a
+** negative x or NaN gives NaN, inf gives inf. */
+#define LOG_LN2_HI 6.93147180369123816490e-01  /* 3fe62e42 fee00000 */
+#define LOG_LN2_LO 1.90821492927058770002e-10  /* 3dea39ef 35793c76 */
+#define LOG_TWO54  1.80143985094819840000e+16  /* 2^54 */
+
+static inline int32_t log_high_word(double x)
+{
+  uint64_t b;
+  memcpy(&b, &x, sizeof b);
+  return (int32_t)(uint32_t)(b >> 32);
+}
+
+static inline double log_with_high_word(double x, int32_t hi)
+{
+  uint64_t b;
+  memcpy(&b, &x, sizeof b);
+  b = (b & 0xffffffffu) | ((uint64_t)(uint32_t)hi << 32);
+  memcpy(&x, &b, sizeof x);
+  return x;
+}
+
+static inline double afv_log_inline(double x)
+{
+  static const double Lg1 = 6.666666666666735130e-01,  /* 3FE55555 55555593 */
+    Lg2 = 3.999999999940941908e-01,                    /* 3FD99999 9997FA04 */
+    Lg3 = 2.857142874366239149e-01,                    /* 3FD24924 94229359 */
+    Lg4 = 2.222219843214978396e-01,                    /* 3FCC71C5 1D8E78AF */
+    Lg5 = 1.818357216161805012e-01,                    /* 3FC74664 96CB03DE */
+    Lg6 = 1.531383769920937332e-01,                    /* 3FC39A09 D078C69F */
+    Lg7 = 1.479819860511658591e-01;                    /* 3FC2F112 DF3E5244 */
+  double hfsq, f, s, z, R, w, t1, t2, dk;
+  int32_t k = 0, hx = log_high_word(x), i, j;
+  if (!(x >= 2.2250738585072014e-308)) {       /* below the normals, NaN */
+    if (x == 0) return -HUGE_VAL;
+    if (!(x > 0)) return NAN;                  /* negative or NaN */
+    k -= 54;                                   /* subnormal: scale it up */
+    x *= LOG_TWO54;
+    hx = log_high_word(x);
+  }
+  if (hx >= 0x7ff00000) return x + x;          /* inf */
+  k += (hx >> 20) - 1023;
+  hx &= 0x000fffff;
+  i = (hx + 0x95f64) & 0x100000;
+  x = log_with_high_word(x, hx | (i ^ 0x3ff00000));  /* x or x/2 in */
+  k += i >> 20;                                /* [sqrt(2)/2, sqrt(2)) */
+  f = x - 1.0;
+  dk = (double)k;
+  /* fdlibm returns f - (...) where k = 0; dk ln2_hi - ((... - dk ln2_lo)
+  ** - f) is the same bits there (0 - (a - f) = f - a exactly, and adding
+  ** 0 changes nothing but the sign of a 0), without a branch that the
+  ** noise's uniforms (k = 0 for 29% of them) would mispredict */
+  if ((0x000fffff & (2 + hx)) < 3) {           /* |f| < 2^-20 */
+    if (f == 0) return dk * LOG_LN2_HI + dk * LOG_LN2_LO;
+    R = f * f * (0.5 - 0.33333333333333333 * f);
+    return dk * LOG_LN2_HI - ((R - dk * LOG_LN2_LO) - f);
+  }
+  s = f / (2.0 + f);
+  z = s * s;
+  i = hx - 0x6147a;
+  w = z * z;
+  j = 0x6b851 - hx;
+  t1 = w * (Lg2 + w * (Lg4 + w * Lg6));
+  t2 = z * (Lg1 + w * (Lg3 + w * (Lg5 + w * Lg7)));
+  i |= j;
+  R = t2 + t1;
+  hfsq = 0.5 * f * f;
+  /* 1 + f far from 1 (i > 0) or not: both forms, then a select */
+  t1 = hfsq - (s * (hfsq + R) + dk * LOG_LN2_LO);
+  t2 = s * (f - R) - dk * LOG_LN2_LO;
+  return dk * LOG_LN2_HI - ((i > 0 ? t1 : t2) - f);
+}
+
+/* ---- the length of a vector --------------------------------------------- */
+/* sqrt(x^2 + y^2): correctly rounded sums and a correctly rounded sqrt
+** (IEEE 754), within about 1 ulp of the length.  A vector whose larger
+** component lies outside [2^-500, 2^500] is scaled by a power of 2 (exact)
+** so that the squares neither overflow nor lose their bits; a component
+** that the scale-down makes subnormal is below 2^-100 of the other, whose
+** square it cannot change.  An infinite component gives inf, else a NaN
+** gives NaN (as C99's hypot). */
+#define HYPOT_BIG   3.273390607896142e+150    /* 2^500 */
+#define HYPOT_SMALL 3.054936363499605e-151    /* 2^-500 */
+#define HYPOT_DOWN  2.409919865102884e-181    /* 2^-600 */
+#define HYPOT_UP    4.149515568880993e+180    /* 2^600 */
+
+static inline double afv_hypot_inline(double x, double y)
+{
+  double ax = fabs(x), ay = fabs(y), big = ax > ay ? ax : ay, scale = 1;
+  if (isinf(x) || isinf(y)) return HUGE_VAL;
+  if (big > HYPOT_BIG) scale = HYPOT_DOWN;
+  else if (big < HYPOT_SMALL) scale = HYPOT_UP;
+  if (scale == 1) return sqrt(x * x + y * y);
+  ax *= scale;
+  ay *= scale;
+  return sqrt(ax * ax + ay * ay) / scale;
 }
 
 #endif /* AFV_FASTMATH_H */

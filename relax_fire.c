@@ -42,6 +42,7 @@
 ** Except when converged the tissue ends in the lowest-energy state seen;
 ** the forces and the geometry are those of the final positions. */
 #include "afv_internal.h"
+#include "fastmath.h"
 
 #include <assert.h>
 #include <math.h>
@@ -129,7 +130,7 @@ static void fire_move(afv_sim *s, fire *w)
       w->v[k] = (1 - w->alpha) * w->v[k] + w->alpha * vn * s->f[k] / fn;
   for (i = 0; i < s->n; i++) {
     double dx = w->dt * w->v[2*i], dy = w->dt * w->v[2*i+1];
-    double len = hypot(dx, dy);
+    double len = afv_hypot_inline(dx, dy);
     if (len > cap) {          /* the velocity becomes the capped move's */
       dx *= cap / len;
       dy *= cap / len;
@@ -151,7 +152,7 @@ static void descent_move(afv_sim *s, fire *w)
   int i;
   for (i = 0; i < s->n; i++) {
     double dx = step * s->f[2*i], dy = step * s->f[2*i+1];
-    double len = hypot(dx, dy);
+    double len = afv_hypot_inline(dx, dy);
     if (len > cap) {
       dx *= cap / len;
       dy *= cap / len;

@@ -19,9 +19,11 @@
 ** rejection method (polar, ziggurat) would need a variable number and
 ** break the one-counter-per-draw bookkeeping.  The uniforms have 53 random
 ** bits and lie in (0, 1], so log(u) is finite and
-** |xi| <= sqrt(2 * 53 ln 2) = 8.57.  Bit-for-bit equality across machines
-** relies on the C library's log returning the same bits (cos and sin are
-** afv_sincos's own arithmetic).
+** |xi| <= sqrt(2 * 53 ln 2) = 8.57.  The log, cos and sin are the
+** library's own arithmetic (afv_log, afv_sincos: fastmath.h), so the noise
+** has the same bits on every IEEE 754 machine and in the browser build;
+** before afv 0.5.0 the log was the C library's, whose last bit depends on
+** the C library and, in glibc, on whether the CPU has FMA.
 ** The code is here, as static inline functions, so that the noise loop
 ** (dynamics.c, rotate_block) and the initial states compile it into their
 ** own code; rng.c's public functions are these.
@@ -89,7 +91,7 @@ static inline void rng_uniform2(unsigned long long seed, uint32_t cell,
 ** (u[0] = 1 gives rho = 0; u[0] > 0 keeps the log finite). */
 static inline void rng_box_muller(const double u[2], double z[2])
 {
-  double rho = sqrt(-2.0 * log(u[0])), c, sn;
+  double rho = sqrt(-2.0 * afv_log_inline(u[0])), c, sn;
   afv_sincos_inline(TWO_PI * u[1], &sn, &c);
   z[0] = rho * c;
   z[1] = rho * sn;

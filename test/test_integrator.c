@@ -338,6 +338,45 @@ static void test_substeps_refused_naming_0_2_0(void)
   test_sh("rm -rf %s", dir);
 }
 
+/* The run to edit into an old version's: DIR/new (DIR made from the
+** template), short, with checkpoints.  1 if made. */
+#define OLD_RUN_ARGS "--N 30 --steps 20 --checkpoint_every 10 " \
+                     "--relax_max_steps 50 --quiet"
+static int made_run_to_edit(char *dir)
+{
+  int failures = test_failures_in_current;
+  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
+  CHECK(test_sh("./afv run %s --out %s/new", OLD_RUN_ARGS, dir) == 0,
+        "the run to edit");
+  return test_failures_in_current == failures;
+}
+
+/* The run at DIR/copy, copied to DIR/old, is refused by --resume and by
+** --continue (with run_args): exit 2, one line holding each of want, and
+** no file of it changed.  what names the case in a failure. */
+static void check_refused_both_ways(const char *dir, const char *run_args,
+                                    const char *const *want, const char *what)
+{
+  char err[300];
+  int how;
+  snprintf(err, sizeof err, "%s/err", dir);
+  for (how = 0; how < 2; how++) {
+    CHECK(test_sh("rm -rf %s/old && cp -r %s/copy %s/old", dir, dir, dir)
+          == 0, "restoring the run");      /* each way on its own */
+    if (how == 0)
+      CHECK(test_sh("./afv run --resume %s/old --steps 10 2> %s", dir, err)
+            == 2, "%s: --resume: exit status not 2", what);
+    else
+      CHECK(test_sh("./afv run %s --out %s/old --continue 2> %s", run_args,
+                    dir, err) == 2, "%s: --continue: exit status not 2",
+            what);
+    CHECK(one_line_with(err, want), "%s: not one line naming %s and %s",
+          what, want[0], want[1]);
+    CHECK(test_sh("diff -r %s/old %s/copy > /dev/null", dir, dir) == 0,
+          "%s: a file of the run changed", what);
+  }
+}
+
 /* A run to go on with (--resume, --continue) whose params.txt names the
 ** removed keys (a run of afv 0.2.0) or has no integrator key (a run of
 ** afv 0.1.0, whose sub-steps had no name) is refused, exit 2, in one line
@@ -350,37 +389,57 @@ static void test_old_runs_refused_naming_their_version(void)
     {"s/^integrator .*/integrator       substeps/", "0.2.0"},
     {"/^integrator/a max_move         0.05", "0.2.0"},
     {"/^integrator/c max_move         0.05", "0.1.0"}};
-  const char *run_args = "--N 30 --steps 20 --checkpoint_every 10 "
-                         "--relax_max_steps 50 --quiet";
-  char dir[] = "/tmp/afv_oldrun_XXXXXX", err[300];
-  int k, how;
-  CHECK(mkdtemp(dir) != NULL, "mkdtemp");
-  CHECK(test_sh("./afv run %s --out %s/new", run_args, dir) == 0,
-        "the run to edit");
-  snprintf(err, sizeof err, "%s/err", dir);
+  const char *run_args = OLD_RUN_ARGS;
+  char dir[] = "/tmp/afv_oldrun_XXXXXX", what[200];
+  int k;
+  if (!made_run_to_edit(dir)) return;
   for (k = 0; k < 3; k++) {
     const char *const want[] = {"params.txt", edits[k][1], NULL};
-    CHECK(test_sh("rm -rf %s/old %s/copy && cp -r %s/new %s/old && "
-                  "sed -i '%s' %s/old/params.txt && cp -r %s/old %s/copy",
-                  dir, dir, dir, dir, edits[k][0], dir, dir, dir) == 0,
+    CHECK(test_sh("rm -rf %s/copy && cp -r %s/new %s/copy && "
+                  "sed -i '%s' %s/copy/params.txt", dir, dir, dir,
+                  edits[k][0], dir) == 0,
           "making the run of afv %s", edits[k][1]);
-    for (how = 0; how < 2; how++) {
-      CHECK(test_sh("rm -rf %s/old && cp -r %s/copy %s/old", dir, dir, dir)
-            == 0, "restoring the run");    /* each way on its own */
-      if (how == 0)
-        CHECK(test_sh("./afv run --resume %s/old --steps 10 2> %s", dir,
-                      err) == 2, "edit '%s': --resume: exit status not 2",
-              edits[k][0]);
-      else
-        CHECK(test_sh("./afv run %s --out %s/old --continue 2> %s",
-                      run_args, dir, err) == 2,
-              "edit '%s': --continue: exit status not 2", edits[k][0]);
-      CHECK(one_line_with(err, want), "edit '%s': not one line naming "
-            "params.txt and afv %s", edits[k][0], edits[k][1]);
-      CHECK(test_sh("diff -r %s/old %s/copy > /dev/null", dir, dir) == 0,
-            "edit '%s': a file of the run changed", edits[k][0]);
-    }
+    snprintf(what, sizeof what, "edit '%s'", edits[k][0]);
+    check_refused_both_ways(dir, run_args, want, what);
   }
+  test_sh("rm -rf %s", dir);
+}
+
+/* A run written by afv 0.4.0 or 0.3.0 (params.txt's first line says so),
+** whose noise used the C library's log, is refused by --resume and
+** --continue, exit 2, in one line naming params.txt and the version that
+** finishes it, and no file of it changes; a run of 0.5.0 and one whose
+** params.txt has no such line go on.  (The copies lack final.svg, as a
+** run stopped before its end, which --continue resumes: it leaves a
+** finished run alone.  afv 0.4.0 resumed both.) */
+static void test_run_of_0_4_0_refused_naming_0_4_0(void)
+{
+  static const char *const versions[] = {"0.4.0", "0.3.0"};
+  const char *run_args = OLD_RUN_ARGS;
+  char dir[] = "/tmp/afv_run040_XXXXXX", err[300];
+  int k;
+  if (!made_run_to_edit(dir)) return;
+  snprintf(err, sizeof err, "%s/err", dir);
+  for (k = 0; k < 2; k++) {
+    char finish[40], what[40];
+    const char *const want[] = {"params.txt", finish, NULL};
+    snprintf(finish, sizeof finish, "finish it with afv %s", versions[k]);
+    snprintf(what, sizeof what, "a run of afv %s", versions[k]);
+    CHECK(test_sh("rm -rf %s/copy && cp -r %s/new %s/copy && sed -i "
+                  "'1s/written by afv [0-9.]*/written by afv %s/' "
+                  "%s/copy/params.txt && grep -q 'by afv %s (' "
+                  "%s/copy/params.txt && rm %s/copy/final.svg", dir, dir, dir,
+                  versions[k], dir, versions[k], dir, dir) == 0,
+          "making %s", what);
+    check_refused_both_ways(dir, run_args, want, what);
+  }
+  CHECK(test_sh("cp -r %s/new %s/own && ./afv run --resume %s/own --steps "
+                "10 2> %s", dir, dir, dir, err) == 0,
+        "a run of this version was not resumed");
+  CHECK(test_sh("cp -r %s/new %s/hand && sed -i 1d %s/hand/params.txt && "
+                "./afv run --resume %s/hand --steps 10 2> %s", dir, dir, dir,
+                dir, err) == 0,
+        "a params.txt without its first line was not resumed");
   test_sh("rm -rf %s", dir);
 }
 
@@ -395,4 +454,5 @@ void suite_integrator(void)
   RUN(test_integrator_key_refused_cleanly);
   RUN(test_substeps_refused_naming_0_2_0);
   RUN(test_old_runs_refused_naming_their_version);
+  RUN(test_run_of_0_4_0_refused_naming_0_4_0);
 }
