@@ -269,7 +269,7 @@ void test_config_free(test_config *c)
 
 /* ---- golden files ------------------------------------------------------- */
 /* A two-column CSV/space file read with afv_points_read (NULL if it cannot
-** be read): the golden data of ../shared/golden/. */
+** be read): the golden data of test/golden/. */
 double *test_read_pairs(const char *path, int *n)
 {
   double *r = NULL;

@@ -44,10 +44,10 @@ void test_run(const char *name, void (*fn)(void))
   fflush(stdout);
 }
 
-const char *test_shared_dir(void)
+const char *test_golden_dir(void)
 {
-  const char *env = getenv("AFV_SHARED");
-  return env && *env ? env : "../shared";
+  const char *env = getenv("AFV_GOLDEN");
+  return env && *env ? env : "test/golden";
 }
 
 /* The suites in the order they run. */

@@ -38,9 +38,10 @@ int  test_close(double got, double want, double rtol, double atol);
   do { test_skipped_current = 1; printf("  skip: "); printf(__VA_ARGS__); \
        printf("\n"); } while (0)
 
-/* Root of ../shared (for golden data); NULL-free: falls back to "../shared",
-** overridden by the environment variable AFV_SHARED. */
-const char *test_shared_dir(void);
+/* The golden data of other implementations (test/golden/README.md):
+** "test/golden" of the repository (the suite runs from its root), or the
+** directory named by the environment variable AFV_GOLDEN. */
+const char *test_golden_dir(void);
 
 /* Shared fixtures (fixtures.c).  A fixed-seed splitmix64 stream, so every
 ** "random" configuration is the same on every run; uniforms in [0, 1). */

@@ -1261,7 +1261,7 @@ static void test_contact_cap(void)
 ** ======================================================================== */
 
 /* The authors' MATLAB forces on 100 cells (open space, paper defaults);
-** see ../shared/golden/matlab_open_100/README.md. */
+** see test/golden/matlab_open_100/README.md. */
 static void test_matlab_golden(void)
 {
   char pts[1024], frc[1024];
@@ -1270,14 +1270,14 @@ static void test_matlab_golden(void)
   afv_params p;
   afv_geom g = {0};
   afv_box b = test_open_box();
-  snprintf(pts, sizeof pts, "%s/golden/matlab_open_100/points.csv",
-           test_shared_dir());
-  snprintf(frc, sizeof frc, "%s/golden/matlab_open_100/forces.csv",
-           test_shared_dir());
+  snprintf(pts, sizeof pts, "%s/matlab_open_100/points.csv",
+           test_golden_dir());
+  snprintf(frc, sizeof frc, "%s/matlab_open_100/forces.csv",
+           test_golden_dir());
   r = test_read_pairs(pts, &n);
   want = test_read_pairs(frc, &m);
   if (!r || !want) {
-    SKIP("%s not found (set AFV_SHARED)", pts);
+    CHECK(0, "%s or forces.csv missing (run from the repo root)", pts);
     free(r);
     free(want);
     return;

@@ -151,7 +151,7 @@ static void test_pair_separates_only_by_a_finite_step(void)
 
 /* ---- the cap ----------------------------------------------------------- */
 
-/* PyAFV's forces (../shared/golden/pyafv_cap/, PyAFV 0.4.16) with its
+/* PyAFV's forces (test/golden/pyafv_cap/, PyAFV 0.4.16) with its
 ** contact truncation delta = 0 and 0.45, against afv's cap, to 1e-10 on
 ** every component. */
 static void test_cap_is_pyafvs(void)
@@ -160,7 +160,7 @@ static void test_cap_is_pyafvs(void)
                                 "random60"};
   static const double caps[2] = {0, 0.45};
   static const char *files[2] = {"forces_delta0.csv", "forces_delta0.45.csv"};
-  int k, c, found = 0;
+  int k, c;
   for (k = 0; k < 4; k++)
     for (c = 0; c < 2; c++) {
       char pts[1024], frc[1024];
@@ -169,18 +169,19 @@ static void test_cap_is_pyafvs(void)
       afv_params p;
       afv_geom g = {0};
       afv_box b = test_open_box();
-      snprintf(pts, sizeof pts, "%s/golden/pyafv_cap/%s/points.csv",
-               test_shared_dir(), dirs[k]);
-      snprintf(frc, sizeof frc, "%s/golden/pyafv_cap/%s/%s",
-               test_shared_dir(), dirs[k], files[c]);
+      snprintf(pts, sizeof pts, "%s/pyafv_cap/%s/points.csv",
+               test_golden_dir(), dirs[k]);
+      snprintf(frc, sizeof frc, "%s/pyafv_cap/%s/%s",
+               test_golden_dir(), dirs[k], files[c]);
       r = test_read_pairs(pts, &n);
       want = test_read_pairs(frc, &m);
+      CHECK(r && want && n == m, "%s or %s missing or unequal (run from the "
+            "repo root)", pts, frc);
       if (!r || !want || n != m) {
         free(r);
         free(want);
         continue;
       }
-      found++;
       afv_params_default(&p);
       p.cap = caps[c];
       f = malloc((size_t)(2 * n) * sizeof(double));
@@ -196,7 +197,6 @@ static void test_cap_is_pyafvs(void)
       free(f);
       afv_geom_free(&g);
     }
-  if (!found) SKIP("%s/golden/pyafv_cap not found", test_shared_dir());
 }
 
 /* The cap regularises the force only: the geometry and the energy are
