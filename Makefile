@@ -17,10 +17,13 @@
 #   make install    bin/afv, lib/libafv.a, lib/libafv.so.VERSION (and its
 #                   links libafv.so.MAJOR, libafv.so), include/afv.h,
 #                   lib/pkgconfig/afv.pc, share/man/man1/afv.1, the Python
-#                   module lib/python3/dist-packages/afv.py, share/doc/afv/
+#                   package lib/python3/dist-packages/afv/, share/doc/afv/
+#                   (README, CHANGELOG, LICENSE, CITATION.cff, examples/)
 #                   under $(DESTDIR)$(PREFIX) (PREFIX defaults to /usr/local)
 #   make uninstall  removes exactly what make install created
-#   make python-test  the Python module's tests, with and without numpy
+#   make python-test  the Python package's tests, with and without numpy
+#   make python-pip-test  the same against the package pip installs
+#                   (python3 -m pip install ./python, in a new venv)
 #   make -j2 paper SCALE=smoke|quick|paper|full OUT=DIR   reproduce the paper's
 #                   figures and claims table (see "Reproducing the paper")
 #   make lambda LAMBDA_OUT=DIR  the phase diagram at Lambda 0 and 0.5 and the
@@ -65,7 +68,8 @@ FITS_OBJ = $(FITS_SRC:.c=.o)
 TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
 
 .PHONY: print-lib-sources all test run bench bench-quick bench-compare fuzz twins plain \
-        protocol-check shared python-test install uninstall clean FORCE \
+        protocol-check shared python-test python-pip-test install uninstall \
+        clean FORCE \
         paper paper-sweeps paper-grid paper-fss convergence \
         relax-cost diagram-budget diagram-budget-sweep diagram-budget-project lambda \
         model model-table web test-web
@@ -164,6 +168,20 @@ python-test: afv libafv.so python/check_driver
 	$(PYTHON) python/test_afv.py --driver python/check_driver --afv ./afv
 	$(PYTHON) python/test_afv.py --driver python/check_driver --afv ./afv \
 	  --no-numpy
+
+# The package as pip installs it (python/pyproject.toml, python/setup.py):
+# into a new virtual environment that sees the system's site-packages
+# (setuptools and wheel, numpy if installed), offline, then its tests from
+# another directory against it, with numpy (if installed) and without.
+python-pip-test: afv python/check_driver
+	@d=$$(mktemp -d) && set -e && \
+	$(PYTHON) -m venv --system-site-packages $$d/venv && \
+	$$d/venv/bin/python -m pip install -q --no-build-isolation --no-index \
+	  ./python && \
+	for numpy in "" --no-numpy; do (cd $$d && venv/bin/python \
+	  $(CURDIR)/python/test_afv.py --installed $$numpy \
+	  --driver $(CURDIR)/python/check_driver --afv $(CURDIR)/afv); done; \
+	rm -rf $$d
 
 test/run_tests: $(TEST_SRC) test/test.h $(FITS_OBJ) libafv.a $(LIB_H) \
                  cmd/fits.h .build-flags
@@ -483,5 +501,6 @@ clean:
 	  .build-flags
 	rm -f test/twins reference/afv_plain test/run_tests_assert
 	rm -rf test/assert
-	rm -rf fuzz/build python/__pycache__
+	rm -rf fuzz/build python/__pycache__ python/afv/__pycache__ \
+	  python/build python/afv.egg-info
 	rm -f web/afv.wasm web/.build-flags

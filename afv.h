@@ -32,7 +32,8 @@
 **                                      afv_analysis, afv_meanfield_p0
 **   pictures                           afv_svg_write, afv_svg_draw
 **   bindings (Python's ctypes)         afv_version, afv_dyn_new, ..,
-**                                      afv_order_parameters, afv_svg_save
+**                                      afv_order_parameters, afv_svg_save,
+**                                      afv_traj_new, afv_analysis_new, ..
 ** Names: afv_<object>_<verb> (afv_sim_step, afv_traj_read), with the
 ** model's two calls afv_geometry and afv_compute.  What only the afv
 ** program uses (line readers, checkpoints, plots, fits, the noise
@@ -706,5 +707,60 @@ int afv_order_parameters(const afv_geom *g, const double *r, double l,
 int afv_svg_save(const char *path, const afv_geom *g, int n, const double *r,
                  const double *theta, const afv_params *p, const afv_box *b,
                  int color_by_cluster);
+
+/* Trajectories: a new, empty afv_traj (NULL if out of memory) to fill with
+** afv_traj_read, or with afv_traj_set from a caller's arrays (copied:
+** step and theta may be NULL for 0, 1, 2, ... and zeros; AFV_EINVAL for
+** a negative count, AFV_ENOMEM); its fields through the accessors. */
+afv_traj *afv_traj_new(void);
+void      afv_traj_delete(afv_traj *tr);    /* NULL is allowed */
+int       afv_traj_set(afv_traj *tr, int n, int nframes, const afv_box *b,
+                       const long long *step, const double *t,
+                       const double *r, const double *theta);
+int              afv_traj_n(const afv_traj *tr);
+int              afv_traj_nframes(const afv_traj *tr);
+const afv_box   *afv_traj_box(const afv_traj *tr);
+const long long *afv_traj_steps(const afv_traj *tr);
+const double    *afv_traj_times(const afv_traj *tr);
+const double    *afv_traj_positions(const afv_traj *tr);  /* 2n a frame */
+const double    *afv_traj_angles(const afv_traj *tr);     /* n a frame */
+
+/* An afv_msd for afv_msd_compute (NULL if out of memory), and its series
+** "lag" (in time: afv_msd.dt), "msd", "msd_rel" (*count values; NULL and
+** 0 for another name). */
+afv_msd      *afv_msd_new(void);
+void          afv_msd_delete(afv_msd *m);   /* NULL is allowed */
+const double *afv_msd_series(const afv_msd *m, const char *name, int *count);
+
+/* An afv_analysis for afv_analyze (NULL if out of memory); its numbers by
+** the names of `afv analyze`'s summary.txt ("cells", "frames", "first",
+** "ngc_frac_mean", "ngc_frac_sd", "n_clusters_mean", ..., "omega_sd",
+** "t1_final", "D_s", "D_s_lag", "D_s_origins", "D_s_plain", "D_0",
+** "D_eff", "tau_NGC", "tau_NGC_reliable", "t1_rate", "msd_beta"; else
+** AFV_EINVAL) and its series by series.csv's and msd.csv's column names
+** ("time", "ngc_frac", "n_clusters", "omega", "t1": one per frame; "lag",
+** "msd", "msd_rel": one per lag; "csd": p(s) for s = 1..n; NULL and 0 for
+** another name). */
+afv_analysis *afv_analysis_new(void);
+void          afv_analysis_delete(afv_analysis *a);  /* NULL is allowed */
+int           afv_analysis_get(const afv_analysis *a, const char *name,
+                               double *value);
+const double *afv_analysis_series(const afv_analysis *a, const char *name,
+                                  int *count);
+
+/* An afv_protocol for afv_protocol_start (NULL if out of memory), with
+** afv run's defaults: the authors' square start (side 0: set "side"),
+** the flow relaxation to max |F| <= 1e-6 in at most 100000 steps.  Its
+** numbers by name: "start" (AFV_START_*), "side", "spacing", "relax"
+** (AFV_RELAX_*), "relax_tol", "relax_max_steps"; its arrays ("r",
+** "theta": caller-owned, kept alive until afv_protocol_start) by
+** afv_protocol_set_cells.  AFV_EINVAL for another name or a start,
+** relax or step count out of range. */
+afv_protocol *afv_protocol_new(void);
+void          afv_protocol_delete(afv_protocol *pr);  /* NULL is allowed */
+int           afv_protocol_set(afv_protocol *pr, const char *name,
+                               double value);
+int           afv_protocol_set_cells(afv_protocol *pr, const char *name,
+                                     const double *values);
 
 #endif /* AFV_H */

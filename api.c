@@ -3,14 +3,16 @@
 ** afv_sim: their constructors, destructors and accessors.  Each call only
 ** reads or hands out a field of the struct in afv_internal.h; the work is
 ** done elsewhere (geometry: neighbours.c, geom.c, afv.c; steps: dynamics.c).
-** Then the calls for bindings (Python's ctypes, python/afv.py): afv_dyn and
-** afv_relax_report read and written by name, the order parameters in one
-** call, a picture written to a file.
+** Then the calls for bindings (Python's ctypes, python/afv/): afv_dyn,
+** afv_relax_report, afv_protocol and afv_analysis read and written by
+** name, trajectories and MSDs through accessors, the order parameters in
+** one call, a picture written to a file.
 */
 #include "afv_internal.h"
 #include "afv_tool.h"   /* afv_atomic_open: afv_svg_save writes atomically */
 
 #include <assert.h>
+#include <limits.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -223,4 +225,177 @@ int afv_svg_save(const char *path, const afv_geom *g, int n, const double *r,
     return st;
   }
   return afv_atomic_commit(fp, tmp, path);
+}
+
+/* ---- trajectories, analysis and the protocol, for bindings ------------- */
+afv_traj *afv_traj_new(void) { return calloc(1, sizeof(afv_traj)); }
+
+void afv_traj_delete(afv_traj *tr)
+{
+  if (!tr) return;
+  afv_traj_free(tr);
+  free(tr);
+}
+
+/* Copies count values of size bytes from src, or zeroes them if src is
+** NULL; NULL if out of memory (count 0 allocates one byte: never NULL). */
+static void *copy_or_zero(const void *src, size_t count, size_t size)
+{
+  void *p = calloc(count ? count : 1, size);
+  if (p && src) memcpy(p, src, count * size);
+  return p;
+}
+
+int afv_traj_set(afv_traj *tr, int n, int nframes, const afv_box *b,
+                 const long long *step, const double *t, const double *r,
+                 const double *theta)
+{
+  size_t frames = (size_t)(nframes > 0 ? nframes : 0);
+  int k;
+  if (n < 0 || nframes < 0 || !t || !r) return AFV_EINVAL;
+  afv_traj_free(tr);
+  tr->step = copy_or_zero(step, frames, sizeof *tr->step);
+  tr->t = copy_or_zero(t, frames, sizeof *tr->t);
+  tr->r = copy_or_zero(r, frames * 2 * (size_t)n, sizeof *tr->r);
+  tr->theta = copy_or_zero(theta, frames * (size_t)n, sizeof *tr->theta);
+  if (!tr->step || !tr->t || !tr->r || !tr->theta) {
+    afv_traj_free(tr);
+    return AFV_ENOMEM;
+  }
+  if (!step)                      /* no steps given: the frames' order */
+    for (k = 0; k < nframes; k++) tr->step[k] = k;
+  tr->n = n;
+  tr->nframes = nframes;
+  tr->box = *b;
+  return AFV_OK;
+}
+
+int              afv_traj_n(const afv_traj *tr)       { return tr->n; }
+int              afv_traj_nframes(const afv_traj *tr) { return tr->nframes; }
+const afv_box   *afv_traj_box(const afv_traj *tr)     { return &tr->box; }
+const long long *afv_traj_steps(const afv_traj *tr)   { return tr->step; }
+const double    *afv_traj_times(const afv_traj *tr)   { return tr->t; }
+const double    *afv_traj_positions(const afv_traj *tr) { return tr->r; }
+const double    *afv_traj_angles(const afv_traj *tr)  { return tr->theta; }
+
+afv_msd *afv_msd_new(void) { return calloc(1, sizeof(afv_msd)); }
+
+void afv_msd_delete(afv_msd *m)
+{
+  if (!m) return;
+  afv_msd_free(m);
+  free(m);
+}
+
+const double *afv_msd_series(const afv_msd *m, const char *name, int *count)
+{
+  *count = m->nlags;
+  if (!strcmp(name, "lag"))     return m->dt;
+  if (!strcmp(name, "msd"))     return m->msd;
+  if (!strcmp(name, "msd_rel")) return m->msd_rel;
+  *count = 0;
+  return NULL;
+}
+
+afv_analysis *afv_analysis_new(void) { return calloc(1, sizeof(afv_analysis)); }
+
+void afv_analysis_delete(afv_analysis *a)
+{
+  if (!a) return;
+  afv_analysis_free(a);
+  free(a);
+}
+
+const afv_msd *afv_analysis_msd(const afv_analysis *a) { return &a->msd; }
+
+int afv_analysis_get(const afv_analysis *a, const char *name, double *value)
+{
+  static const char *means[3] = {"ngc_frac", "n_clusters", "omega"};
+  char key[32];
+  int k;
+  for (k = 0; k < 3; k++) {
+    snprintf(key, sizeof key, "%s_mean", means[k]);
+    if (!strcmp(name, key)) {
+      *value = a->mean[k];
+      return AFV_OK;
+    }
+    snprintf(key, sizeof key, "%s_sd", means[k]);
+    if (!strcmp(name, key)) {
+      *value = a->sd[k];
+      return AFV_OK;
+    }
+  }
+  if      (!strcmp(name, "cells"))        *value = a->n;
+  else if (!strcmp(name, "frames"))       *value = a->nframes;
+  else if (!strcmp(name, "first"))        *value = a->first;
+  else if (!strcmp(name, "t1_final"))     *value = a->t1_final;
+  else if (!strcmp(name, "D_s"))          *value = a->ds;
+  else if (!strcmp(name, "D_s_lag"))      *value = a->ds_lag;
+  else if (!strcmp(name, "D_s_origins"))  *value = (double)a->ds_origins;
+  else if (!strcmp(name, "D_s_plain"))    *value = a->ds_plain;
+  else if (!strcmp(name, "D_0"))          *value = a->d0;
+  else if (!strcmp(name, "D_eff"))        *value = a->deff;
+  else if (!strcmp(name, "tau_NGC"))      *value = a->tau_ngc;
+  else if (!strcmp(name, "tau_NGC_reliable")) *value = a->tau_reliable;
+  else if (!strcmp(name, "t1_rate"))      *value = a->t1_rate;
+  else if (!strcmp(name, "msd_beta"))     *value = a->msd_beta;
+  else return AFV_EINVAL;
+  return AFV_OK;
+}
+
+const double *afv_analysis_series(const afv_analysis *a, const char *name,
+                                  int *count)
+{
+  *count = a->nframes;
+  if (!strcmp(name, "time"))       return a->t;
+  if (!strcmp(name, "ngc_frac"))   return a->ngc_frac;
+  if (!strcmp(name, "n_clusters")) return a->n_clusters;
+  if (!strcmp(name, "omega"))      return a->omega;
+  if (!strcmp(name, "t1"))         return a->t1;
+  *count = a->n;
+  if (!strcmp(name, "csd")) return a->csd ? a->csd + 1 : NULL;
+  return afv_msd_series(&a->msd, name, count);
+}
+
+afv_protocol *afv_protocol_new(void)
+{
+  afv_protocol *pr = calloc(1, sizeof(afv_protocol));
+  if (!pr) return NULL;
+  pr->start = AFV_START_SQUARE;
+  pr->relax = AFV_RELAX_FLOW;
+  pr->relax_tol = 1e-6;
+  pr->relax_max_steps = 100000;
+  return pr;
+}
+
+void afv_protocol_delete(afv_protocol *pr) { free(pr); }
+
+int afv_protocol_set(afv_protocol *pr, const char *name, double value)
+{
+  if (!strcmp(name, "start")) {
+    if (!(value >= AFV_START_SQUARE && value <= AFV_START_GIVEN)
+        || value != floor(value))
+      return AFV_EINVAL;
+    pr->start = (int)value;
+  } else if (!strcmp(name, "relax")) {
+    if (value != AFV_RELAX_FLOW && value != AFV_RELAX_FIRE) return AFV_EINVAL;
+    pr->relax = (int)value;
+  } else if (!strcmp(name, "relax_max_steps")) {
+    if (!(value >= 0 && value <= (double)LONG_MAX) || value != floor(value))
+      return AFV_EINVAL;
+    pr->relax_max_steps = (long)value;
+  } else if (!strcmp(name, "side"))      pr->side = value;
+  else if (!strcmp(name, "spacing"))     pr->spacing = value;
+  else if (!strcmp(name, "relax_tol"))   pr->relax_tol = value;
+  else return AFV_EINVAL;
+  return AFV_OK;
+}
+
+int afv_protocol_set_cells(afv_protocol *pr, const char *name,
+                           const double *values)
+{
+  if (!strcmp(name, "r"))          pr->r = values;
+  else if (!strcmp(name, "theta")) pr->theta = values;
+  else return AFV_EINVAL;
+  return AFV_OK;
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Tests of the Python module afv (python/afv.py); ends "N passed, M failed".
+"""Tests of the Python package afv (python/afv/); ends "N passed, M failed".
 
     python3 python/test_afv.py --driver python/check_driver --afv ./afv
         [--module-dir DIR] [--no-numpy]
@@ -9,7 +9,9 @@ scenario through the C library, printed in %.17g: every number of the
 module must be its number bit for bit, and every picture its bytes.
 --afv: the program, whose `afv eval` must agree with afv.compute and whose
 --version with afv.__version__.  --module-dir: import afv from there (an
-installed module) instead of this file's directory.  --no-numpy: hide
+installed module) instead of this file's directory; --installed: import
+the afv that Python finds outside the build tree (pip install ./python),
+which must load the libafv.so it carries.  --no-numpy: hide
 numpy, so the module runs on lists alone (as without numpy installed).
 """
 import argparse
@@ -23,13 +25,19 @@ args = argparse.ArgumentParser()
 args.add_argument("--driver", required=True)
 args.add_argument("--afv", required=True)
 args.add_argument("--module-dir")
+args.add_argument("--installed", action="store_true")
 args.add_argument("--no-numpy", action="store_true")
 args = args.parse_args()
 
 if args.no_numpy:
     sys.modules["numpy"] = None      # import numpy now raises ImportError
-module_dir = os.path.abspath(args.module_dir or os.path.dirname(__file__))
-sys.path.insert(0, module_dir)
+here = os.path.dirname(os.path.abspath(__file__))
+if args.installed:                   # not the build tree's python/afv/
+    sys.path = [p for p in sys.path if os.path.abspath(p or ".") != here]
+    module_dir = None
+else:
+    module_dir = os.path.abspath(args.module_dir or here)
+    sys.path.insert(0, module_dir)
 import afv  # noqa: E402
 
 try:
@@ -55,7 +63,9 @@ def flat(values):
         return values.reshape(-1).tolist()
     out = []
     for v in values:
-        out.extend(flat(v) if isinstance(v, (list, tuple)) else [v])
+        nested = isinstance(v, (list, tuple)) or \
+            (np is not None and isinstance(v, np.ndarray))
+        out.extend(flat(v) if nested else [v])
     return out
 
 
@@ -185,8 +195,16 @@ def version_is_the_programs():
 
 @test
 def module_is_the_one_asked_for():
-    where = os.path.dirname(os.path.abspath(afv.__file__))
-    if where != module_dir:
+    # the package afv/ in module_dir; or, --installed (pip), a package
+    # outside the build tree that loads the library it carries
+    package = os.path.dirname(os.path.abspath(afv.__file__))
+    if args.installed:
+        if package.startswith(os.path.dirname(here) + os.sep):
+            fail("imported the build tree's %s" % afv.__file__)
+        if os.path.dirname(os.path.abspath(afv.library_path)) != package:
+            fail("loaded %s, not the package's own libafv.so"
+                 % afv.library_path)
+    elif os.path.dirname(package) != module_dir:
         fail("imported %s, not from %s" % (afv.__file__, module_dir))
 
 
@@ -255,6 +273,116 @@ def quench_continues_as_a_fresh_start():
     fresh.steps = fresh_steps       # the noise is drawn for (seed, cell, step)
     fresh.step(5)
     same_bits("quench", sim.positions, flat(fresh.positions))
+
+
+# ---- the paper's protocol, trajectories and the run analysis -------------
+PROTOCOL = dict(seed=5, relax_max_steps=2000)   # check_driver.c's protocol
+
+
+def protocol_frames():
+    """protocol_start as the driver's, 200 steps: the 11 frames (every 20
+    steps) of positions, angles and times, and the simulation."""
+    sim = afv.protocol_start(40, **PROTOCOL)
+    positions, angles, times = [sim.positions], [sim.angles], [sim.time]
+    for _ in range(10):
+        sim.step(20)
+        positions.append(sim.positions)
+        angles.append(sim.angles)
+        times.append(sim.time)
+    return sim, positions, angles, times
+
+
+@test
+def protocol_start_is_the_c_librarys():
+    sim, _, _, _ = protocol_frames()
+    rep = sim.start_report
+    same_bits("relax", [rep["iterations"], rep["energy"]], C["protocol.relax"])
+    same_bits("positions", sim.positions, C["protocol.positions"])
+    same_bits("angles", sim.angles, C["protocol.angles"])
+
+
+@test
+def protocol_start_is_afv_runs():
+    # afv run with the same keys: its trajectory.dat holds the frames
+    out = os.path.join(tmp, "run")
+    subprocess.run([args.afv, "run", "--N", "40", "--seed", "5",
+                    "--relax_max_steps", "2000", "--steps", "200",
+                    "--frame_every", "20", "--svg_every", "0", "--quiet",
+                    "--out", out], check=True)
+    tr = afv.read_trajectory(os.path.join(out, "trajectory.dat"))
+    _, positions, _, _ = protocol_frames()
+    same_bits("afv run frames", tr.positions, flat(positions))
+    if tr.steps != list(range(0, 201, 20)):
+        fail("afv run's steps: %r" % tr.steps)
+
+
+@test
+def trajectories_of_both_formats_are_read():
+    for name, fmt in (("traj.dat", "traj2"), ("traj1.txt", "traj1")):
+        tr = afv.read_trajectory(os.path.join(tmp, name))
+        if (tr.n, tr.nframes, len(tr)) != (40, 11, 11) or tr.box is None:
+            fail("%s: %r" % (name, tr))
+        same_bits(fmt + ".steps", tr.steps, C[fmt + ".steps"])
+        for field in ("times", "positions", "angles"):
+            same_bits(fmt + "." + field, getattr(tr, field),
+                      C[fmt + "." + field])
+    _, positions, angles, _ = protocol_frames()
+    same_bits("format 1 positions", positions, C["traj1.positions"])
+    same_bits("format 1 angles", angles, C["traj1.angles"])
+    try:
+        afv.read_trajectory(os.path.join(tmp, "open.svg"))
+    except afv.AfvError as e:
+        if "open.svg" not in str(e):
+            fail("the message %r does not name the file" % str(e))
+    else:
+        fail("an SVG read as a trajectory")
+
+
+ANALYSIS = dict(l=1, v0=0.5, Dr=0.1, steady_from=0.5, lag=1)
+
+
+def same_analysis(what, a):
+    for name in afv._ANALYSIS_NUMBERS + afv._ANALYSIS_SERIES:
+        same_bits("%s: %s" % (what, name), getattr(a, name),
+                  C["analysis." + name])
+
+
+@test
+def analysis_is_the_c_librarys():
+    tr = afv.read_trajectory(os.path.join(tmp, "traj.dat"))
+    same_analysis("Trajectory", afv.analyze(tr, **ANALYSIS))
+    # the same frames as arrays: the simulation's own positions
+    sim, positions, _, times = protocol_frames()
+    same_bits("times", times, C["traj2.times"])
+    same_analysis("arrays", afv.analyze(positions, times, sim.box,
+                                        **ANALYSIS))
+    m = afv.msd(positions, times, sim.box, first=2)
+    for name in ("lag", "msd", "msd_rel"):
+        same_bits("msd." + name, getattr(m, name), C["msd." + name])
+
+
+@test
+def unwrap_undoes_wrapping():
+    # the cluster moved to the box's corner, then wrapped: cells that
+    # cross the box's edges between frames jump by L unless unwrapped
+    sim, positions, _, times = protocol_frames()
+    L = sim.box[0]
+    wrapped = [[[(x + L / 2) % L, (y + L / 2) % L] for x, y in flat_pairs(f)]
+               for f in positions]
+    a = afv.msd(positions, times, sim.box)
+    b = afv.msd(wrapped, times, sim.box, unwrap=True)
+    c = afv.msd(wrapped, times, sim.box)
+    for name in ("msd", "msd_rel"):
+        mine, theirs = flat(getattr(b, name)), flat(getattr(a, name))
+        if max(abs(x - y) for x, y in zip(mine, theirs)) > 1e-9:
+            fail("unwrapped %s: %r, not %r" % (name, mine, theirs))
+    if flat(c.msd) == flat(a.msd):
+        fail("no cell crossed the box's edge: the test tests nothing")
+
+
+def flat_pairs(frame):
+    values = flat(frame)
+    return [values[2 * i:2 * i + 2] for i in range(len(values) // 2)]
 
 
 failed = 0

@@ -84,10 +84,13 @@ install_all() {
   put    afv_config.h       include/afv_config.h
   put    afv.pc             lib/pkgconfig/afv.pc
   put    doc/afv.1          share/man/man1/afv.1
-  put    python/afv.py      lib/python3/dist-packages/afv.py
-  put    LICENSE            share/doc/afv/LICENSE
-  put    CITATION.cff       share/doc/afv/CITATION.cff
-  put    CHANGELOG.md       share/doc/afv/CHANGELOG.md
+  put    python/afv/__init__.py lib/python3/dist-packages/afv/__init__.py
+  for doc in README.md CHANGELOG.md LICENSE CITATION.cff; do
+    put "$doc" "share/doc/afv/$doc"
+  done
+  for example in examples/*; do
+    put "$example" "share/doc/afv/$example"
+  done
   make_dir "$(dirname "$MANIFEST")"
   { printf '# afv %s: what make install created under %s\n' "$VERSION" "$ROOT"
     printf '%s\n' "$created_dirs" "$files" "file $MANIFEST" | grep -v '^$'

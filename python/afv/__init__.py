@@ -17,10 +17,11 @@ given as an (N, 2) array, a list of pairs, or a flat list x0, y0, x1, ...
     sim.draw("final.svg")
 
 The library is found, in order: the file named by the environment variable
-AFV_LIBRARY; ../libafv.so beside this file (the build tree: python/afv.py
-after `make shared`); ../../libafv.so (installed: PREFIX/lib/python3/
-dist-packages/afv.py next to PREFIX/lib/libafv.so); then the loader's
-search path.  doc/python.md documents the module.
+AFV_LIBRARY; libafv.so in this package's directory (installed by pip, which
+builds it: python/setup.py); the build tree's libafv.so (python/afv/ after
+`make shared`); PREFIX/lib/libafv.so (make install puts this package in
+PREFIX/lib/python3/dist-packages/afv/); then the loader's search path.
+doc/python.md documents the module.
 """
 import ctypes as C
 import math
@@ -34,7 +35,9 @@ except ImportError:
 
 __all__ = ["AfvError", "Params", "Geometry", "Simulation", "compute",
            "order_parameters", "draw", "init_lattice", "init_cluster",
-           "init_random", "init_angles", "meanfield_p0", "library_path"]
+           "init_random", "init_angles", "meanfield_p0", "library_path",
+           "protocol_start", "box_side", "Trajectory", "read_trajectory",
+           "trajectory", "msd", "analyze", "Analysis", "MSD"]
 
 _DP, _IP = C.POINTER(C.c_double), C.POINTER(C.c_int)
 
@@ -44,9 +47,9 @@ def _library_candidates():
     here = os.path.dirname(os.path.abspath(__file__))
     if os.environ.get("AFV_LIBRARY"):
         return [os.environ["AFV_LIBRARY"]]
-    return [os.path.join(here, os.pardir, "libafv.so"),
-            os.path.join(here, os.pardir, os.pardir, "libafv.so"),
-            "libafv.so"]
+    def up(k):                     # libafv.so k directories above here
+        return os.path.join(here, *([os.pardir] * k + ["libafv.so"]))
+    return [os.path.join(here, "libafv.so"), up(2), up(3), "libafv.so"]
 
 
 def _load():
@@ -131,6 +134,38 @@ _declare("afv_relax_report_new", _VP)
 _declare("afv_relax_report_delete", None, _VP)
 _declare("afv_relax_report_get", C.c_int, _VP, C.c_char_p, _DP)
 _declare("afv_relax", C.c_int, _VP, C.c_double, C.c_long, _VP, _VP, _VP)
+
+_LP = C.POINTER(C.c_longlong)
+_declare("afv_sim_jumps", C.c_longlong, _VP)
+_declare("afv_sim_largest_move", C.c_double, _VP)
+_declare("afv_traj_new", _VP)
+_declare("afv_traj_delete", None, _VP)
+_declare("afv_traj_read", C.c_int, C.c_char_p, _VP, C.c_char_p, C.c_size_t)
+_declare("afv_traj_set", C.c_int, _VP, C.c_int, C.c_int, _BP, _LP, _DP, _DP,
+         _DP)
+_declare("afv_traj_unwrap", None, _VP)
+_declare("afv_traj_n", C.c_int, _VP)
+_declare("afv_traj_nframes", C.c_int, _VP)
+_declare("afv_traj_box", _BP, _VP)
+_declare("afv_traj_steps", _LP, _VP)
+for _name in ("times", "positions", "angles"):
+    _declare("afv_traj_" + _name, _DP, _VP)
+_declare("afv_msd_new", _VP)
+_declare("afv_msd_delete", None, _VP)
+_declare("afv_msd_compute", C.c_int, _VP, _VP, C.c_int, C.c_double)
+_declare("afv_msd_series", _DP, _VP, C.c_char_p, _IP)
+_declare("afv_analysis_new", _VP)
+_declare("afv_analysis_delete", None, _VP)
+_declare("afv_analyze", C.c_int, _VP, _VP, C.c_double, C.c_double,
+         C.c_double, C.c_double, C.c_double)
+_declare("afv_analysis_get", C.c_int, _VP, C.c_char_p, _DP)
+_declare("afv_analysis_series", _DP, _VP, C.c_char_p, _IP)
+_declare("afv_protocol_new", _VP)
+_declare("afv_protocol_delete", None, _VP)
+_declare("afv_protocol_set", C.c_int, _VP, C.c_char_p, C.c_double)
+_declare("afv_protocol_set_cells", C.c_int, _VP, C.c_char_p, _DP)
+_declare("afv_protocol_start", C.c_int, _VP, C.c_int, _PP, _BP, _VP, _VP,
+         _VP, _VP, _VP)
 
 for _struct, _mirror in (("afv_params", _CParams), ("afv_box", _CBox)):
     if _lib.afv_struct_size(_struct.encode()) != C.sizeof(_mirror):
@@ -433,6 +468,20 @@ def meanfield_p0(Lambda=0.2, A0=math.pi, KP=1.0):
 
 
 # ---- simulations -----------------------------------------------------------
+def _relax_report(rep):
+    """An afv_relax_report as a dict (integers and flags as such)."""
+    out, v = {}, C.c_double()
+    for name in _RELAX_NAMES:
+        _check(_lib.afv_relax_report_get(rep, name.encode(), C.byref(v)),
+               name)
+        out[name] = v.value
+    for name in _RELAX_INTS:
+        out[name] = int(out[name])
+    for name in _RELAX_FLAGS:
+        out[name] = bool(out[name])
+    return out
+
+
 class Simulation(object):
     """A running simulation (afv_sim): the cells at r (N x 2), angles theta
     (N; default all 0), params, box as for compute(), and the dynamics'
@@ -446,21 +495,27 @@ class Simulation(object):
 
     def __init__(self, r, theta=None, params=None, box=None, **dyn):
         n, rd = _positions(r)
+        cp, keep = self._open(n, params, dyn)
+        cb = _box(box)
+        th = _Doubles(theta, n, "theta") if theta is not None else None
+        _check(_lib.afv_sim_init(self._sim, n, rd.ptr, th.ptr if th else None,
+                                 C.byref(cp), C.byref(cb), self._dyn),
+               "afv_sim_init")
+        self._cells = {}    # afv_sim_init copied the per-cell arrays
+
+    def _open(self, n, params, dyn):
+        """A new afv_sim and afv_dyn for n cells (dyn: the dynamics'
+        values); returns the C params and the arrays they point to."""
         self.n = n
         self._params = params if params is not None else Params()
         cp, keep = self._params._c(n)
-        cb = _box(box)
-        th = _Doubles(theta, n, "theta") if theta is not None else None
         self._dyn = _lib.afv_dyn_new()
         self._sim = _lib.afv_sim_new()
         if not self._dyn or not self._sim:
             raise MemoryError("afv_sim_new")
         self._cells = {}
         self._set_dyn(self._dyn, dyn)
-        _check(_lib.afv_sim_init(self._sim, n, rd.ptr, th.ptr if th else None,
-                                 C.byref(cp), C.byref(cb), self._dyn),
-               "afv_sim_init")
-        self._cells = {}    # afv_sim_init copied the per-cell arrays
+        return cp, keep
 
     def __del__(self):
         if getattr(self, "_sim", None):
@@ -535,16 +590,7 @@ class Simulation(object):
         try:
             _check(_lib.afv_relax(self._sim, tol, max_iter, rep, None, None),
                    "afv_relax")
-            out, v = {}, C.c_double()
-            for name in _RELAX_NAMES:
-                _check(_lib.afv_relax_report_get(rep, name.encode(),
-                                                 C.byref(v)), name)
-                out[name] = v.value
-            for name in _RELAX_INTS:
-                out[name] = int(out[name])
-            for name in _RELAX_FLAGS:
-                out[name] = bool(out[name])
-            return out
+            return _relax_report(rep)
         finally:
             _lib.afv_relax_report_delete(rep)
 
@@ -561,6 +607,24 @@ class Simulation(object):
     @property
     def time(self):
         return _lib.afv_sim_time(self._sim)
+
+    @property
+    def box(self):
+        """None in open space, else the periodic box (Lx, Ly)."""
+        b = _lib.afv_sim_box(self._sim).contents
+        return (b.Lx, b.Ly) if b.periodic else None
+
+    @property
+    def jumps(self):
+        """Steps so far (relaxation too) that moved some cell more than
+        half a cell radius (afv_sim_jumps: Euler no longer follows the
+        continuous dynamics there; a smaller dt, or the cap, helps)."""
+        return _lib.afv_sim_jumps(self._sim)
+
+    @property
+    def largest_move(self):
+        """The largest move of a cell in one step so far, in l."""
+        return _lib.afv_sim_largest_move(self._sim)
 
     @property
     def positions(self):
@@ -599,3 +663,277 @@ class Simulation(object):
                   _lib.afv_sim_angles(self._sim),
                   _lib.afv_sim_params(self._sim).contents,
                   _lib.afv_sim_box(self._sim).contents, color_by_cluster)
+
+
+# ---- the paper's protocol ---------------------------------------------------
+_STARTS = {"cluster": 0, "lattice": 1, "random": 2, "given": 3}  # AFV_START_*
+_RELAXES = {"flow": 0, "fire": 1}                                 # AFV_RELAX_*
+_AUTHORS_SQUARE = 0.3              # AFV_AUTHORS_SQUARE
+
+
+def box_side(n, phi=0.5, l=1.0):
+    """afv run's box side L = sqrt(N pi l^2 / phi) (packing fraction phi),
+    computed in the program's order of operations (the same bits)."""
+    return math.sqrt(float(n) * math.pi * l * l / phi)
+
+
+def protocol_start(n, params=None, phi=0.5, box="periodic", init="cluster",
+                   spacing=1.8, positions=None, theta=None, relax="flow",
+                   relax_tol=1e-6, relax_max_steps=100000, **dyn):
+    """The paper's protocol up to the active run, as `afv run` does it with
+    the same keys (afv run --help): n cells at packing fraction phi in a
+    periodic box of side box_side(n, phi, l) (box="open": open space);
+    the start init ("cluster": the authors' square of side 0.3 L, uniform
+    from the seed; "lattice": the triangular lattice of spacing `spacing`
+    l; "random": uniform over the box; "given": `positions`), angles from
+    the seed unless `theta` is given; relaxed at v0 = 0 (relax "flow": the
+    paper's Euler steps; "fire": FIRE 2.0) to max |F| <= relax_tol or
+    relax_max_steps steps; then v0 on, at step 0.  dyn: mu, v0, Dr, dt,
+    seed as for Simulation (afv run's defaults: v0 0.5, the others
+    Simulation's).  Returns the Simulation, its relaxation's report in
+    .start_report: stepping it gives afv run's trajectory bit for bit."""
+    if init not in _STARTS:
+        raise ValueError("protocol_start: init %r (known: %s)"
+                         % (init, ", ".join(_STARTS)))
+    if relax not in _RELAXES:
+        raise ValueError("protocol_start: relax %r (known: flow, fire)"
+                         % (relax,))
+    if box not in ("periodic", "open"):
+        raise ValueError("protocol_start: box %r (periodic or open)" % (box,))
+    dyn.setdefault("v0", 0.5)          # afv run's default v0
+    sim = Simulation.__new__(Simulation)
+    cp, keep = sim._open(n, params, dyn)
+    L = box_side(n, phi, cp.l)
+    cb = _CBox(1 if box == "periodic" else 0, L, L)
+    pr = _lib.afv_protocol_new()
+    rep = _lib.afv_relax_report_new()
+    try:
+        if not pr or not rep:
+            raise MemoryError("afv_protocol_new")
+        values = {"start": _STARTS[init], "relax": _RELAXES[relax],
+                  "relax_tol": relax_tol, "relax_max_steps": relax_max_steps,
+                  "side": (_AUTHORS_SQUARE * L if init == "cluster" else L),
+                  "spacing": spacing * cp.l}
+        for name, value in values.items():
+            _check(_lib.afv_protocol_set(pr, name.encode(), float(value)),
+                   "protocol_start: %s = %r" % (name, value))
+        arrays = {"r": _Doubles(positions, 2 * n, "positions")
+                  if init == "given" else None,
+                  "theta": _Doubles(theta, n, "theta")
+                  if theta is not None else None}
+        if init == "given" and positions is None:
+            raise ValueError("protocol_start: init 'given' needs positions")
+        for name, d in arrays.items():
+            _lib.afv_protocol_set_cells(pr, name.encode(), d.ptr if d else None)
+        _check(_lib.afv_protocol_start(sim._sim, n, C.byref(cp), C.byref(cb),
+                                       sim._dyn, pr, rep, None, None),
+               "protocol_start")
+        sim._cells = {}             # afv_sim_init copied the per-cell arrays
+        sim.start_report = _relax_report(rep)
+    finally:
+        _lib.afv_protocol_delete(pr)
+        _lib.afv_relax_report_delete(rep)
+    return sim
+
+
+# ---- trajectories -----------------------------------------------------------
+class Trajectory(object):
+    """The frames of a run: n (cells), box (None or (Lx, Ly)), steps and
+    times (one per frame), positions (frames x N x 2, unwrapped centres)
+    and angles (frames x N).  Arrays with numpy, else nested lists."""
+
+    def __init__(self, handle):
+        self._tr = handle
+        self.n = _lib.afv_traj_n(handle)
+        self.nframes = _lib.afv_traj_nframes(handle)
+        b = _lib.afv_traj_box(handle).contents
+        self.box = (b.Lx, b.Ly) if b.periodic else None
+        steps = _lib.afv_traj_steps(handle)
+        self.steps = [int(steps[k]) for k in range(self.nframes)]
+        self.times = _out(_lib.afv_traj_times(handle), self.nframes)
+        self.positions = _per_frame(_lib.afv_traj_positions(handle),
+                                    self.nframes, self.n, 2)
+        self.angles = _per_frame(_lib.afv_traj_angles(handle), self.nframes,
+                                 self.n, 1)
+
+    def __len__(self):
+        return self.nframes
+
+    def __repr__(self):
+        return "Trajectory(n=%d, frames=%d, box=%r)" % (self.n, self.nframes,
+                                                        self.box)
+
+    def __del__(self):
+        if getattr(self, "_tr", None):
+            _lib.afv_traj_delete(self._tr)
+            self._tr = None
+
+
+def _per_frame(ptr, nframes, n, width):
+    """nframes frames of n rows of width values from a C pointer: an
+    (nframes, n, width) array (width 1: (nframes, n)), or nested lists."""
+    count = nframes * n * width
+    if _np is not None:
+        a = _np.ctypeslib.as_array(ptr, (count,)).copy() if count else \
+            _np.zeros(0, dtype=_np.float64)
+        return a.reshape((nframes, n, width) if width > 1 else (nframes, n))
+    values = ptr[:count] if count else []
+    if width == 1:
+        return [values[k * n:(k + 1) * n] for k in range(nframes)]
+    return [[values[(k * n + i) * width:(k * n + i + 1) * width]
+             for i in range(n)] for k in range(nframes)]
+
+
+def read_trajectory(path):
+    """Every complete frame of a trajectory file: afv run's trajectory.dat
+    (format 2) or the text format of earlier versions (format 1); a
+    Trajectory.  AfvError (with the file's line or frame) if it cannot be
+    read."""
+    tr = _lib.afv_traj_new()
+    if not tr:
+        raise MemoryError("afv_traj_new")
+    err = C.create_string_buffer(512)
+    st = _lib.afv_traj_read(os.fsencode(path), tr, err, len(err))
+    if st != 0:
+        _lib.afv_traj_delete(tr)
+        raise AfvError(st, err.value.decode(errors="replace") or str(path))
+    return Trajectory(tr)
+
+
+def trajectory(positions, times, box=None, steps=None, angles=None):
+    """A Trajectory from arrays: positions (frames x N x 2), times (one per
+    frame), box (None or (Lx, Ly)), steps (default 0, 1, ...) and angles
+    (frames x N, default zeros); for analyze() and msd()."""
+    nframes = len(times)
+    r = _Doubles(positions, what="positions")
+    if nframes == 0 or r.size % (2 * nframes):
+        raise ValueError("trajectory: %d numbers of positions do not make %d "
+                         "frames of N x 2" % (r.size, nframes))
+    n = r.size // (2 * nframes)
+    t = _Doubles(times, nframes, "times")
+    th = _Doubles(angles, n * nframes, "angles") if angles is not None \
+        else None
+    st = (C.c_longlong * max(nframes, 1))(*[int(k) for k in steps]) \
+        if steps is not None else None
+    if steps is not None and len(steps) != nframes:
+        raise ValueError("trajectory: %d steps for %d frames" % (len(steps),
+                                                                 nframes))
+    b = _box(box)
+    tr = _lib.afv_traj_new()
+    if not tr:
+        raise MemoryError("afv_traj_new")
+    status = _lib.afv_traj_set(tr, n, nframes, C.byref(b),
+                               C.cast(st, _LP) if st is not None else None,
+                               t.ptr, r.ptr, th.ptr if th else None)
+    if status != 0:
+        _lib.afv_traj_delete(tr)
+        raise AfvError(status, "trajectory")
+    return Trajectory(tr)
+
+
+def _as_trajectory(frames, times, box, unwrap):
+    """frames: a Trajectory, or positions with times and box; unwrapped
+    (minimum image between frames) if unwrap: for wrapped positions."""
+    if not isinstance(frames, Trajectory):
+        if times is None:
+            raise ValueError("positions need times (one per frame)")
+        frames = trajectory(frames, times, box)
+    elif unwrap:                    # never change the caller's Trajectory
+        frames = trajectory(frames.positions, frames.times, frames.box,
+                            frames.steps)
+    if unwrap:
+        _lib.afv_traj_unwrap(frames._tr)
+    return frames
+
+
+# ---- run analysis ------------------------------------------------------------
+class MSD(object):
+    """Mean-squared displacements on log-spaced lags: lag (in time), msd
+    (plain), msd_rel (relative to the contacting neighbours at the time
+    origin)."""
+
+    def __repr__(self):
+        return "MSD(%d lags)" % len(self.lag)
+
+
+def _series(get, handle, name):
+    """The series `name` of a C afv_msd or afv_analysis (empty if none)."""
+    count = C.c_int()
+    ptr = get(handle, name.encode(), C.byref(count))
+    if ptr and count.value:
+        return _out(ptr, count.value)
+    return _np.zeros(0) if _np is not None else []
+
+
+def msd(frames, times=None, box=None, first=0, l=1.0, unwrap=False):
+    """The MSD of a Trajectory, or of positions (frames x N x 2) at times,
+    over the time origins first .. frames-2 (afv_msd_compute; frames
+    equally spaced in time, unwrapped: unwrap=True unwraps positions
+    wrapped into a periodic box).  Returns an MSD."""
+    tr = _as_trajectory(frames, times, box, unwrap)
+    m = _lib.afv_msd_new()
+    if not m:
+        raise MemoryError("afv_msd_new")
+    try:
+        _check(_lib.afv_msd_compute(m, tr._tr, int(first), float(l)), "msd")
+        out = MSD()
+        for name in ("lag", "msd", "msd_rel"):
+            setattr(out, name, _series(_lib.afv_msd_series, m, name))
+        return out
+    finally:
+        _lib.afv_msd_delete(m)
+
+
+class Analysis(object):
+    """What `afv analyze` reports, under the names of its files: the
+    numbers of summary.txt (cells, frames, first: the first steady frame,
+    ngc_frac_mean, ngc_frac_sd, n_clusters_mean, n_clusters_sd,
+    omega_mean, omega_sd, t1_final, D_s, D_s_lag, D_s_origins, D_s_plain,
+    D_0, D_eff, tau_NGC, tau_NGC_reliable, t1_rate, msd_beta), the series of
+    series.csv (time, ngc_frac, n_clusters, omega, t1: one per frame), of
+    msd.csv (lag, msd, msd_rel) and of csd.csv (csd: p(s), s = 1..N)."""
+
+    def __repr__(self):
+        return "Analysis(frames=%d, ngc_frac_mean=%r, D_eff=%r)" % (
+            self.frames, self.ngc_frac_mean, self.D_eff)
+
+
+_ANALYSIS_NUMBERS = ("cells", "frames", "first", "ngc_frac_mean",
+                     "ngc_frac_sd", "n_clusters_mean", "n_clusters_sd",
+                     "omega_mean", "omega_sd", "t1_final", "D_s", "D_s_lag",
+                     "D_s_origins", "D_s_plain", "D_0", "D_eff", "tau_NGC",
+                     "tau_NGC_reliable", "t1_rate", "msd_beta")
+_ANALYSIS_INTS = ("cells", "frames", "first", "D_s_origins",
+                  "tau_NGC_reliable")
+_ANALYSIS_SERIES = ("time", "ngc_frac", "n_clusters", "omega", "t1", "lag",
+                    "msd", "msd_rel", "csd")
+
+
+def analyze(frames, times=None, box=None, l=1.0, v0=0.5, Dr=0.1,
+            steady_from=0.0, lag=5000.0, unwrap=False):
+    """`afv analyze` on a Trajectory (read_trajectory, trajectory()) or on
+    positions (frames x N x 2) at times in box: the order parameters
+    N_GC/N, the number of clusters and Omega at every frame and their
+    means over the steady frames (time >= steady_from), T1, the MSD of
+    the steady frames, D_s at the computed lag nearest to `lag`, D_eff =
+    D_s / D_0 with D_0 = v0^2 / (2 Dr), tau_NGC, msd_beta.  l, v0 and Dr
+    are the run's (afv analyze reads them from params.txt).  The numbers
+    are afv_analyze's, the same bits as afv analyze's.  Returns an
+    Analysis."""
+    tr = _as_trajectory(frames, times, box, unwrap)
+    a = _lib.afv_analysis_new()
+    if not a:
+        raise MemoryError("afv_analysis_new")
+    try:
+        _check(_lib.afv_analyze(a, tr._tr, float(l), float(v0), float(Dr),
+                                float(steady_from), float(lag)), "analyze")
+        out, v = Analysis(), C.c_double()
+        for name in _ANALYSIS_NUMBERS:
+            _check(_lib.afv_analysis_get(a, name.encode(), C.byref(v)), name)
+            setattr(out, name, int(v.value) if name in _ANALYSIS_INTS
+                    else v.value)
+        for name in _ANALYSIS_SERIES:
+            setattr(out, name, _series(_lib.afv_analysis_series, a, name))
+        return out
+    finally:
+        _lib.afv_analysis_delete(a)
