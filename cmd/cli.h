@@ -117,6 +117,8 @@ int run_key_check(const char *name, const char *text, char *err,
 ** key to path in params.txt form.  1, or 0 with the reason in err. */
 int run_config_write(const char *path, int n, const char *const *names,
                      const char *const *values, char *err, size_t errlen);
+/* The default value text of afv run's key NAME (NULL: no such key). */
+const char *run_key_default(const char *name);
 
 /* ---- run_config.c, run_dir.c: readers of a run directory --------------- */
 /* The value of key in the params.txt at path, if it is a whole finite

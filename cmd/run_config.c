@@ -656,6 +656,12 @@ int run_config_write(const char *path, int n, const char *const *names,
   return ok;
 }
 
+const char *run_key_default(const char *name)
+{
+  const run_key *K = find_key(name);
+  return K ? K->def : NULL;
+}
+
 static const char *run_usage =
   "usage: afv run [--config FILE] [--KEY VALUE ...] --out DIR\n"
   "       afv run [--config FILE] [--KEY VALUE ...] --out DIR --continue\n"

@@ -4,11 +4,15 @@
 **   afv sweep --out DIR [--seeds K] [--KEY VALUES ...]
 **
 ** VALUES is a:b:step (inclusive range), v1,v2,... (list) or one value
-** (fixed).  Every job is one idempotent shell command (jobs.txt):
-**   AFV run --config DIR/jobs/ID.conf --out DIR/runs/ID --continue
-**     && AFV analyze DIR/runs/ID [--steady-from T] [--lag L]
+** (fixed).  Every job is one idempotent shell command (jobs.txt), run in
+** DIR:
+**   ./afv run --config jobs/ID.conf --out runs/ID --continue
+**     && ./afv analyze runs/ID `cat analysis.txt`
 ** so the Makefile, GNU parallel and a SLURM array run the same lines, and
 ** any of them, stopped at any moment, finishes the sweep when run again.
+** DIR/afv is a copy of the program that wrote the sweep: every path is
+** relative to DIR, which may be moved.  Before anything is written the
+** sweep's CPU time and disk are estimated and printed.
 */
 #define _XOPEN_SOURCE 700  /* mkdir, realpath, readlink */
 #include "cli.h"
@@ -36,6 +40,14 @@
 /* Tasks of one SLURM job array at most, by default (SLURM's default
 ** MaxArraySize is 1001: indices 0 .. 1000). */
 #define SLURM_ARRAY_MAX 1000
+/* The program the runners call, copied into DIR (a path relative to DIR,
+** where every job runs). */
+#define SWEEP_PROGRAM "./afv"
+/* Without --svg_every a job draws a snapshot every max(afv run's default,
+** steps / SWEEP_SNAPSHOTS) steps: at most SWEEP_SNAPSHOTS + 1 pictures of
+** about 0.5 KB a cell however long the run (a 10^6-step job of 400 cells
+** drew 201, 45 MB, at afv run's default of 5000). */
+#define SWEEP_SNAPSHOTS 20
 
 /* One --KEY VALUES option: its expanded values. */
 typedef struct sweep_axis {
@@ -50,6 +62,7 @@ typedef struct sweep_opts {
   const char *out, *afv, *steady_from, *lag;
   const char *reanalyze;  /* --reanalyze DIR: a new analysis of DIR */
   const char *account, *partition, *mem, *time;  /* SLURM resources */
+  long throttle;          /* tasks of an array at once (0: no limit) */
   long seeds;             /* --seeds K (0: not given) */
   long per_task;          /* jobs per SLURM array task */
   long array_max;         /* tasks per SLURM array at most */
@@ -87,20 +100,35 @@ static const char *sweep_usage =
   "  --steady-from T  --lag L   passed to afv analyze (steady window, lag\n"
   "                   of D_s in time units) after each run; checked against\n"
   "                   every job's run (steps, dt, frame_every) first\n"
-  "  --afv PATH       the afv program the runners call (default: this one)\n"
+  "  --afv PATH       the afv program copied into DIR/afv, which the\n"
+  "                   runners call (default: this one)\n"
+  "Cost: before writing anything, afv sweep prints the jobs' estimated CPU\n"
+  "time (0.35 us per cell-step on one core, relaxation included) and disk\n"
+  "(trajectory.dat: 16 + 20 N bytes a frame; an SVG snapshot: about 0.5 KB\n"
+  "a cell).  To cut them: fewer --steps, --N or --seeds; a larger\n"
+  "--frame_every (the analysis needs a few hundred frames, not more);\n"
+  "--svg_every 0 (only final.svg).  Without --svg_every a job draws at\n"
+  "most " AFV_STR(SWEEP_SNAPSHOTS) " snapshots and final.svg (every "
+  "max(5000, steps/" AFV_STR(SWEEP_SNAPSHOTS) ") steps).\n"
   "SLURM (slurm.sh; each array task runs its jobs one after the other on\n"
   "one core):\n"
   "  --per-task K     jobs per array task (default 1)\n"
   "  --array-max K    tasks per job array at most (default 1000: SLURM's\n"
   "                   usual MaxArraySize is 1001); more tasks go into\n"
   "                   further arrays, each submitted by slurm.sh\n"
+  "  --throttle K     at most K tasks of each array at once (%K of\n"
+  "                   sbatch --array; sh slurm.sh --throttle K overrides)\n"
   "  --time T         time limit per task (default: estimated from the\n"
   "                   largest N and steps at 0.35 us per cell-step, x 3\n"
   "                   plus 10 min; printed)\n"
-  "  --mem M  --account A  --partition P   written as #SBATCH lines\n"
+  "  --mem M          memory per task (default: estimated from the largest\n"
+  "                   N, at least 256M; printed)\n"
+  "  --account A  --partition P   written as #SBATCH lines (else the\n"
+  "                   cluster's defaults)\n"
   "DIR gets points.csv (id, swept keys, seed), jobs/ID.conf (every key of\n"
   "a job: afv run --config jobs/ID.conf repeats it alone), jobs.txt (one\n"
-  "command a line), analysis.txt (the analysis arguments), Makefile,\n"
+  "command a line), analysis.txt (the analysis arguments), afv (a copy of\n"
+  "the program: replace it to run the jobs with another build), Makefile,\n"
   "slurm.sh, and, as jobs run, runs/ID/ and logs/ID.log.  A job is\n"
   "idempotent: afv run --continue starts, resumes or leaves its run, then\n"
   "afv analyze writes runs/ID/analysis/.  Every job's keys are checked as\n"
@@ -348,6 +376,8 @@ static int sweep_option(sweep_opts *o, const char *opt, const char *val)
     return count_value(opt, val, &o->per_task);
   else if (!strcmp(opt, "--array-max"))
     return count_value(opt, val, &o->array_max);
+  else if (!strcmp(opt, "--throttle"))
+    return count_value(opt, val, &o->throttle);
   else if (!strcmp(opt, "--account"))
     return slurm_value(opt, val, "word", &o->account);
   else if (!strcmp(opt, "--partition"))
@@ -521,15 +551,40 @@ static int afv_program(const char *given, char *out)
   return 0;
 }
 
-/* Job id's command line (no newline), run in the sweep's folder: paths
-** are relative to it, and the analysis arguments are read from
-** analysis.txt when the job runs (afv sweep --reanalyze changes them). */
-static void job_command(char *cmd, size_t len, const char *afv,
-                        const char *id)
+/* Job id's command line (no newline), run in the sweep's folder: paths,
+** the program's too (SWEEP_PROGRAM), are relative to it, and the analysis
+** arguments are read from analysis.txt when the job runs (afv sweep
+** --reanalyze changes them). */
+static void job_command(char *cmd, size_t len, const char *id)
 {
   snprintf(cmd, len, "%s run --config jobs/%s.conf --out runs/%s --continue "
            "2>>logs/%s.log && %s analyze runs/%s `cat analysis.txt` "
-           ">logs/%s.out 2>>logs/%s.log", afv, id, id, id, afv, id, id, id);
+           ">logs/%s.out 2>>logs/%s.log", SWEEP_PROGRAM, id, id, id,
+           SWEEP_PROGRAM, id, id, id);
+}
+
+/* Copies the program at path into dir/afv (mode 0755): the runners call
+** it by a path relative to the sweep.  0 on failure (message printed). */
+static int copy_program(const char *path, const char *dir)
+{
+  char to[PATH_MAX + 64], tmp[PATH_MAX + 128], buf[1 << 16];
+  FILE *in = fopen(path, "rb"), *out = NULL;
+  size_t m;
+  int ok = in != NULL;
+  snprintf(to, sizeof to, "%s/afv", dir);
+  if (ok) ok = (out = afv_atomic_open(to, tmp, sizeof tmp)) != NULL;
+  while (ok && (m = fread(buf, 1, sizeof buf, in)) > 0)
+    ok = fwrite(buf, 1, m, out) == m;
+  ok = ok && !ferror(in) && chmod(tmp, 0755) == 0;
+  if (in) fclose(in);
+  if (out && (!ok || afv_atomic_commit(out, tmp, to) != AFV_OK)) {
+    if (!ok) fclose(out);
+    remove(tmp);
+    ok = 0;
+  }
+  if (!ok) fprintf(stderr, "afv sweep: cannot copy %s to %s: %s\n", path, to,
+                   strerror(errno));
+  return ok;
 }
 
 /* Job j's id: 0001 .. 9999, or six digits for bigger sweeps (at most
@@ -584,10 +639,10 @@ static void write_jobs(FILE *fp, const sweep_grid *g, const sweep_opts *o,
 {
   char id[16], cmd[4 * PATH_MAX];
   long j;
-  (void)o;
+  (void)o; (void)afv;
   for (j = 0; j < g->njobs; j++) {
     job_id(id, j, g->njobs);
-    job_command(cmd, sizeof cmd, afv, id);
+    job_command(cmd, sizeof cmd, id);
     fprintf(fp, "%s\n", cmd);
   }
 }
@@ -608,7 +663,7 @@ static void write_makefile(FILE *fp, const sweep_grid *g, const sweep_opts *o,
 {
   char id[16], cmd[4 * PATH_MAX];
   long j;
-  (void)o;
+  (void)o; (void)afv;
   fprintf(fp, "# afv sweep: %ld jobs.  make -C DIR -j N runs them, N at a "
           "time.\n# A job is done when runs/ID/analysis/summary.txt exists "
           "and is newer\n# than analysis.txt (afv sweep --reanalyze "
@@ -624,7 +679,7 @@ static void write_makefile(FILE *fp, const sweep_grid *g, const sweep_opts *o,
   fputs("\n", fp);
   for (j = 0; j < g->njobs; j++) {
     job_id(id, j, g->njobs);
-    job_command(cmd, sizeof cmd, afv, id);
+    job_command(cmd, sizeof cmd, id);
     fprintf(fp, "\nruns/%s/analysis/summary.txt: analysis.txt\n\t%s\n", id,
             cmd);
   }
@@ -656,6 +711,129 @@ static double estimate_time(const sweep_grid *g, const sweep_opts *o,
   return sec;
 }
 
+/* Memory of one job: afv run's peak resident size, measured (afv 0.4.0)
+** 4.4 MB at N = 400 and 40.6 MB at N = 6400, is about 2 MB plus 6 KB a
+** cell; afv analyze holds at most 16 MB of frames more
+** (AFV_ANALYSIS_RING_BYTES).  The estimate of --mem is MEM_FACTOR times
+** that for the largest N, at least MEM_MIN_MB, in MB. */
+#define MEM_BASE_BYTES (2e6 + 16.0 * 1048576)
+#define MEM_BYTES_PER_CELL 6e3
+#define MEM_FACTOR 2.0
+#define MEM_MIN_MB 256
+
+static long estimate_mem_mb(const sweep_grid *g)
+{
+  double bytes = MEM_FACTOR * (MEM_BASE_BYTES + MEM_BYTES_PER_CELL
+                               * g->max_cells);
+  long mb = (long)ceil(bytes / 1048576);
+  return mb < MEM_MIN_MB ? MEM_MIN_MB : mb;
+}
+
+/* slurm.sh's header: what it submits and how to call it. */
+static void slurm_header(FILE *fp, const sweep_grid *g, const sweep_opts *o,
+                         long tasks, long arrays)
+{
+  fprintf(fp, "#!/bin/sh\n"
+          "# afv sweep on SLURM: %ld jobs (jobs.txt), %ld per array task, "
+          "%ld tasks\n# in %ld job array(s) of at most %ld tasks (afv sweep "
+          "--per-task, --array-max).\n#\n"
+          "# Submit from any directory (a login node of the cluster that "
+          "shares this\n# folder):\n"
+          "#   sh PATH/TO/SWEEP/slurm.sh [--throttle K] [--from-array I] "
+          "[SBATCH OPTIONS]\n"
+          "# submits the arrays with sbatch --chdir set to this folder "
+          "(every path of\n# a job is relative to it, the program too: "
+          "./afv) and passes SBATCH\n# OPTIONS on to each sbatch, where "
+          "they win over the #SBATCH lines below\n# (e.g. --qos=short).  "
+          "--throttle K: at most K tasks of each array run at\n# once "
+          "(--array=0-N%%K; afv sweep --throttle sets the default, "
+          "now %ld,\n# 0 = no limit).  The arrays are slurm.sh's: an "
+          "--array option is refused.\n# If an sbatch fails, the arrays "
+          "before it stay submitted, and slurm.sh\n# says how to submit "
+          "the rest alone: --from-array I starts at array I\n# (0 is the "
+          "first).  Task T of the array that starts at task F runs lines\n"
+          "# (F+T)*%ld+1 .. (F+T+1)*%ld of jobs.txt, one after the other.  "
+          "Every job is\n# idempotent: submit again (or use make or "
+          "parallel) to finish what a crash,\n# a time limit or a scancel "
+          "left.\n#\n"
+          "# Resources per array task (one core, one job at a time): afv "
+          "sweep --time,\n# --mem, --account and --partition set them.  "
+          "--time is %s\n",
+          g->njobs, o->per_task, tasks, arrays, o->array_max, o->throttle,
+          o->per_task, o->per_task, o->time ? "as given." : "estimated:");
+  if (!o->time)
+    fprintf(fp, "# 3 x (%.3g cells x (%.0f steps + %.0f of relaxation) x "
+            "%.2g s per cell-step\n# x %ld job(s)) + 10 min.\n",
+            g->max_cells, g->max_steps, RELAX_STEPS, CELL_STEP_SECONDS,
+            o->per_task);
+  fprintf(fp, "# --mem is %s\n", o->mem ? "as given." : "estimated: twice "
+          "a job's peak memory at the largest N (at\n# least 256M).");
+  if (!o->account || !o->partition)
+    fprintf(fp, "# No --account or --partition line: the cluster's defaults "
+            "(give afv sweep\n# --account A --partition P, or pass them to "
+            "slurm.sh, where yours requires\n# them).\n");
+}
+
+/* slurm.sh's submitter (run without SLURM_JOB_ID): its own options, then
+** one sbatch per array, each told where its tasks start. */
+static void slurm_submitter(FILE *fp)
+{
+  fputs("if [ -z \"${SLURM_JOB_ID:-}\" ]; then\n"
+        "  # the submitter: one sbatch per array of at most array_max tasks\n"
+        "  dir=$(cd \"$(dirname \"$0\")\" && pwd) || exit 2\n"
+        "  arrays=$(((tasks + array_max - 1) / array_max))\n"
+        "  from=0\n"
+        "  left=$#\n"
+        "  while [ \"$left\" -gt 0 ]; do   # ours out, the others kept in order\n"
+        "    a=$1; shift; left=$((left - 1))\n"
+        "    case $a in\n"
+        "      --throttle|--from-array)\n"
+        "        if [ \"$left\" -eq 0 ]; then\n"
+        "          echo \"slurm.sh: $a needs a value\" >&2; exit 2\n"
+        "        fi\n"
+        "        v=$1; shift; left=$((left - 1)) ;;\n"
+        "      --throttle=*|--from-array=*) v=${a#*=}; a=${a%%=*} ;;\n"
+        "      --array|--array=*|-a|-a?*)\n"
+        "        echo \"slurm.sh: $a: the job arrays are slurm.sh's ($tasks \"\\\n"
+        "          \"tasks in $arrays array(s)); --throttle K runs at most K \"\\\n"
+        "          \"tasks of each at once\" >&2\n"
+        "        exit 2 ;;\n"
+        "      *) set -- \"$@\" \"$a\"; continue ;;\n"
+        "    esac\n"
+        "    case $v in\n"
+        "      ''|*[!0-9]*) echo \"slurm.sh: $a '$v': expected a whole \"\\\n"
+        "        \"number\" >&2; exit 2 ;;\n"
+        "    esac\n"
+        "    if [ \"$a\" = --throttle ]; then throttle=$v; else from=$v; fi\n"
+        "  done\n"
+        "  if [ \"$from\" -ge \"$arrays\" ]; then\n"
+        "    echo \"slurm.sh: --from-array $from: there are $arrays array(s), \"\\\n"
+        "      \"0 .. $((arrays - 1))\" >&2\n"
+        "    exit 2\n"
+        "  fi\n"
+        "  k=0\n"
+        "  first=0\n"
+        "  while [ \"$first\" -lt \"$tasks\" ]; do\n"
+        "    n=$((tasks - first))\n"
+        "    if [ \"$n\" -gt \"$array_max\" ]; then n=$array_max; fi\n"
+        "    spec=0-$((n - 1))\n"
+        "    if [ \"$throttle\" -gt 0 ]; then spec=$spec%$throttle; fi\n"
+        "    if [ \"$k\" -ge \"$from\" ] && ! sbatch --chdir=\"$dir\" \\\n"
+        "        --array=\"$spec\" --export=ALL,AFV_TASK_OFFSET=\"$first\" \\\n"
+        "        \"$@\" \"$dir/slurm.sh\"; then\n"
+        "      echo \"slurm.sh: array $k of 0 .. $((arrays - 1)) was not \"\\\n"
+        "        \"submitted (sbatch failed); arrays $from .. $((k - 1)) were. \"\\\n"
+        "        \"Once the cause is fixed, submit the rest alone: sh \"\\\n"
+        "        \"$dir/slurm.sh --from-array $k [the same options]\" >&2\n"
+        "      exit 1\n"
+        "    fi\n"
+        "    first=$((first + n))\n"
+        "    k=$((k + 1))\n"
+        "  done\n"
+        "  exit 0\n"
+        "fi\n", fp);
+}
+
 static void write_slurm(FILE *fp, const sweep_grid *g, const sweep_opts *o,
                         const char *afv)
 {
@@ -664,72 +842,35 @@ static void write_slurm(FILE *fp, const sweep_grid *g, const sweep_opts *o,
   char est[32];
   (void)afv;
   estimate_time(g, o, est, sizeof est);
-  fprintf(fp, "#!/bin/sh\n"
-          "# afv sweep on SLURM: %ld jobs (jobs.txt), %ld per array task, "
-          "%ld tasks\n# in %ld job array(s) of at most %ld tasks (afv sweep "
-          "--per-task, --array-max).\n#\n"
-          "# Submit from any directory (a login node of the cluster that "
-          "shares this\n# folder):\n"
-          "#   sh PATH/TO/SWEEP/slurm.sh [SBATCH OPTIONS]\n"
-          "# submits the arrays with sbatch --chdir set to this folder "
-          "(every path of\n# a job is relative to it) and passes SBATCH "
-          "OPTIONS on to each sbatch,\n# where they win over the #SBATCH "
-          "lines below (e.g. --qos=short, or\n# --array=0-9%%4 to test ten "
-          "tasks, at most four at once).  Task T of the\n# array that "
-          "starts at task F runs lines (F+T)*%ld+1 .. (F+T+1)*%ld of\n"
-          "# jobs.txt, one after the other.  Every job is idempotent: "
-          "submit again (or\n# use make or parallel) to finish what a "
-          "crash, a time limit or a scancel\n# left.\n#\n"
-          "# Resources per array task (one core, one job at a time): afv "
-          "sweep --time,\n# --mem, --account and --partition set them.  "
-          "--time is %s\n",
-          g->njobs, o->per_task, tasks, arrays, o->array_max, o->per_task,
-          o->per_task, o->time ? "as given." : "estimated:");
-  if (!o->time)
-    fprintf(fp, "# 3 x (%.3g cells x (%.0f steps + %.0f of relaxation) x "
-            "%.2g s per cell-step\n# x %ld job(s)) + 10 min.\n",
-            g->max_cells, g->max_steps, RELAX_STEPS, CELL_STEP_SECONDS,
-            o->per_task);
+  slurm_header(fp, g, o, tasks, arrays);
   fprintf(fp, "#SBATCH --job-name=afv-sweep\n#SBATCH --ntasks=1\n"
           "#SBATCH --cpus-per-task=1\n#SBATCH --time=%s\n",
           o->time ? o->time : est);
   if (o->mem) fprintf(fp, "#SBATCH --mem=%s\n", o->mem);
+  else fprintf(fp, "#SBATCH --mem=%ldM\n", estimate_mem_mb(g));
   if (o->account) fprintf(fp, "#SBATCH --account=%s\n", o->account);
   if (o->partition) fprintf(fp, "#SBATCH --partition=%s\n", o->partition);
   fprintf(fp, "#SBATCH --output=logs/slurm-%%A_%%a.out\n"
           "set -u\n"
-          "tasks=%ld\nper_task=%ld\narray_max=%ld\n"
-          "if [ -z \"${SLURM_JOB_ID:-}\" ]; then\n"
-          "  # the submitter: one sbatch per array of at most array_max "
-          "tasks\n"
-          "  dir=$(cd \"$(dirname \"$0\")\" && pwd) || exit 2\n"
-          "  first=0\n"
-          "  while [ \"$first\" -lt \"$tasks\" ]; do\n"
-          "    n=$((tasks - first))\n"
-          "    if [ \"$n\" -gt \"$array_max\" ]; then n=$array_max; fi\n"
-          "    sbatch --chdir=\"$dir\" --array=0-$((n - 1)) "
-          "--export=ALL,AFV_TASK_OFFSET=\"$first\" \\\n"
-          "      \"$@\" \"$dir/slurm.sh\" || exit 1\n"
-          "    first=$((first + n))\n"
-          "  done\n"
-          "  exit 0\n"
-          "fi\n"
-          "if [ -z \"${SLURM_ARRAY_TASK_ID:-}\" ] || [ ! -f jobs.txt ]; then\n"
-          "  echo \"slurm.sh: submit it with sh PATH/TO/SWEEP/slurm.sh (not "
-          "sbatch): it submits the job arrays\" >&2\n"
-          "  exit 2\n"
-          "fi\n"
-          "task=$((${AFV_TASK_OFFSET:-0} + SLURM_ARRAY_TASK_ID))\n"
-          "export OMP_NUM_THREADS=${SLURM_CPUS_PER_TASK:-1}\n"
-          "status=0\n"
-          "line=$((task * per_task + 1))\n"
-          "last=$((line + per_task - 1))\n"
-          "while [ \"$line\" -le \"$last\" ]; do\n"
-          "  job=$(sed -n \"${line}p\" jobs.txt)\n"
-          "  if [ -n \"$job\" ]; then sh -c \"$job\" || status=1; fi\n"
-          "  line=$((line + 1))\n"
-          "done\n"
-          "exit $status\n", tasks, o->per_task, o->array_max);
+          "tasks=%ld\nper_task=%ld\narray_max=%ld\nthrottle=%ld\n",
+          tasks, o->per_task, o->array_max, o->throttle);
+  slurm_submitter(fp);
+  fputs("if [ -z \"${SLURM_ARRAY_TASK_ID:-}\" ] || [ ! -f jobs.txt ]; then\n"
+        "  echo \"slurm.sh: submit it with sh PATH/TO/SWEEP/slurm.sh (not "
+        "sbatch): it submits the job arrays\" >&2\n"
+        "  exit 2\n"
+        "fi\n"
+        "task=$((${AFV_TASK_OFFSET:-0} + SLURM_ARRAY_TASK_ID))\n"
+        "export OMP_NUM_THREADS=${SLURM_CPUS_PER_TASK:-1}\n"
+        "status=0\n"
+        "line=$((task * per_task + 1))\n"
+        "last=$((line + per_task - 1))\n"
+        "while [ \"$line\" -le \"$last\" ]; do\n"
+        "  job=$(sed -n \"${line}p\" jobs.txt)\n"
+        "  if [ -n \"$job\" ]; then sh -c \"$job\" || status=1; fi\n"
+        "  line=$((line + 1))\n"
+        "done\n"
+        "exit $status\n", fp);
 }
 
 /* ---- checks before anything is created ------------------------------------- */
@@ -857,6 +998,130 @@ static int check_analysis(sweep_grid *g, const sweep_opts *o, const char *dir)
   return 1;
 }
 
+/* ---- cost: CPU time and disk, printed before anything is written -------- */
+/* Bytes of afv run's outputs, measured (afv 0.4.0, N = 400 and 6400): an
+** SVG picture (a snapshot or final.svg) 520 - 565 bytes a cell; a
+** trajectory frame 16 + 20 N bytes (io.c, TRAJECTORY); checkpoint.txt
+** and t1_reference.txt together about 90 bytes a cell; a row of
+** observables.csv about 150 bytes; analysis/ about 20 KB and 25 bytes a
+** frame. */
+#define SVG_BYTES_PER_CELL 570.0
+#define FRAME_HEAD_BYTES 16.0
+#define FRAME_BYTES_PER_CELL 20.0
+#define STATE_BYTES_PER_CELL 90.0
+#define SAMPLE_BYTES 150.0
+#define ANALYSIS_BYTES 20e3
+#define ANALYSIS_BYTES_PER_FRAME 25.0
+
+typedef struct sweep_cost {
+  double cpu;            /* CPU seconds of every job, on one core */
+  double cpu_max;        /* CPU seconds of the longest job */
+  double trajectory;     /* bytes of the trajectory.dat files */
+  double pictures;       /* bytes of the SVG pictures */
+  double rest;           /* bytes of everything else */
+  double npictures;      /* SVG pictures (snapshots and final.svg) */
+} sweep_cost;
+
+/* afv run's value of key for job j: the sweep's, else afv run's default. */
+static double job_key(const sweep_grid *g, long j, const char *key)
+{
+  double def = 0;
+  whole_double(run_key_default(key), &def);
+  return job_number(g, j, key, def);
+}
+
+/* Outputs at steps 0, every, 2 every, ... <= steps (none if every is 0). */
+static double count_every(double steps, double every)
+{
+  return every > 0 ? floor(steps / every) + 1 : 0;
+}
+
+/* The cost of every job of g (a cells file's N counts as --N's). */
+static void sweep_cost_of(const sweep_grid *g, sweep_cost *c)
+{
+  long j;
+  memset(c, 0, sizeof *c);
+  for (j = 0; j < g->njobs; j++) {
+    double n = job_key(g, j, "N"), steps = job_key(g, j, "steps");
+    double frames = count_every(steps, job_key(g, j, "frame_every"));
+    double pictures = count_every(steps, job_key(g, j, "svg_every")) + 1;
+    double job = CELL_STEP_SECONDS * n * (steps + RELAX_STEPS);
+    c->cpu += job;
+    if (job > c->cpu_max) c->cpu_max = job;
+    c->trajectory += frames * (FRAME_HEAD_BYTES + FRAME_BYTES_PER_CELL * n);
+    c->pictures += pictures * SVG_BYTES_PER_CELL * n;
+    c->npictures += pictures;
+    c->rest += STATE_BYTES_PER_CELL * n + ANALYSIS_BYTES
+               + SAMPLE_BYTES * count_every(steps, job_key(g, j,
+                                                           "sample_every"))
+               + ANALYSIS_BYTES_PER_FRAME * frames;
+  }
+}
+
+/* A CPU time as "40 s", "12 min" or "3.5 h". */
+static const char *cpu_text(double sec, char *buf, size_t len)
+{
+  if (sec < 120) snprintf(buf, len, "%.0f s", sec);
+  else if (sec < 7200) snprintf(buf, len, "%.0f min", sec / 60);
+  else snprintf(buf, len, "%.3g h", sec / 3600);
+  return buf;
+}
+
+/* A size as "512 KB", "1.2 GB", ... (powers of 1000). */
+static const char *bytes_text(double b, char *buf, size_t len)
+{
+  static const char *unit[] = {"B", "KB", "MB", "GB", "TB", "PB"};
+  int k = 0;
+  while (b >= 1000 && k < 5) b /= 1000, k++;
+  snprintf(buf, len, k ? "%.3g %s" : "%.0f %s", b, unit[k]);
+  return buf;
+}
+
+static void print_cost(const sweep_cost *c, long njobs)
+{
+  char t[4][32], b[4][32];
+  printf("afv sweep: %ld job(s): about %s of CPU in all (%s for the longest "
+         "job, on one core) and %s of disk: trajectories %s, %.0f SVG "
+         "pictures %s, the rest %s.\n  Fewer --steps, --N or --seeds, a "
+         "larger --frame_every and --svg_every 0 cut them (afv sweep --help, "
+         "\"Cost\").\n", njobs, cpu_text(c->cpu, t[0], sizeof t[0]),
+         cpu_text(c->cpu_max, t[1], sizeof t[1]),
+         bytes_text(c->trajectory + c->pictures + c->rest, b[0], sizeof b[0]),
+         bytes_text(c->trajectory, b[1], sizeof b[1]), c->npictures,
+         bytes_text(c->pictures, b[2], sizeof b[2]),
+         bytes_text(c->rest, b[3], sizeof b[3]));
+  fflush(stdout);
+}
+
+/* Without --svg_every: a fixed svg_every of max(afv run's default, the
+** largest steps / SWEEP_SNAPSHOTS), as a key the sweep gives every job
+** (o->ax; the seed axis stays last in the grid).  0 if out of memory. */
+static int bound_snapshots(sweep_opts *o)
+{
+  double def = 5000, steps = 0, every;
+  sweep_axis *x;
+  int k, v;
+  for (k = 0; k < o->nax; k++) {
+    if (!strcmp(o->ax[k].key, "svg_every")) return 1;
+    for (v = 0; !strcmp(o->ax[k].key, "steps") && v < o->ax[k].n; v++) {
+      double s;
+      if (whole_double(o->ax[k].value[v], &s) && s > steps) steps = s;
+    }
+  }
+  if (o->nax == SWEEP_MAX_KEYS) return 1;    /* no room: run's default */
+  whole_double(run_key_default("svg_every"), &def);
+  if (steps == 0) whole_double(run_key_default("steps"), &steps);
+  every = fmax(def, ceil(steps / SWEEP_SNAPSHOTS));
+  x = &o->ax[o->nax];
+  if (!(x->value = malloc(sizeof *x->value))) return 0;
+  x->key = "svg_every";
+  x->text = "(afv sweep: at most " AFV_STR(SWEEP_SNAPSHOTS) " snapshots)";
+  x->n = 1;
+  snprintf(x->value[0], VALUE_MAX, "%.0f", every);
+  o->nax++;
+  return 1;
+}
+
 /* ---- the sweep's folder ------------------------------------------------------ */
 /* The absolute path out will have, without creating anything: the real
 ** path of its deepest existing ancestor and the rest; 0 (message printed)
@@ -934,7 +1199,7 @@ static int make_dirs(const char *path, char (*made)[PATH_MAX], int max,
 /* The files and folders a sweep holds when written (removed again if the
 ** sweep cannot be written whole). */
 static const char *sweep_files[] = {"points.csv", "jobs.txt", "analysis.txt",
-                                    "Makefile", "slurm.sh"};
+                                    "Makefile", "slurm.sh", "afv"};
 static const char *sweep_dirs[] = {"jobs", "runs", "logs"};
 #define N_OF(a) ((int)(sizeof a / sizeof a[0]))
 
@@ -1072,7 +1337,8 @@ static int write_sweep(sweep_grid *g, const sweep_opts *o, const char *afv,
       ok = !fprintf(stderr, "afv sweep: cannot create %s: %s\n", p,
                     strerror(errno));
   }
-  ok = ok && write_job_configs(g, tmp) && check_analysis(g, o, tmp)
+  ok = ok && copy_program(afv, tmp) && write_job_configs(g, tmp)
+       && check_analysis(g, o, tmp)
        && write_file(tmp, "points.csv", write_points, g, o, afv)
        && write_file(tmp, "jobs.txt", write_jobs, g, o, afv)
        && write_file(tmp, "analysis.txt", write_analysis, g, o, afv)
@@ -1172,18 +1438,23 @@ int cmd_sweep(int argc, char **argv)
   sweep_opts o;
   sweep_grid g;
   char afv[PATH_MAX], dir[PATH_MAX], made[16][PATH_MAX], est[32];
+  sweep_cost cost;
   int m = sweep_parse(argc, argv, &o), ok, nmade = 0;
   if (m <= 0) {
     free_opts(&o);
     return m < 0 ? 0 : EXIT_BAD_INPUT;
   }
   if (o.reanalyze) return reanalyze(&o);
-  ok = grid_make(&g, &o) && absolute_cells(&o, dir)
+  ok = bound_snapshots(&o) && grid_make(&g, &o) && absolute_cells(&o, dir)
        && future_path(o.out, dir) && plain_path("--out", dir)
        && (strlen(dir) < RUN_PATH_MAX - 64 || !bad_input("sweep: --out: path "
                                                           "too long"))
        && afv_program(o.afv, afv) && plain_path("--afv", afv)
        && check_starts(&g);
+  if (ok) {
+    sweep_cost_of(&g, &cost);
+    print_cost(&cost, g.njobs);
+  }
   /* only now is anything created: the parents, then the sweep whole */
   if (ok) {
     char parent[PATH_MAX];
@@ -1195,13 +1466,18 @@ int cmd_sweep(int argc, char **argv)
   }
   if (ok) {
     double sec = estimate_time(&g, &o, est, sizeof est);
+    char mem[32];
+    snprintf(mem, sizeof mem, "%ldM", estimate_mem_mb(&g));
     printf("%ld jobs in %s; run them with one of\n  make -C %s -j 2\n  "
            "cd %s && parallel -j 2 < jobs.txt\n  sh %s/slurm.sh   (SLURM: "
-           "%ld job array(s), --time %s per task%s)\nthen: afv collect %s\n",
-           g.njobs, dir, dir, dir, dir,
+           "%ld job array(s), --time %s%s, --mem %s%s per task%s)\nthen: "
+           "afv collect %s\n", g.njobs, dir, dir, dir, dir,
            ((g.njobs + o.per_task - 1) / o.per_task + o.array_max - 1)
-           / o.array_max, o.time ? o.time : est, o.time ? ", as given"
-           : sec > 0 ? ", estimated" : "", dir);
+           / o.array_max, o.time ? o.time : est, o.time ? " as given"
+           : sec > 0 ? " estimated" : "", o.mem ? o.mem : mem,
+           o.mem ? " as given" : " estimated",
+           o.account && o.partition ? "" : "; no --account/--partition: "
+           "the cluster's defaults", dir);
   }
   free(g.seeds.value);
   free_opts(&o);

@@ -13,9 +13,10 @@
 # 3. starts munged (authentication; unless one runs already), slurmctld
 #    (the controller) and slurmd (the node), and waits for the node;
 # 4. writes a small sweep (afv sweep, 2 jobs per array task, 1 task per
-#    array, an account and a partition), submits it from
-#    another directory with sh slurm.sh --wait (two arrays), and collects
-#    it (afv collect: exit 0 only if every job finished and was verified);
+#    array, an account and a partition), submits it from another
+#    directory with sh slurm.sh --throttle 1 --wait (two arrays), and
+#    collects it (afv collect: exit 0 only if every job finished and was
+#    verified);
 # 5. stops the daemons it started, by their process ids, and removes the
 #    folder.
 # Exit status 0 if the sweep finished through SLURM.
@@ -48,6 +49,9 @@ trap stop EXIT
 
 host=$(hostname -s)
 cpus=$(nproc)
+# the node's memory in MB: slurm.sh asks for --mem (afv sweep's estimate),
+# which a node without RealMemory (1 MB) refuses
+mem=$(awk '/^MemTotal:/ { print int($2 / 1024) }' /proc/meminfo)
 mkdir -p "$work/state" "$work/spool"
 export SLURM_CONF="$work/slurm.conf"
 cat > "$SLURM_CONF" <<EOF
@@ -75,7 +79,7 @@ SchedulerType=sched/backfill
 SelectType=select/cons_tres
 SelectTypeParameters=CR_Core
 ReturnToService=2
-NodeName=$host CPUs=$cpus State=UNKNOWN
+NodeName=$host CPUs=$cpus RealMemory=$mem State=UNKNOWN
 PartitionName=local Nodes=$host Default=YES MaxTime=INFINITE State=UP
 EOF
 
@@ -116,8 +120,10 @@ echo "SLURM up: node $host, $cpus CPUs, partition local"
 grep '^#SBATCH' "$work/sweep/slurm.sh"
 start=$(date +%s)
 # submitted from another directory: every path of a job is relative to the
-# sweep's folder (sbatch --chdir); --wait and --time pass through to sbatch
-(cd / && timeout 300 sh "$work/sweep/slurm.sh" --wait --time=10:00)
+# sweep's folder (sbatch --chdir); --throttle 1 gives each array %1;
+# --wait and --time pass through to sbatch
+(cd / && timeout 300 sh "$work/sweep/slurm.sh" --throttle 1 --wait \
+  --time=10:00)
 echo "array jobs finished in $(( $(date +%s) - start )) s"
 arrays=$(ls "$work"/sweep/logs/slurm-*_0.out | wc -l)
 if [ "$arrays" != 2 ]; then

@@ -203,21 +203,24 @@ static void sweep_bad_values(void)
 }
 
 /* A stand-in for sbatch in DIR/bin: records its arguments in
-** bin/sbatch.log, then runs the array's tasks one after the other in
-** --chdir with the environment SLURM gives them. */
+** bin/sbatch.log, then runs the array's tasks (0-LAST or 0-LAST%K) one
+** after the other in --chdir with the environment SLURM gives them; it
+** fails, submitting nothing, for the array at task offset F if the file
+** bin/fail_at_F exists. */
 static void fake_sbatch(void)
 {
   write_rel("bin/sbatch", "#!/bin/sh\n"
-            "echo \"$*\" >> \"$(dirname \"$0\")/sbatch.log\"\n"
             "for a in \"$@\"; do\n"
             "  case $a in\n"
             "    --chdir=*) dir=${a#--chdir=} ;;\n"
-            "    --array=0-*) last=${a#--array=0-} ;;\n"
+            "    --array=0-*) last=${a#--array=0-}; last=${last%%%*} ;;\n"
             "    --export=ALL,AFV_TASK_OFFSET=*) "
             "off=${a#--export=ALL,AFV_TASK_OFFSET=} ;;\n"
             "  esac\n"
             "  script=$a\n"
             "done\n"
+            "if [ -f \"$(dirname \"$0\")/fail_at_$off\" ]; then exit 1; fi\n"
+            "echo \"$*\" >> \"$(dirname \"$0\")/sbatch.log\"\n"
             "t=0\n"
             "while [ \"$t\" -le \"$last\" ]; do\n"
             "  (cd \"$dir\" && SLURM_JOB_ID=1 SLURM_ARRAY_TASK_ID=$t "
@@ -290,6 +293,79 @@ static void sweep_slurm_and_reanalyze(void)
         buf);
   CHECK(!strcmp(read_rel("sl/runs/0006/log.txt", buf), runlog),
         "the new analysis ran a simulation again");
+}
+
+/* slurm.sh's own options (issue 41): --throttle K gives every array %K
+** (afv sweep --throttle the default), an --array option is refused with
+** nothing submitted, and after a failed sbatch --from-array I submits the
+** arrays from I on, not the ones before again.  The runners call the
+** sweep's copy of afv by a relative path: the sweep, moved before it
+** runs, finishes every job. */
+static void sweep_slurm_throttle_and_retry(void)
+{
+  static char buf[TEXT_MAX], log[TEXT_MAX];
+  char cmd[768];
+  if (!have_afv()) return;
+  shell("mkdir -p %s/bin && rm -f %s/bin/sbatch.log", base);
+  fake_sbatch();
+  CHECK(afv("sweep --out %s/th --P0 4,8 --seeds 2 --N 10 --steps 20 "
+            "--frame_every 10 --svg_every 0 --steady-from 0 --lag 0.1 "
+            "--array-max 2 --throttle 1") == 0, "%s", err_text);
+  read_rel("th/jobs.txt", buf);
+  CHECK(!strncmp(buf, "./afv run --config jobs/0001.conf", 33)
+        && !strstr(buf, base) && strstr(read_rel("th/slurm.sh", log),
+                                        "\nthrottle=1\n"),
+        "jobs.txt calls another afv than ./afv, or no throttle:\n%s", buf);
+  shell("mv %s/th %s/th2", base);
+  snprintf(cmd, sizeof cmd, "cd / && PATH=%s/bin:$PATH sh %s/th2/slurm.sh "
+           "--array=0-9%%2 >/dev/null 2>%s/slurm.err", base, base, base);
+  CHECK(system(cmd) != 0 && strstr(read_rel("slurm.err", buf), "--throttle")
+        && !exists("bin/sbatch.log"), "--array not refused: %s", buf);
+  shell("touch %s/bin/fail_at_2%.0s", base);
+  snprintf(cmd, sizeof cmd, "cd / && PATH=%s/bin:$PATH sh %s/th2/slurm.sh "
+           "--throttle 2 --qos=test >/dev/null 2>%s/slurm.err", base, base,
+           base);
+  CHECK(system(cmd) != 0 && strstr(read_rel("slurm.err", buf),
+                                   "--from-array 1"),
+        "a failed second sbatch: %s", buf);
+  CHECK(count_lines(read_rel("bin/sbatch.log", log)) == 1
+        && strstr(log, "--array=0-1%2 --export=ALL,AFV_TASK_OFFSET=0 "
+                  "--qos=test"), "first array: %s", log);
+  shell("rm %s/bin/fail_at_2%.0s", base);
+  snprintf(cmd, sizeof cmd, "cd / && PATH=%s/bin:$PATH sh %s/th2/slurm.sh "
+           "--qos=test --from-array=1 >/dev/null 2>%s/slurm.err", base, base,
+           base);
+  CHECK(system(cmd) == 0, "--from-array 1: %s", read_rel("slurm.err", buf));
+  read_rel("bin/sbatch.log", log);
+  CHECK(count_lines(log) == 2 && strstr(log, " --array=0-1%1 "
+        "--export=ALL,AFV_TASK_OFFSET=2 --qos=test"), "the retry submitted "
+        "(want the second array alone, with the sweep's throttle 1):\n%s",
+        log);
+  CHECK(afv("collect %s/th2") == 0, "the moved sweep through slurm.sh: %s",
+        err_text);
+}
+
+/* afv sweep prints the jobs' CPU time and disk before it writes (issue
+** 41), counts the trajectories' exact bytes, and bounds the snapshots
+** when --svg_every is not given: at most 20 intervals of a run. */
+static void sweep_cost_and_snapshots(void)
+{
+  static char buf[TEXT_MAX];
+  if (!have_afv()) return;
+  CHECK(afv("sweep --out %s/cost --P0 4,8 --N 400 --steps 1000000 "
+            "--frame_every 1000") == 0, "%s", err_text);
+  read_rel("stdout", buf);
+  /* 2 x 1001 frames of 16 + 20 x 400 bytes; 2 x (21 snapshots + final) */
+  CHECK(!strncmp(buf, "afv sweep: 2 job(s): about ", 27)
+        && strstr(buf, "trajectories 16 MB, 44 SVG pictures 10 MB")
+        && strstr(buf, "--svg_every 0") && strstr(buf, "jobs in")
+        > strstr(buf, "of disk"), "cost:\n%s", buf);
+  CHECK(strstr(read_rel("cost/jobs/0001.conf", buf), "\nsvg_every        "
+               "50000\n") != NULL, "snapshots not bounded:\n%s", buf);
+  CHECK(afv("sweep --out %s/cost0 --N 400 --steps 1000000 --frame_every 1000 "
+            "--svg_every 0") == 0 && strstr(read_rel("stdout", buf),
+                                            ", 1 SVG pictures"),
+        "--svg_every 0:\n%s", buf);
 }
 
 /* A sweep of cells files: each run records its copy (cells.txt) in
@@ -874,6 +950,8 @@ void suite_sweep(void)
   RUN(sweep_grid_ranges_and_lists);
   RUN(sweep_bad_values);
   RUN(sweep_slurm_and_reanalyze);
+  RUN(sweep_slurm_throttle_and_retry);
+  RUN(sweep_cost_and_snapshots);
   RUN(sweep_of_cells_files);
   RUN(sweep_value_too_long);
   RUN(collect_known_summaries);
