@@ -14,6 +14,7 @@
 #define _POSIX_C_SOURCE 200809L   /* mkdtemp */
 #include "test.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
@@ -422,33 +423,125 @@ static int line_after(const char *file, const char *prefix, char *buf,
   return found;
 }
 
-/* CITATION.cff cites this version, and CHANGELOG.md's newest entry is it
-** (its first heading line after the title is the version alone). */
+/* The binding calls of trajectories, analyses and the protocol hand out
+** the structs' own fields by name, refuse unknown names and bad values,
+** and afv_protocol_new's protocol starts as afv_protocol does. */
+static void test_analysis_and_protocol_by_name(void)
+{
+  static const char *const names[] = {"cells", "frames", "first",
+    "ngc_frac_mean", "ngc_frac_sd", "n_clusters_mean", "n_clusters_sd",
+    "omega_mean", "omega_sd", "t1_final", "D_s", "D_s_lag", "D_s_origins",
+    "D_s_plain", "D_0", "D_eff", "tau_NGC", "tau_NGC_reliable", "t1_rate",
+    "msd_beta"};
+  enum { N = 30 };
+  double t[3] = {0, 1, 2}, r[3 * 2 * N], v, side = 9;
+  afv_box b = test_periodic_box(20, 20);
+  afv_traj *tr = afv_traj_new();
+  afv_analysis *a = afv_analysis_new();
+  afv_protocol *pr = afv_protocol_new(), by_hand = {0};
+  afv_sim *s1 = afv_sim_new(), *s2 = afv_sim_new();
+  afv_params p;
+  afv_dyn d;
+  size_t k;
+  int count;
+  if (!tr || !a || !pr || !s1 || !s2) {
+    CHECK(0, "out of memory");
+    return;
+  }
+  for (k = 0; k < 3; k++) afv_init_square(N, 5 + k, &b, side, r + 2 * N * k);
+  CHECK(afv_traj_set(tr, N, 3, &b, NULL, t, r, NULL) == AFV_OK
+        && afv_traj_steps(tr)[2] == 2 && afv_traj_angles(tr)[3 * N - 1] == 0
+        && afv_traj_positions(tr)[6 * N - 1] == r[6 * N - 1]
+        && afv_traj_box(tr)->Lx == 20, "afv_traj_set");
+  CHECK(afv_traj_set(tr, -1, 3, &b, NULL, t, r, NULL) == AFV_EINVAL,
+        "a negative count accepted");
+  CHECK(afv_traj_set(tr, N, 3, &b, NULL, t, r, NULL) == AFV_OK
+        && afv_analyze(a, tr, 1, 0.5, 0.1, 0, 1) == AFV_OK, "afv_analyze");
+  for (k = 0; k < sizeof names / sizeof *names; k++)
+    CHECK(afv_analysis_get(a, names[k], &v) == AFV_OK, "%s", names[k]);
+  CHECK(afv_analysis_get(a, "D_eff", &v) == AFV_OK && v == a->deff
+        && afv_analysis_get(a, "omega_sd", &v) == AFV_OK && v == a->sd[2]
+        && afv_analysis_get(a, "deff", &v) == AFV_EINVAL, "by name");
+  CHECK(afv_analysis_series(a, "omega", &count) == a->omega && count == 3
+        && afv_analysis_series(a, "csd", &count) == a->csd + 1 && count == N
+        && afv_analysis_series(a, "msd_rel", &count) == a->msd.msd_rel
+        && count == a->msd.nlags && !afv_analysis_series(a, "x", &count)
+        && count == 0, "series");
+  CHECK(afv_protocol_set(pr, "start", 4) == AFV_EINVAL
+        && afv_protocol_set(pr, "relax", 2) == AFV_EINVAL
+        && afv_protocol_set(pr, "relax_max_steps", -1) == AFV_EINVAL
+        && afv_protocol_set(pr, "relax_max_steps", 0.5) == AFV_EINVAL
+        && afv_protocol_set(pr, "sides", 1) == AFV_EINVAL
+        && afv_protocol_set_cells(pr, "x", r) == AFV_EINVAL, "bad values");
+  CHECK(afv_protocol_set(pr, "side", side) == AFV_OK
+        && afv_protocol_set(pr, "relax_max_steps", 300) == AFV_OK, "set");
+  by_hand.start = AFV_START_SQUARE;
+  by_hand.side = side;
+  by_hand.relax = AFV_RELAX_FLOW;
+  by_hand.relax_tol = 1e-6;
+  by_hand.relax_max_steps = 300;
+  afv_params_default(&p);
+  afv_dyn_default(&d);
+  CHECK(afv_protocol_start(s1, N, &p, &b, &d, pr, NULL, NULL, NULL) == AFV_OK
+        && afv_protocol_start(s2, N, &p, &b, &d, &by_hand, NULL, NULL, NULL)
+           == AFV_OK
+        && !memcmp(afv_sim_positions(s1), afv_sim_positions(s2),
+                   sizeof(double) * 2 * N), "afv_protocol_new's start");
+  afv_sim_delete(s1);
+  afv_sim_delete(s2);
+  afv_protocol_delete(pr);
+  afv_analysis_delete(a);
+  afv_traj_delete(tr);
+}
+
+/* The heading of CHANGELOG.md's newest version, "VERSION (YYYY-MM-DD)":
+** the first line underlined with a line of '-' after the title,
+** "Unreleased" skipped; "" if none. */
+static void newest_changelog_heading(char *got, size_t len)
+{
+  char line[512], prev[512] = "";
+  FILE *fp = fopen("CHANGELOG.md", "r");
+  int k = 0;
+  got[0] = 0;
+  if (!fp) return;
+  while (fgets(line, sizeof line, fp)) {
+    int underline = line[0] == '-'
+                    && strspn(line, "-") == strcspn(line, "\r\n");
+    if (++k > 2 && underline && prev[0] != '\n'
+        && strncmp(prev, "Unreleased", 10) != 0) {
+      prev[strcspn(prev, "\r\n")] = 0;
+      snprintf(got, len, "%s", prev);
+      break;
+    }
+    snprintf(prev, sizeof prev, "%s", line);
+  }
+  fclose(fp);
+}
+
+/* 1 if text is a date YYYY-MM-DD (digits and dashes in place). */
+static int is_date(const char *text)
+{
+  int k;
+  for (k = 0; k < 10; k++)
+    if (k == 4 || k == 7 ? text[k] != '-' : !isdigit((unsigned char)text[k]))
+      return 0;
+  return text[10] == 0;
+}
+
+/* CITATION.cff cites this version with its release date, and CHANGELOG.md's
+** newest version is it, dated the same ("0.4.0 (2026-12-02)"). */
 static void test_version_in_citation_and_changelog(void)
 {
-  char got[128] = "";
-  FILE *fp;
-  char line[512];
-  int k = 0;
+  char got[128] = "", date[64] = "", want[160];
   CHECK(line_after("CITATION.cff", "version: ", got, sizeof got)
         && strcmp(got, AFV_VERSION) == 0,
         "CITATION.cff: version '%s', afv.h: %s", got, AFV_VERSION);
-  got[0] = 0;
-  if ((fp = fopen("CHANGELOG.md", "r"))) {
-    /* the first line underlined with '-' after the title */
-    char prev[512] = "";
-    while (fgets(line, sizeof line, fp)) {
-      if (++k > 2 && line[0] == '-' && prev[0]) {
-        prev[strcspn(prev, "\r\n")] = 0;
-        snprintf(got, sizeof got, "%s", prev);
-        break;
-      }
-      snprintf(prev, sizeof prev, "%s", line);
-    }
-    fclose(fp);
-  }
-  CHECK(strcmp(got, AFV_VERSION) == 0,
-        "CHANGELOG.md's newest entry is '%s', afv.h: %s", got, AFV_VERSION);
+  CHECK(line_after("CITATION.cff", "date-released: ", date, sizeof date)
+        && is_date(date), "CITATION.cff: date-released '%s'", date);
+  newest_changelog_heading(got, sizeof got);
+  snprintf(want, sizeof want, "%s (%s)", AFV_VERSION, date);
+  CHECK(strcmp(got, want) == 0, "CHANGELOG.md's newest entry is '%s', want "
+        "'%s' (afv.h's version, CITATION.cff's date)", got, want);
   CHECK(line_after("LICENSE", "MIT License", got, sizeof got),
         "LICENSE is not the MIT licence");
 }
@@ -475,6 +568,7 @@ void suite_api(void)
   RUN(test_bindings_by_name);
   RUN(test_order_parameters_are_the_clusters);
   RUN(test_svg_save_is_svg_write);
+  RUN(test_analysis_and_protocol_by_name);
   RUN(test_version_in_citation_and_changelog);
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);   /* mkdtemp's own dir */
   if (system(cmd) != 0) printf("  note: could not remove %s\n", tmp);
