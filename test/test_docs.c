@@ -1070,6 +1070,35 @@ static void test_docs_name_version_and_targets(void)
   free(makefile);
 }
 
+/* doc/paper_states.sh prints the README's table from the runs it finds
+** and runs nothing without --run (issue 41: it started four 10^6-step
+** runs when asked for the table): a finished state's numbers, "(not run)"
+** for the others, no run folder made. */
+static void test_paper_states_prints_without_running(void)
+{
+  char path[256], out[TEXT_MAX];
+  FILE *fp;
+  snprintf(path, sizeof path, "%s/states/p4_v0.1/analysis", tmp);
+  CHECK(test_sh("mkdir -p '%s'", path) == 0, "mkdir %s", path);
+  snprintf(path, sizeof path, "%s/states/p4_v0.1/analysis/summary.txt", tmp);
+  if (!(fp = fopen(path, "w"))) {
+    CHECK(0, "cannot write %s", path);
+    return;
+  }
+  fputs("ngc_frac_mean 1\nomega_mean 0.989\nD_eff 2e-06\nmsd_beta 0.09\n"
+        "t1_final 5.5\n", fp);
+  fclose(fp);
+  snprintf(path, sizeof path, "%s/states.txt", tmp);
+  CHECK(test_sh("timeout 20 sh doc/paper_states.sh '%s/states' >'%s' "
+                "2>/dev/null", tmp, path) == 0, "sh doc/paper_states.sh");
+  read_text(path, out, sizeof out);
+  CHECK(strstr(out, "\n4     0.1   1              0.989       2e-06    0.09"
+               "      5.5\n") && strstr(out, "\n8.8   2.6   (not run)\n"),
+        "the table:\n%s", out);
+  snprintf(path, sizeof path, "%s/states/p8.8_v0.1", tmp);
+  CHECK(access(path, F_OK) != 0, "%s: a run was started", path);
+}
+
 void suite_docs(void)
 {
   char cmd[96];
@@ -1089,6 +1118,7 @@ void suite_docs(void)
   RUN(test_doc_names_exist);
   RUN(test_reproduction_names_versions);
   RUN(test_docs_name_version_and_targets);
+  RUN(test_paper_states_prints_without_running);
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);   /* mkdtemp's own dir */
   if (system(cmd) != 0) printf("  note: could not remove %s\n", tmp);
 }
