@@ -594,8 +594,10 @@ typedef struct afv_analysis {
   long    ds_origins;   /* time origins behind the lag of D_s */
   double  t1_rate;      /* T1 events per cell per unit time between
                         ** consecutive steady frames (NaN: < 2 frames) */
-  double  msd_beta;     /* slope of log MSD_rel vs log lag at long lags
-                        ** (analysis.c: MSD_BETA_*; NaN if too few lags) */
+  double  msd_beta;     /* slope of log MSD_rel vs log lag over the lags
+                        ** of 1% to 10% of the steady window (analysis.c:
+                        ** MSD_BETA_*): ~0 caged, ~1 diffusing; NaN if
+                        ** fewer than 3 lags there */
 } afv_analysis;
 /* Analyses every frame of tr (unwrapped); steady part: t >= steady_from;
 ** D_s at the computed lag nearest to `lag`. */

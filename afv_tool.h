@@ -126,13 +126,21 @@ typedef struct afv_plot {
   const char *title, *xlabel, *ylabel;  /* texts (escaped on output) */
   int         logx, logy;  /* 1: log10 axis with decade ticks */
   double      ymin, ymax;  /* fixed y range if ymin < ymax, else fitted */
+  const char *no_data;     /* why, when no series has a point to draw: the
+                           ** plot then says "no data: " and this (NULL:
+                           ** "no data" alone) */
 } afv_plot;
+/* afv_plot_series.points: how a series is drawn. */
+enum { AFV_PLOT_LINE_MARKS,  /* a line, and a marker per point if at most
+                             ** 60 points */
+       AFV_PLOT_MARKS,       /* a marker per point and no line (scatter) */
+       AFV_PLOT_LINE };      /* the line alone (an error bar) */
 typedef struct afv_plot_series {
   const double *x, *y;  /* n points; non-positive values skipped on log axes */
   int           n;
   const char   *label;  /* legend text (NULL: none) */
   const char   *color;  /* SVG colour, e.g. "#1f77b4" */
-  int           points; /* 1: a marker per point and no line (scatter) */
+  int           points; /* AFV_PLOT_LINE_MARKS (0), _MARKS (1) or _LINE */
 } afv_plot_series;
 /* The legend (class="legend") is right of the plot area, never on it. */
 int afv_svg_plot(FILE *out, const afv_plot *pl, const afv_plot_series *s,

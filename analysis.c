@@ -55,8 +55,8 @@
 /* Log-spaced MSD lags: this many per decade of frame lags. */
 #define MSD_LAGS_PER_DECADE 10
 
-/* msd_beta, the long-time slope of log MSD_rel against log lag, is fitted
-** on the lags from MSD_BETA_FROM to MSD_BETA_TO of the steady window: the
+/* msd_beta, the slope of log MSD_rel against log lag, is fitted on the
+** lags from MSD_BETA_FROM to MSD_BETA_TO of the steady window: the
 ** upper end keeps at least 90% of the frames as time origins behind every
 ** lag; the lower end, a decade below, is past the polarity's persistence
 ** time 1/Dr = 10 once the window is longer than 1000 time units (10^5 steps

@@ -811,14 +811,15 @@ static void draw_axes(FILE *out, const axis *ax, const axis *ay)
   }
 }
 
-/* A polyline through the usable points (unless s->points), and a marker on
-** each point when there are few of them or when asked to (scatter). */
+/* A polyline through the usable points (unless a scatter), and a marker
+** on each point when there are few of them (not on an error bar) or when
+** asked to (scatter): s->points, AFV_PLOT_*. */
 static void draw_series(FILE *out, const axis *ax, const axis *ay,
                         const afv_plot_series *s)
 {
   double x0 = PLOT_L, x1 = PLOT_W - PLOT_R, y0 = PLOT_H - PLOT_B, y1 = PLOT_T;
   int i, used = 0;
-  if (!s->points) {
+  if (s->points != AFV_PLOT_MARKS) {
     fprintf(out, "<polyline class=\"series\" fill=\"none\" stroke=\"%s\" "
             "stroke-width=\"1.5\" points=\"", s->color);
     for (i = 0; i < s->n; i++)
@@ -826,7 +827,7 @@ static void draw_series(FILE *out, const axis *ax, const axis *ay,
         fprintf(out, "%s%.2f,%.2f", used++ ? " " : "",
                 to_px(ax, s->x[i], x0, x1), to_px(ay, s->y[i], y0, y1));
     fprintf(out, "\"/>\n");
-    if (s->n > 60) return;
+    if (s->n > 60 || s->points == AFV_PLOT_LINE) return;
   }
   for (i = 0; i < s->n; i++)
     if (usable(ax, s->x[i]) && usable(ay, s->y[i]))
@@ -878,6 +879,29 @@ static void plot_legend(FILE *out, const afv_plot_series *s, int ns,
   fprintf(out, "</g>\n");
 }
 
+/* 1 if some series of s has a point that the axes ax, ay can draw. */
+static int plot_has_data(const axis *ax, const axis *ay,
+                         const afv_plot_series *s, int ns)
+{
+  int k, i;
+  for (k = 0; k < ns; k++)
+    for (i = 0; i < s[k].n; i++)
+      if (usable(ax, s[k].x[i]) && usable(ay, s[k].y[i])) return 1;
+  return 0;
+}
+
+/* "no data" (and why, if given) across the middle of an empty plot, so
+** that its axes are not read as a result. */
+static void plot_no_data(FILE *out, const afv_plot *pl)
+{
+  fprintf(out, "<text class=\"no-data\" x=\"%g\" y=\"%g\" "
+          "text-anchor=\"middle\" font-size=\"14\">no data%s",
+          (PLOT_L + PLOT_W - PLOT_R) / 2, (PLOT_T + PLOT_H - PLOT_B) / 2,
+          pl->no_data ? ": " : "");
+  if (pl->no_data) put_text(out, pl->no_data);
+  fprintf(out, "</text>\n");
+}
+
 int afv_svg_plot(FILE *out, const afv_plot *pl, const afv_plot_series *s,
                  int ns)
 {
@@ -916,6 +940,7 @@ int afv_svg_plot(FILE *out, const afv_plot *pl, const afv_plot_series *s,
   fprintf(out, "<g class=\"data\" clip-path=\"url(#afv-plot-area)\">\n");
   for (k = 0; k < ns; k++) draw_series(out, &ax, &ay, &s[k]);
   fprintf(out, "</g>\n");
+  if (!plot_has_data(&ax, &ay, s, ns)) plot_no_data(out, pl);
   plot_legend(out, s, ns, col_w);
   fprintf(out, "</svg>\n");
   return ferror(out) ? AFV_EIO : AFV_OK;
@@ -925,7 +950,7 @@ int afv_svg_plot(FILE *out, const afv_plot *pl, const afv_plot_series *s,
 int afv_svg_msd(FILE *out, const afv_analysis *a)
 {
   afv_plot pl = {"Mean-squared displacement", "lag (time)", "MSD (l^2)", 1,
-                 1, 0, 0};
+                 1, 0, 0, NULL};
   afv_plot_series s[2];
   s[0].x = s[1].x = a->msd.dt;
   s[0].n = s[1].n = a->msd.nlags;
@@ -942,7 +967,7 @@ int afv_svg_msd(FILE *out, const afv_analysis *a)
 int afv_svg_series(FILE *out, const afv_analysis *a)
 {
   afv_plot pl = {"Giant cluster and confluency", "time", "N_GC/N, Omega", 0,
-                 0, 0, 1.2};
+                 0, 0, 1.2, NULL};
   afv_plot_series s[2];
   s[0].x = s[1].x = a->t;
   s[0].n = s[1].n = a->nframes;
@@ -962,7 +987,7 @@ int afv_svg_csd(FILE *out, const afv_analysis *a)
 {
   afv_plot pl = {"Cluster size distribution",
                  "cluster size n (cells); bin k: n = 2^k .. 2^(k+1) - 1",
-                 "p(n)", 1, 1, 0, 0};
+                 "p(n)", 1, 1, 0, 0, NULL};
   afv_plot_series s[2];
   int lo[AFV_CSD_MAX_BINS], hi[AFV_CSD_MAX_BINS], k, m, st;
   double p[AFV_CSD_MAX_BINS], bx[AFV_CSD_MAX_BINS];

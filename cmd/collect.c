@@ -44,7 +44,8 @@ static const order_param params[] = {
   {"D_eff", "D_eff", "D_eff", 1},
   {"tau_NGC", "tau_NGC", "tau_NGC (time)", 1},
   {"t1_rate", "t1_rate", "T1 rate (per cell per time)", 1},
-  {"msd_beta", "msd_beta", "msd_beta (long-time MSD_rel slope)", 0},
+  {"msd_beta", "msd_beta", "msd_beta (slope of log MSD_rel vs log lag, "
+   "lags 1-10% of the window)", 0},
 };
 #define N_PARAMS ((int)(sizeof params / sizeof params[0]))
 enum { P_NGC, P_NCL, P_OMEGA, P_DEFF, P_TAU, P_T1, P_BETA };
@@ -108,13 +109,15 @@ static const char *collect_usage =
   "                          label depends on the run length and the lag\n"
   "                          (undefined at v0 = 0, where D_eff is nan)\n"
   "  DIR/missing.txt  every job not tabled, with the reason: missing (no\n"
-  "                   summary: the last line of its log, logs/ID.log) or\n"
+  "                   summary: a run interrupted or stopped at step S of\n"
+  "                   N, or the last line of its log, logs/ID.log) or\n"
   "                   damaged (see below); also listed on stderr\n"
   "  DIR/fits.txt     the dispersal boundary v_s(P0) = v0* - c P0^alpha,\n"
   "                   least squares over the v0 where N_GC/N falls below\n"
   "                   0.99 at each P0, with standard errors\n"
   "  DIR/figures/     NAME_vs_v0.svg (mean +- sem against v0, a curve per\n"
-  "                   value of the other keys) if v0 is swept; if P0 and\n"
+  "                   value of the other keys) if v0 is swept, else\n"
+  "                   NAME_vs_P0.svg if P0 is swept; if P0 and\n"
   "                   v0 are the swept keys, map_ngc_frac.svg, map_omega.svg,\n"
   "                   map_D_eff.svg, map_msd_beta.svg (threshold contour in\n"
   "                   black, the fitted boundary dashed) and boundary.svg\n"
@@ -805,9 +808,50 @@ static void write_table(FILE *fp, const sweep_table *T)
   }
 }
 
-/* Why job J is not tabled: damaged, and why; or missing, and the last
-** non-empty line of logs/ID.log that is not a warning (else its last
-** line), or the state of its run folder. */
+/* 1 if a line of afv run's log is its own news (progress, the
+** relaxation's end), not an error: a log that ends on one was cut short. */
+static int run_news(const char *line)
+{
+  return !strncmp(line, "afv run: relaxation", 19)
+         || (!strncmp(line, "afv run: step ", 14) && strstr(line, "elapsed"));
+}
+
+/* A run of J begun but short of its steps: "interrupted at step S of N"
+** when nobody writes it and its log ends on afv run's own news (a kill, a
+** time limit: the runner run again resumes it), "running" when an afv
+** run holds it, else "stopped at step S of N: " and the log's last line.
+** 0 (out untouched) if the run finished or has no checkpoint. */
+static int run_stopped(const sweep_table *T, const job *J, const char *last,
+                       char *out, size_t len)
+{
+  char dir[RUN_PATH_MAX + 96], path[RUN_PATH_MAX + 128], err[256];
+  afv_checkpoint ck;
+  double steps;
+  long long at;
+  long pid;
+  snprintf(dir, sizeof dir, "%s/runs/%s", T->dir, J->id);
+  snprintf(path, sizeof path, "%s/params.txt", dir);
+  if (run_param(path, "steps", &steps) != 1) return 0;
+  snprintf(path, sizeof path, "%s/checkpoint.txt", dir);
+  if (afv_checkpoint_read(path, &ck, err, sizeof err) != AFV_OK) return 0;
+  at = ck.step;
+  afv_checkpoint_free(&ck);
+  if (at >= (long long)steps) return 0;
+  if ((pid = run_lock_holder(dir)) > 0)
+    snprintf(out, len, "running (process %ld), at step %lld of %.0f", pid,
+             at, steps);
+  else if (!last[0] || run_news(last))
+    snprintf(out, len, "interrupted at step %lld of %.0f (killed or out of "
+             "time: run the runner again to resume it)", at, steps);
+  else
+    snprintf(out, len, "stopped at step %lld of %.0f: %.600s", at, steps,
+             last);
+  return 1;
+}
+
+/* Why job J is not tabled: damaged, and why; or missing: its run stopped
+** short (run_stopped), or the last non-empty line of logs/ID.log that is
+** not a warning (else its last line), or the state of its run folder. */
 static void missing_reason(const sweep_table *T, const job *J, char *out,
                            size_t len)
 {
@@ -831,7 +875,8 @@ static void missing_reason(const sweep_table *T, const job *J, char *out,
     }
     fclose(fp);
   }
-  if (out[0]) return;
+  snprintf(line, sizeof line, "%s", out);
+  if (run_stopped(T, J, line, out, len) || out[0]) return;
   snprintf(path, sizeof path, "%s/runs/%s", T->dir, J->id);
   snprintf(out, len, "%s", stat(path, &sb) == 0
            ? "unfinished (no error logged: running, or stopped by a kill)"
@@ -1058,9 +1103,31 @@ static void curves_free(curves *C)
   free(C->start); free(C->len); free(C->order); free(C->label);
 }
 
-/* Order parameter k against v0: one labelled curve per curve of C, then
-** each error bar (mean +- sem) as an unlabelled two-point series. */
-static int plot_vs_v0(const char *dir, const sweep_table *T, int kv,
+/* Why a figure of order parameter k has no point: every mean is nan. */
+static const char *no_data_reason(int k)
+{
+  if (k == P_BETA)
+    return "msd_beta is nan at every state point: each steady window is too "
+           "short for 3 lags between 1% and 10% of it (afv analyze --help)";
+  if (k == P_DEFF)
+    return "D_eff is nan at every state point (v0 = 0 or Dr = 0: D_0 is 0)";
+  if (k == P_TAU)
+    return "tau_NGC is nan or inf at every state point (N_GC/N constant)";
+  return params[k].logy ? "no finite value above 0 at any state point (a "
+                          "log axis)" : "no finite value at any state point";
+}
+
+/* The axis of the figures against key kv: its label with the unit. */
+static const char *axis_label(const char *key)
+{
+  return !strcmp(key, "v0") ? "v0 (l/time)" : !strcmp(key, "P0") ? "P0 (l)"
+         : key;
+}
+
+/* Order parameter k against key kv (v0, or P0 when v0 is not swept): one
+** labelled curve per curve of C, then each error bar (mean +- sem) as an
+** unlabelled two-point line without markers. */
+static int plot_against(const char *dir, const sweep_table *T, int kv,
                       const curves *C, int k)
 {
   char name[64], path[RUN_PATH_MAX + 64], tmp[RUN_PATH_MAX + 128];
@@ -1100,14 +1167,16 @@ static int plot_vs_v0(const char *dir, const sweep_table *T, int kv,
       s[ns].y = b + 2;
       s[ns].n = 2;
       s[ns].color = palette[c % N_COLORS];
+      s[ns].points = AFV_PLOT_LINE;
       ns++;
     }
   memset(&pl, 0, sizeof pl);
   pl.title = params[k].label;
-  pl.xlabel = "v0 (l/time)";
+  pl.xlabel = axis_label(T->key[kv]);
   pl.ylabel = params[k].label;
   pl.logy = params[k].logy;
-  snprintf(name, sizeof name, "%s_vs_v0.svg", params[k].name);
+  pl.no_data = no_data_reason(k);
+  snprintf(name, sizeof name, "%s_vs_%s.svg", params[k].name, T->key[kv]);
   if (!(fp = figure_open(dir, name, path, tmp))) goto done;
   afv_svg_plot(fp, &pl, s, ns);
   ok = afv_atomic_commit(fp, tmp, path) == AFV_OK;
@@ -1228,6 +1297,8 @@ static int plane_figures(const char *dir, const sweep_table *T)
   return ok;
 }
 
+/* The figures against v0 (a curve per value of the other keys); when v0
+** is not swept, against P0 (a sweep over P0 alone: the EMT). */
 static int write_figures(const char *dir, const sweep_table *T)
 {
   char path[RUN_PATH_MAX + 32];
@@ -1235,12 +1306,13 @@ static int write_figures(const char *dir, const sweep_table *T)
   curves C;
   snprintf(path, sizeof path, "%s/figures", dir);
   if (mkdir(path, 0777) != 0 && errno != EEXIST) return 0;
+  if (kv < 0) kv = key_index(T, "P0");
   if (kv >= 0) {
     ok = curves_make(T, kv, &C);
-    for (k = 0; ok && k < N_PARAMS; k++) ok = plot_vs_v0(dir, T, kv, &C, k);
+    for (k = 0; ok && k < N_PARAMS; k++) ok = plot_against(dir, T, kv, &C, k);
     curves_free(&C);
   } else {
-    printf("figures against v0: skipped (v0 is not swept)\n");
+    printf("figures against v0 or P0: skipped (neither is swept)\n");
   }
   return ok && plane_figures(dir, T);
 }

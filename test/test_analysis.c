@@ -758,8 +758,8 @@ static void svg_plot_well_formed(void)
 {
   double x[5] = {1, 10, 100, 1000, 1e4}, y[5] = {0.1, 1, 5, 0, 30};
   afv_plot_series s;
-  afv_plot loglog = {"t", "x", "y", 1, 1, 0, 0}, linear = {"t", "x", "y", 0,
-                                                         0, 0, 1.2};
+  afv_plot loglog = {"t", "x", "y", 1, 1, 0, 0, NULL},
+           linear = {"t", "x", "y", 0, 0, 0, 1.2, NULL};
   FILE *fp = tmpfile();
   char *svg;
   s.x = x;

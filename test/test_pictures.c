@@ -333,7 +333,7 @@ static void draw_frames_of_a_trajectory(void)
 static void plot_legend_beside_data(void)
 {
   double x[50], y[50], most = 0, v;
-  afv_plot pl = {"t", "x", "y", 1, 1, 0, 0};
+  afv_plot pl = {"t", "x", "y", 1, 1, 0, 0, NULL};
   afv_plot_series s[2];
   FILE *fp = tmpfile();
   char *svg, *at;
@@ -639,7 +639,7 @@ static void plot_points_inside_frame(void)
 {
   static double x1[3] = {1, 10, 100}, y1[3] = {1, 0.1, 0.01};
   static double x2[4] = {4, 4.4, 4.8, 5.2}, y2[4] = {2, 1.5, 1, 0.5};
-  afv_plot pl = {"t", "x", "y", 1, 1, 0, 0};
+  afv_plot pl = {"t", "x", "y", 1, 1, 0, 0, NULL};
   afv_plot_series s;
   char path[128], *svg, *c;
   int round, bad = 0, count = 0;

@@ -368,6 +368,62 @@ static void sweep_cost_and_snapshots(void)
         "--svg_every 0:\n%s", buf);
 }
 
+/* collect's figures (issue 41): a sweep over P0 alone draws every order
+** parameter against P0; a figure with no finite value says "no data" and
+** why (msd_beta of windows too short for it); an error bar is a line
+** without markers (a marker per state point, not three); msd_beta's
+** label is its definition. */
+static void collect_figures_of_a_p0_sweep(void)
+{
+  static char buf[TEXT_MAX];
+  if (!have_afv()) return;
+  CHECK(afv("sweep --out %s/p0 --P0 4,6 --N 10 --steps 20 --frame_every 10 "
+            "--svg_every 0 --seeds 2") == 0, "%s", err_text);
+  shell("make -s -C %s/p0 >/dev/null 2>&1%.0s", base);
+  CHECK(afv("collect %s/p0") == 0, "%s", err_text);
+  read_rel("p0/figures/msd_beta_vs_P0.svg", buf);
+  CHECK(strstr(buf, ">no data: msd_beta is nan at every state point")
+        && strstr(buf, "msd_beta (slope of log MSD_rel vs log lag, lags "
+                  "1-10% of the window)") && strstr(buf, ">P0 (l)<"),
+        "msd_beta_vs_P0.svg:\n%.3000s", buf);
+  read_rel("p0/figures/D_eff_vs_P0.svg", buf);
+  {
+    const char *c = buf;
+    int circles = 0, lines = 0;
+    while ((c = strstr(c, "<circle"))) circles++, c++;
+    for (c = buf; (c = strstr(c, "<polyline")); c++) lines++;
+    CHECK(circles == 2 && lines == 3 && !strstr(buf, "no data"),
+          "D_eff against P0: %d markers (want 2: one a state point), %d "
+          "lines (want the curve and 2 error bars)", circles, lines);
+  }
+}
+
+/* missing.txt names a run stopped short of its steps by what stopped it
+** (issue 41: a killed job was blamed on its log's last line, the
+** relaxation's kink): interrupted when the log ends on afv run's own news,
+** stopped with the log's error otherwise. */
+static void collect_names_interrupted_jobs(void)
+{
+  static char buf[TEXT_MAX];
+  if (!have_afv()) return;
+  CHECK(afv("sweep --out %s/ki --N 10 --steps 20 --frame_every 10 "
+            "--svg_every 0 --P0 4") == 0, "%s", err_text);
+  shell("cd %s/ki && ./afv run --config jobs/0001.conf --out runs/0001 "
+        "--steps 10 --quiet && sed -i 's/^steps .*/steps 20/' "
+        "runs/0001/params.txt%.0s", base);
+  write_rel("ki/logs/0001.log", "afv run: relaxation: stopped at a kink of E "
+            "(a triple junction on a contact)\n");
+  afv("collect %s/ki");
+  CHECK(strstr(read_rel("ki/missing.txt", buf), "0001 seed=1: interrupted "
+               "at step 10 of 20 (killed or out of time"),
+        "an interrupted job:\n%s", buf);
+  write_rel("ki/logs/0001.log", "afv run: step 12: cell 3 would move 9 l\n");
+  afv("collect %s/ki");
+  CHECK(strstr(read_rel("ki/missing.txt", buf), "0001 seed=1: stopped at "
+               "step 10 of 20: afv run: step 12: cell 3 would move 9 l"),
+        "a job stopped by an error:\n%s", buf);
+}
+
 /* A sweep of cells files: each run records its copy (cells.txt) in
 ** params.txt, and collect verifies it against the file the sweep names. */
 static void sweep_of_cells_files(void)
@@ -952,6 +1008,8 @@ void suite_sweep(void)
   RUN(sweep_slurm_and_reanalyze);
   RUN(sweep_slurm_throttle_and_retry);
   RUN(sweep_cost_and_snapshots);
+  RUN(collect_figures_of_a_p0_sweep);
+  RUN(collect_names_interrupted_jobs);
   RUN(sweep_of_cells_files);
   RUN(sweep_value_too_long);
   RUN(collect_known_summaries);
