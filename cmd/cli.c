@@ -177,8 +177,13 @@ int unknown_option(const char *opt, const char *help_text,
 
 const char *exact_text(double x, char *buf, size_t len)
 {
+  /* at least the digits before the point, so that 200 is "200", not
+  ** %.1g's "2e+02" (%g writes an exponent when it has fewer digits than
+  ** the number before its point) */
+  double whole = fabs(x) >= 1 && fabs(x) < 1e17 ? floor(log10(fabs(x))) + 1
+                                                : 1;
   int digits;
-  for (digits = 1; digits < 17; digits++) {
+  for (digits = (int)whole; digits < 17; digits++) {
     snprintf(buf, len, "%.*g", digits, x);
     if (strtod(buf, NULL) == x) return buf;
   }

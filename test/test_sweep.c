@@ -973,6 +973,9 @@ static void analyze_window_and_run_continue(void)
   CHECK(afv("analyze %s/a/b/r --steady-from 4") == 2, "a window of one "
         "frame accepted");
   CHECK(afv("analyze %s/a/b/r --lag 0.1") == 2, "lag under a frame accepted");
+  CHECK(afv("analyze %s/a/b/r --lag 200") == 2 && strstr(err_text, "--lag "
+            "200: ") && strstr(err_text, " .. 4 only"), "a number is echoed "
+        "as written: %s", err_text);
   CHECK(!exists("a/b/r/analysis/summary.txt"), "a refused analyze wrote");
   CHECK(afv("analyze %s/a/b/r --steady-from 1 --lag 2") == 0, "%s", err_text);
   read_rel("a/b/r/analysis/summary.txt", buf);
