@@ -361,7 +361,7 @@ afv_protocol *afv_protocol_new(void)
 {
   afv_protocol *pr = calloc(1, sizeof(afv_protocol));
   if (!pr) return NULL;
-  pr->start = AFV_START_SQUARE;
+  pr->start = AFV_START_CLUSTER;
   pr->relax = AFV_RELAX_FLOW;
   pr->relax_tol = 1e-6;
   pr->relax_max_steps = 100000;
@@ -373,7 +373,7 @@ void afv_protocol_delete(afv_protocol *pr) { free(pr); }
 int afv_protocol_set(afv_protocol *pr, const char *name, double value)
 {
   if (!strcmp(name, "start")) {
-    if (!(value >= AFV_START_SQUARE && value <= AFV_START_GIVEN)
+    if (!(value >= AFV_START_CLUSTER && value <= AFV_START_GIVEN)
         || value != floor(value))
       return AFV_EINVAL;
     pr->start = (int)value;

@@ -448,7 +448,7 @@ static void test_analysis_and_protocol_by_name(void)
     CHECK(0, "out of memory");
     return;
   }
-  for (k = 0; k < 3; k++) afv_init_square(N, 5 + k, &b, side, r + 2 * N * k);
+  for (k = 0; k < 3; k++) afv_init_cluster(N, 5 + k, &b, side, r + 2 * N * k);
   CHECK(afv_traj_set(tr, N, 3, &b, NULL, t, r, NULL) == AFV_OK
         && afv_traj_steps(tr)[2] == 2 && afv_traj_angles(tr)[3 * N - 1] == 0
         && afv_traj_positions(tr)[6 * N - 1] == r[6 * N - 1]
@@ -475,7 +475,7 @@ static void test_analysis_and_protocol_by_name(void)
         && afv_protocol_set_cells(pr, "x", r) == AFV_EINVAL, "bad values");
   CHECK(afv_protocol_set(pr, "side", side) == AFV_OK
         && afv_protocol_set(pr, "relax_max_steps", 300) == AFV_OK, "set");
-  by_hand.start = AFV_START_SQUARE;
+  by_hand.start = AFV_START_CLUSTER;
   by_hand.side = side;
   by_hand.relax = AFV_RELAX_FLOW;
   by_hand.relax_tol = 1e-6;
