@@ -13,6 +13,7 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <stdarg.h>
@@ -514,6 +515,46 @@ static void log_relax(run_state *R, const afv_relax_report *rep)
             AFV_RELAX_KINK_DROP);
 }
 
+/* ---- Ctrl-C ------------------------------------------------------------ */
+/* Ctrl-C (SIGINT) or a kill (SIGTERM) ends the run at once, as without a
+** handler (status 128 + the signal; the files stay as at any moment), after
+** one line that says how to go on.  The line is made before the steps: a
+** handler may only write(2) it.  A signal the caller ignores (a background
+** job's SIGINT) stays ignored. */
+static char interrupt_text[2 * RUN_PATH_MAX + 256];
+static size_t interrupt_len;
+
+static void on_interrupt(int sig)
+{
+  ssize_t w = write(STDERR_FILENO, interrupt_text, interrupt_len);
+  (void)w;
+  signal(sig, SIG_DFL);
+  raise(sig);
+}
+
+static void catch_interrupt(int sig)
+{
+  if (signal(sig, on_interrupt) == SIG_IGN) signal(sig, SIG_IGN);
+}
+
+/* Says on Ctrl-C what dir holds: in the relaxation (before the first
+** checkpoint) the same command starts the run again; in the steps, afv
+** run --resume continues it from the last checkpoint to the same bytes. */
+static void say_on_interrupt(const char *dir, int stepping)
+{
+  int m = stepping
+    ? snprintf(interrupt_text, sizeof interrupt_text, "\nafv run: "
+               "interrupted: %s holds the run up to its last checkpoint; afv "
+               "run --resume %s continues it (the same results as a run never "
+               "stopped)\n", dir, dir)
+    : snprintf(interrupt_text, sizeof interrupt_text, "\nafv run: "
+               "interrupted in the relaxation of the start, before the first "
+               "checkpoint: the same afv run command starts %s again\n", dir);
+  interrupt_len = m > 0 && (size_t)m < sizeof interrupt_text ? (size_t)m : 0;
+  catch_interrupt(SIGINT);
+  catch_interrupt(SIGTERM);
+}
+
 static int relax_start(run_state *R)
 {
   afv_relax_report rep;
@@ -524,9 +565,12 @@ static int relax_start(run_state *R)
     return AFV_OK;
   }
   R->last_progress = wall_seconds();
+  say_on_interrupt(R->dir, 0);
   st = run_protocol(R, (long)R->cfg.relax_max_steps, &rep, monitor_relax);
   if (R->progress) fprintf(stderr, "\r%70s\r", "");
   if (st != AFV_OK) return st;
+  R->relax_jumps = afv_sim_jumps(R->sim);
+  R->relax_largest = afv_sim_largest_move(R->sim);
   log_relax(R, &rep);
   return AFV_OK;
 }
@@ -598,12 +642,51 @@ static int relax_unstable(run_state *R)
   return EXIT_UNSTABLE;
 }
 
+/* ---- large moves --------------------------------------------------------- */
+/* At the end: steps of the active run that moved a cell more than
+** AFV_MAX_STEP_DISP l (the forces change on the scale l, so Euler's steps
+** no longer followed the dynamics there) earn a warning with their count
+** and what helps; a largest move above l that the relaxation of the start
+** made (its overlapping cells pushing apart, which sets no result) a note
+** that says so.  Where the largest move was: afv_sim_largest_move is a
+** running maximum, so the active run made it if it grew after the
+** relaxation. */
+static void tell_large_moves(run_state *R)
+{
+  afv_sim *s = R->sim;
+  double most = afv_sim_largest_move(s);
+  long long active = afv_sim_jumps(s) - R->relax_jumps;
+  int relaxed = R->relax_largest > 0 && most <= R->relax_largest;
+  const char *where = relaxed ? "in the relaxation of the start, where "
+                      "overlapping cells push apart" : "in the active run";
+  const char *box = afv_sim_box(s)->periodic
+                    && most * R->cfg.l > afv_sim_box(s)->Lx
+                    ? ", more than the box side" : "";
+  if (active > 0) {
+    fprintf(stderr, "afv run: warning: %lld step(s) of the active run moved "
+            "a cell more than %g l, where Euler's steps no longer follow the "
+            "dynamics (the forces change on the scale l): a smaller dt, or "
+            "--cap 0.45 (bounded forces near detachment), keeps the moves "
+            "small; the largest move in one step, %.3g l%s, was %s\n",
+            active, AFV_MAX_STEP_DISP, most, box, where);
+    if (R->log)
+      fprintf(R->log, "warning: %lld step(s) of the active run moved a cell "
+              "more than %g l; the largest move in one step, %.3g l%s, was "
+              "%s\n", active, AFV_MAX_STEP_DISP, most, box, where);
+  } else if (most > 1) {
+    run_log(R, "note: the largest move of a cell in one step, %.3g l%s, was "
+            "%s; no step of the active run moved a cell more than %g l\n",
+            most, box, where, AFV_MAX_STEP_DISP);
+  }
+}
+
 /* Integrates to cfg.steps.  Returns an exit status. */
 int run_loop(run_state *R)
 {
   afv_sim *s = R->sim;
   char what[512], where[RUN_PATH_MAX + 256];
   int st = AFV_OK;
+  say_on_interrupt(R->dir, 1);
   R->start_step = afv_sim_steps(s);
   R->wall0 = R->last_progress = wall_seconds();
   while (afv_sim_steps(s) < R->cfg.steps) {
@@ -657,6 +740,7 @@ int run_loop(run_state *R)
             afv_sim_time(s), w, w > 0 ? (double)k / w : 0.0, AFV_MAX_STEP_DISP, afv_sim_jumps(s),
             afv_sim_largest_move(s), R->dir);
   }
+  tell_large_moves(R);
   return 0;
 }
 

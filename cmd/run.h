@@ -95,6 +95,9 @@ typedef struct run_state {
                            ** -1 (run_dir.c, one writer per directory) */
   char io_path[RUN_PATH_MAX + 96];  /* the file whose writing failed */
   int io_errno;            /* and why (errno then) */
+  long long relax_jumps;   /* afv_sim_jumps at the end of the relaxation
+                           ** (0: none in this process) */
+  double relax_largest;    /* afv_sim_largest_move then, in l (0: none) */
 } run_state;
 
 enum { OUT_TRAJ, OUT_OBS, OUT_XYZ };   /* order of afv_checkpoint_files */

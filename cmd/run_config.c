@@ -23,6 +23,12 @@
 #include <time.h>
 #include <unistd.h>
 
+/* Without svg_every a run draws a snapshot every max(5000, steps /
+** RUN_SNAPSHOTS) steps: at most RUN_SNAPSHOTS + 1 pictures of about 0.5 KB
+** a cell however long the run (a 10^6-step run drew 201, 45 MB at N =
+** 400). */
+#define RUN_SNAPSHOTS 20
+
 #define RK(name, kind, field, def, unit, help) \
   {name, kind, offsetof(run_cfg, field), def, unit, help}
 static const run_key run_keys[] = {
@@ -97,7 +103,9 @@ static const run_key run_keys[] = {
      "checkpoint every so many steps (and always at the start and end); "
      "must be >= 0"),
   RK("svg_every", K_INT, svg_every, "5000", "steps", "SVG snapshot every "
-     "so many steps (0: only final.svg); must be >= 0"),
+     "so many steps (0: only final.svg); must be >= 0; when not given, "
+     "steps/" AFV_STR(RUN_SNAPSHOTS) " if that is larger, so that a long "
+     "run draws at most " AFV_STR(RUN_SNAPSHOTS) " snapshots and final.svg"),
   RK("xyz", K_BOOL, xyz, "0", "0|1", "also write trajectory.xyz (extended "
      "XYZ, for OVITO)"),
   RK("quiet", K_BOOL, quiet, "0", "0|1", "no progress or summary on stderr "
@@ -400,6 +408,15 @@ static int steps_meaningful(const run_cfg *c, const int *set,
   return 1;
 }
 
+/* svg_every not given: at least steps / RUN_SNAPSHOTS (RUN_SNAPSHOTS). */
+static void bound_snapshots(run_cfg *c, const int *set)
+{
+  long long every = (c->steps + RUN_SNAPSHOTS - 1) / RUN_SNAPSHOTS;
+  if (!set[find_key("svg_every") - run_keys] && c->svg_every > 0
+      && every > c->svg_every)
+    c->svg_every = every;
+}
+
 /* Range checks, one message naming the key.  Reads the cells file (cl). */
 int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
                         size_t errlen)
@@ -453,6 +470,7 @@ int cfg_validate(run_cfg *c, const int *set, afv_cells *cl, char *err,
     BAD("phi: the box side L = sqrt(N pi l^2/phi) = %.17g is smaller than "
         "4l = %.17g (minimum image); use more cells or a smaller phi",
         box_side(c), 4 * c->l);
+  bound_snapshots(c, set);
   return targets_positive(c, cl, err, errlen)
          && steps_meaningful(c, set, cl, err, errlen);
 #undef BAD
@@ -573,6 +591,18 @@ int record_agrees(const char *path, const run_cfg *c, const int *set,
 static int key_unused(const run_cfg *c, const run_key *K)
 {
   return strcmp(K->name, "spacing") == 0 && strcmp(c->init, "lattice") != 0;
+}
+
+/* A value text of key K for a message: a real in the fewest digits that
+** read back as it (4.8, not params.txt's 4.7999999999999998); in place. */
+static const char *as_written(const run_key *K, char *text)
+{
+  char buf[64];
+  if (K->kind == K_REAL) {
+    exact_text(strtod(text, NULL), buf, sizeof buf);
+    strcpy(text, buf);
+  }
+  return text;
 }
 
 /* Writes every key the run uses to path as KEY VALUE (reals in %.17g: they
@@ -937,7 +967,8 @@ int same_run_asked(const run_args *a, int argc, char **argv)
     else
       cli_errorf("--continue: %s: %s asked, but %s has %s: %s holds another "
                  "run; choose another --out, or ask for its parameters%s",
-                 K->name, want, path, have, a->out,
+                 K->name, as_written(K, want), path, as_written(K, have),
+                 a->out,
                  strcmp(K->name, "steps") == 0 ? " (to run it longer: afv "
                  "run --resume DIR --steps MORE)" : "");
     st = EXIT_BAD_INPUT;

@@ -60,7 +60,8 @@ static const struct { const char *name; void (*run)(void); } suites[] = {
   {"sweep", suite_sweep}, {"geometry", suite_geometry},
   {"protocol", suite_protocol}, {"docs", suite_docs}, {"api", suite_api},
   {"integrator", suite_integrator}, {"paper", suite_paper},
-  {"relax_fire", suite_relax_fire}, {"invariants", suite_invariants}};
+  {"relax_fire", suite_relax_fire}, {"invariants", suite_invariants},
+  {"messages", suite_messages}};
 
 /* test/run_tests: every suite; test/run_tests NAME...: those suites only
 ** (e.g. core geometry, while changing the geometry). */

@@ -99,5 +99,6 @@ void suite_integrator(void);
 void suite_relax_fire(void);
 void suite_invariants(void);
 void suite_hostile(void);
+void suite_messages(void);
 
 #endif
