@@ -587,7 +587,7 @@ int record_agrees(const char *path, const run_cfg *c, const int *set,
 
 /* 1 for a key the run does not use, left out of params.txt: the lattice's
 ** spacing unless init lattice.  (Read back, a missing key takes its
-** default; a params.txt of 0.4.0 that records it still resumes.) */
+** default, so a params.txt that records it still resumes.) */
 static int key_unused(const run_cfg *c, const run_key *K)
 {
   return strcmp(K->name, "spacing") == 0 && strcmp(c->init, "lattice") != 0;
