@@ -107,6 +107,7 @@ print-lib-sources:
 # their files); they include the library's headers from the top level.
 CLI_SRC  = $(addprefix cmd/,main.c cli.c inspect.c run.c run_config.c \
            run_compute.c run_dir.c run_resume.c report.c sweep.c collect.c \
+           collect_figures.c \
            paper.c paper_data.c claims.c) $(FITS_SRC)
 CLI_OBJ  = $(CLI_SRC:.c=.o)
 
@@ -118,6 +119,7 @@ afv: $(CLI_OBJ) libafv.a .build-flags
 
 $(CLI_OBJ): cmd/cli.h cmd/fits.h
 cmd/paper.o cmd/paper_data.o cmd/claims.o: cmd/paper.h
+cmd/collect.o cmd/collect_figures.o: cmd/collect.h
 $(filter cmd/run%,$(CLI_OBJ)): cmd/run.h
 
 cmd/%.o: cmd/%.c $(LIB_H) cmd/cli.h cmd/fits.h .build-flags
@@ -303,10 +305,11 @@ fuzz/build/%.o: %.c $(LIB_H) cmd/cli.h cmd/fits.h
 fuzz/build/libafv_fuzz.a: $(FUZZ_OBJ)
 	$(AR) rcs $@ $(FUZZ_OBJ)
 
-# (cmd/run*.c: the config and collect harnesses include them; cmd/collect.c:
+# (cmd/run*.c: the config and collect harnesses include them; cmd/collect*.c:
 # the collect harness)
 fuzz/build/fuzz_%: fuzz/fuzz_%.c fuzz/build/libafv_fuzz.a $(wildcard fuzz/*.h) \
-                   $(wildcard cmd/run*.c) cmd/run.h cmd/collect.c cmd/cli.h \
+                   $(wildcard cmd/run*.c) cmd/run.h $(wildcard cmd/collect*.c) \
+                   cmd/collect.h cmd/cli.h \
                    $(LIB_H)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -I. -o $@ $< \
 	  fuzz/build/libafv_fuzz.a -lm

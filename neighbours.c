@@ -767,7 +767,8 @@ static int reanchor(afv_geom *g, int m, const double *r, double l)
         && !add_candidate(g, c.found[k], m))
       return 0;
   if (!make_room(g, m, c.count)) return 0;
-  memcpy(g->cand + g->cand_start[m], c.found, (size_t)c.count * sizeof(int));
+  if (c.count > 0)           /* (memcpy from a NULL buffer is undefined) */
+    memcpy(g->cand + g->cand_start[m], c.found, (size_t)c.count * sizeof(int));
   g->cand_end[m] = g->cand_start[m] + c.count;
   node = g->n_nodes++;
   bin = bin_of(G, c.x, c.y);
@@ -1099,8 +1100,10 @@ static int walk_all(const afv_geom *g, const grid *G, int n, double l,
       break;
     }
     first[i] = total;
-    memcpy(*out + total, W.take, (size_t)W.n_take * sizeof(int));
-    memcpy(*out + total + W.n_take, W.near, (size_t)W.n_near * sizeof(int));
+    if (W.n_take > 0)        /* (memcpy from a NULL buffer is undefined) */
+      memcpy(*out + total, W.take, (size_t)W.n_take * sizeof(int));
+    if (W.n_near > 0)
+      memcpy(*out + total + W.n_take, W.near, (size_t)W.n_near * sizeof(int));
     total += W.n_take + W.n_near;
     len[i] = total - first[i];
   }

@@ -5,7 +5,7 @@
 ** steps with a frame every 10; a checkpoint at step 20; final.svg; its
 ** jobs/0001.conf and the sweep's analysis.txt) is made once (its
 ** fingerprint, which a verified summary names: 938c2ab71e841c38).
-** collect (collect.c, included with the files of afv run for run_key_check) must exit 0,
+** collect (collect.c and collect_figures.c, included with the files of afv run for run_key_check) must exit 0,
 ** 1 or 2; on 2 it wrote no table; on 0 or 1 its table has the header of
 ** afv collect and no state point without a verified job, and exit 0
 ** means every job of points.csv was verified (missing.txt lists none).
@@ -16,6 +16,7 @@
 #include "../cmd/run_dir.c"
 #include "../cmd/run_resume.c"
 #include "../cmd/collect.c"
+#include "../cmd/collect_figures.c"
 #include "reader_fuzz.h"
 
 #include <fcntl.h>
