@@ -8,7 +8,8 @@
 ** header naming the columns, among them P0, v0, XCOL, OBS_mean and OBS_sem.
 ** One curve per state point (P0, v0) that FILTER keeps: OBS's seed mean
 ** against XCOL (log axis), with the seed standard error drawn as small
-** markers at mean - sem and mean + sem.  FILTER is "v0=X" (rows with
+** markers at mean - sem and mean + sem (D_eff and t1_rate on a log
+** axis).  FILTER is "v0=X" (rows with
 ** v0 == X), "v0!=X" or "all".  Exit status 2 on a malformed file or
 ** when no row is kept.
 */
@@ -160,6 +161,8 @@ int main(int argc, char **argv)
   pl.xlabel = argv[2];
   pl.ylabel = argv[3];
   pl.logx = 1;
+  /* rates and diffusivities span decades between the phases */
+  pl.logy = strcmp(argv[3], "D_eff") == 0 || strcmp(argv[3], "t1_rate") == 0;
   if (!(fp = fopen(argv[5], "w"))) {
     fprintf(stderr, "model_plot: %s: cannot write\n", argv[5]);
     return 2;

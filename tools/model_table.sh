@@ -136,11 +136,11 @@ if [ -x "$PLOT" ] && [ "$(wc -l < "$DEST/dt_table.csv")" -gt 1 ]; then
   mkdir -p "$DEST/figures"
   for o in msd_beta beta_long D_eff t1_rate omega_mean; do
     "$PLOT" "$DEST/dt_table.csv" dt "$o" v0=0.4 "$DEST/figures/dt_glass_$o.svg" \
-      "glass states (v0 0.4): $o against dt (seed mean; markers: +- sem where 2 seeds are in)" || true
+      "v0 0.4: $o against dt (seed mean, markers +- sem)" || true
   done
   for o in ngc_frac_mean n_clusters_mean omega_mean csd_exponent; do
     "$PLOT" "$DEST/dt_table.csv" dt "$o" 'v0!=0.4' "$DEST/figures/dt_dispersal_$o.svg" \
-      "dispersal states: $o against dt (seed mean; markers: +- sem where 2 seeds are in)" || true
+      "dispersal states: $o against dt (seed mean, markers +- sem)" || true
   done
 fi
 # progress.txt: how many runs of each sweep are in, and who ran them
