@@ -107,7 +107,7 @@ print-lib-sources:
 # their files); they include the library's headers from the top level.
 CLI_SRC  = $(addprefix cmd/,main.c cli.c inspect.c run.c run_config.c \
            run_compute.c run_dir.c run_resume.c report.c sweep.c collect.c \
-           collect_figures.c \
+           collect_figures.c sweep_slurm.c \
            paper.c paper_data.c claims.c) $(FITS_SRC)
 CLI_OBJ  = $(CLI_SRC:.c=.o)
 
@@ -120,6 +120,7 @@ afv: $(CLI_OBJ) libafv.a .build-flags
 $(CLI_OBJ): cmd/cli.h cmd/fits.h
 cmd/paper.o cmd/paper_data.o cmd/claims.o: cmd/paper.h
 cmd/collect.o cmd/collect_figures.o: cmd/collect.h
+cmd/sweep.o cmd/sweep_slurm.o: cmd/sweep.h
 $(filter cmd/run%,$(CLI_OBJ)): cmd/run.h
 
 cmd/%.o: cmd/%.c $(LIB_H) cmd/cli.h cmd/fits.h .build-flags
