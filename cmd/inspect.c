@@ -80,6 +80,32 @@ static int first_nonfinite(const afv_geom *g, int n, const double *f)
   return n > 0 && !isfinite(afv_geom_energy(g)) ? n - 1 : -1;
 }
 
+/* afv eval's table: each cell's centre, shape, contacts and force (%.17g,
+** read back exactly), then the energy. */
+static void print_cells(const afv_geom *g, int n, const double *r,
+                        const double *f)
+{
+  const double *area = afv_geom_area(g), *perim = afv_geom_perim(g);
+  const double *arc = afv_geom_arc(g);
+  const int *contacts = afv_geom_contacts(g);
+  int i;
+  printf("# cell x y area perimeter arc_length contacts fx fy\n");
+  for (i = 0; i < n; i++)
+    printf("%d %.17g %.17g %.17g %.17g %.17g %d %.17g %.17g\n", i, r[2*i],
+           r[2*i+1], area[i], perim[i], arc[i], contacts[i], f[2*i],
+           f[2*i+1]);
+  printf("# energy %.17g\n", afv_geom_energy(g));
+}
+
+/* afv eval --help (AFV_CONTACT_TOL, then the model options). */
+static const char *eval_usage =
+  "usage: afv eval POINTS [options]\n\n"
+  "Prints '# cell x y area perimeter arc_length contacts fx fy',\n"
+  "one line per cell in input order (%%.17g; x y wrapped into a\n"
+  "periodic box), then '# energy E'.  contacts counts edges\n"
+  "longer than %g l.  POINTS: one 'x y' per line, separated by\n"
+  "spaces, tabs or commas; '#' lines ignored.\n\n%s";
+
 int cmd_eval(int argc, char **argv)
 {
   afv_params p;
@@ -87,20 +113,12 @@ int cmd_eval(int argc, char **argv)
   afv_geom *g;
   const char *path = NULL;
   double *r = NULL, *f = NULL;
-  const double *area, *perim, *arc;
-  const int *contacts;
   int n, k, st, i;
   afv_params_default(&p);
   for (k = 1; k < argc; k++) {
     int m;
     if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
-      printf("usage: afv eval POINTS [options]\n\n"
-             "Prints '# cell x y area perimeter arc_length contacts fx fy',\n"
-             "one line per cell in input order (%%.17g; x y wrapped into a\n"
-             "periodic box), then '# energy E'.  contacts counts edges\n"
-             "longer than %g l.  POINTS: one 'x y' per line, separated by\n"
-             "spaces, tabs or commas; '#' lines ignored.\n\n%s",
-             AFV_CONTACT_TOL, model_help);
+      printf(eval_usage, AFV_CONTACT_TOL, model_help);
       return 0;
     }
     if ((m = model_option(argc, argv, &k, &p, &b)) < 0) return EXIT_BAD_INPUT;
@@ -134,16 +152,7 @@ int cmd_eval(int argc, char **argv)
             "(the parameters are too large or small for doubles)\n", i);
     st = EXIT_BAD_INPUT;
   } else {
-    area = afv_geom_area(g);
-    perim = afv_geom_perim(g);
-    arc = afv_geom_arc(g);
-    contacts = afv_geom_contacts(g);
-    printf("# cell x y area perimeter arc_length contacts fx fy\n");
-    for (i = 0; i < n; i++)
-      printf("%d %.17g %.17g %.17g %.17g %.17g %d %.17g %.17g\n", i, r[2*i],
-             r[2*i+1], area[i], perim[i], arc[i], contacts[i],
-             f[2*i], f[2*i+1]);
-    printf("# energy %.17g\n", afv_geom_energy(g));
+    print_cells(g, n, r, f);
   }
   afv_geom_delete(g);
   free(r);
@@ -181,6 +190,30 @@ static int check_verdict(const afv_check_report *rep, const afv_params *p,
   return fail ? EXIT_CHECK_FAILED : unsure ? EXIT_CHECK_UNSURE : 0;
 }
 
+/* afv check --help (then the model options). */
+static const char *check_usage =
+  "usage: afv check POINTS [options]\n\n"
+  "Compares the analytic forces with central differences of the\n"
+  "energy (of the cells near each moved cell, in coordinates\n"
+  "centred on it: O(N), exact steps at any coordinates) and\n"
+  "prints the largest absolute error, the force scale (largest\n"
+  "|F| component), the tension scale (rms over cells of\n"
+  "|2 KA (A - A0)| l + |2 KP (P - P0)| + Lambda, the size of the\n"
+  "pressure and tension terms every force is a sum of: it does\n"
+  "not vanish where forces cancel by symmetry) and the error\n"
+  "over each.  Each cell's step is at most a hundredth of its\n"
+  "distance to a kink of the energy (a pair detaching at 2l or\n"
+  "meeting), and two steps are extrapolated; their disagreement\n"
+  "and the rounding are the differences' own uncertainty.  Exit\n"
+  "status 0 (PASS) if the error over the tension scale is within\n"
+  "the tolerance, 1 (FAIL) if an error beyond twice that\n"
+  "uncertainty exceeds it, 4 (INCONCLUSIVE) if only errors\n"
+  "within it do (finite differences cannot decide there).\n\n"
+  "  --h STEP     finite-difference step in units of l "
+  "(default 1e-6)\n"
+  "  --tol REL    tolerance on max error / tension scale "
+  "(default 1e-6)\n\n%s";
+
 int cmd_check(int argc, char **argv)
 {
   afv_params p;
@@ -194,27 +227,7 @@ int cmd_check(int argc, char **argv)
   for (k = 1; k < argc; k++) {
     int m;
     if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
-      printf("usage: afv check POINTS [options]\n\n"
-             "Compares the analytic forces with central differences of the\n"
-             "energy (of the cells near each moved cell, in coordinates\n"
-             "centred on it: O(N), exact steps at any coordinates) and\n"
-             "prints the largest absolute error, the force scale (largest\n"
-             "|F| component), the tension scale (rms over cells of\n"
-             "|2 KA (A - A0)| l + |2 KP (P - P0)| + Lambda, the size of the\n"
-             "pressure and tension terms every force is a sum of: it does\n"
-             "not vanish where forces cancel by symmetry) and the error\n"
-             "over each.  Each cell's step is at most a hundredth of its\n"
-             "distance to a kink of the energy (a pair detaching at 2l or\n"
-             "meeting), and two steps are extrapolated; their disagreement\n"
-             "and the rounding are the differences' own uncertainty.  Exit\n"
-             "status 0 (PASS) if the error over the tension scale is within\n"
-             "the tolerance, 1 (FAIL) if an error beyond twice that\n"
-             "uncertainty exceeds it, 4 (INCONCLUSIVE) if only errors\n"
-             "within it do (finite differences cannot decide there).\n\n"
-             "  --h STEP     finite-difference step in units of l "
-             "(default 1e-6)\n"
-             "  --tol REL    tolerance on max error / tension scale "
-             "(default 1e-6)\n\n%s", model_help);
+      printf(check_usage, model_help);
       return 0;
     }
     if ((m = model_option(argc, argv, &k, &p, &b)) < 0) return EXIT_BAD_INPUT;

@@ -680,6 +680,25 @@ static void tell_large_moves(run_state *R)
   }
 }
 
+
+/* The run's last line of log.txt: steps, time, speed, the large moves
+** and where the outputs are. */
+static void log_finish(run_state *R)
+{
+  afv_sim *s = R->sim;
+  double w = wall_seconds() - R->wall0;
+  long long k = afv_sim_steps(s) - R->start_step;
+  run_log(R, "%d cells, steps %lld..%lld (t = %.6g) in %.3g s (%.0f "
+          "steps/s; Euler steps that moved a cell more than %g l: "
+          "%lld, since this process started, relaxation included; "
+          "largest move of a cell in one step %.3g l); outputs in %s/: "
+          "observables.csv, trajectory.dat, snapshots snap_*.svg and "
+          "final.svg\n", afv_sim_n(s), R->start_step, afv_sim_steps(s),
+          afv_sim_time(s), w, w > 0 ? (double)k / w : 0.0,
+          AFV_MAX_STEP_DISP, afv_sim_jumps(s), afv_sim_largest_move(s),
+          R->dir);
+}
+
 /* Integrates to cfg.steps.  Returns an exit status. */
 int run_loop(run_state *R)
 {
@@ -728,18 +747,7 @@ int run_loop(run_state *R)
       || write_svg(R, "final.svg") != AFV_OK)
     return report_io(R);
   show_progress(R, 1);
-  {
-    double w = wall_seconds() - R->wall0;
-    long long k = afv_sim_steps(s) - R->start_step;
-    run_log(R, "%d cells, steps %lld..%lld (t = %.6g) in %.3g s (%.0f "
-            "steps/s; Euler steps that moved a cell more than %g l: "
-            "%lld, since this process started, relaxation included; "
-            "largest move of a cell in one step %.3g l); outputs in %s/: "
-            "observables.csv, trajectory.dat, snapshots snap_*.svg and "
-            "final.svg\n", afv_sim_n(s), R->start_step, afv_sim_steps(s),
-            afv_sim_time(s), w, w > 0 ? (double)k / w : 0.0, AFV_MAX_STEP_DISP, afv_sim_jumps(s),
-            afv_sim_largest_move(s), R->dir);
-  }
+  log_finish(R);
   tell_large_moves(R);
   return 0;
 }
