@@ -472,8 +472,10 @@ static void test_collect_ties_and_checks(void)
     {"echo 'ngc_frac_mean 0.5' >> S", "ngc_frac_mean given twice"},
     {"rm jobs/0002.conf", "jobs/0002.conf: No such file"}};
   static const char *const bad[] = {
-    "rm analysis.txt", "sed -i 's/^id,/id,v0,/; 2,$ s/^\\([^,]*\\),/\\1,0.1,/'"
-    " points.csv", "sed -i '2,$ d' points.csv"};
+    "rm analysis.txt",
+    ("sed -i 's/^id,/id,v0,/; 2,$ s/^\\([^,]*\\),/\\1,0.1,/'"
+     " points.csv"),
+    "sed -i '2,$ d' points.csv"};
   size_t k;
   CHECK(test_sh("./afv sweep --out %s/sc " SWEEP " > /dev/null && make -s "
                 "-C %s/sc > /dev/null 2>&1 && ./afv collect %s/sc > /dev/null",
