@@ -501,6 +501,14 @@ static void key_text(const run_cfg *c, const run_key *K, char *buf,
 #define RECORD_PREFIX "# as written:"
 #define RECORD_WIDTH 72
 
+/* 1 for a key the run does not use, left out of params.txt: the lattice's
+** spacing unless init lattice.  (Read back, a missing key takes its
+** default, so a params.txt that records it still resumes.) */
+static int key_unused(const run_cfg *c, const run_key *K)
+{
+  return strcmp(K->name, "spacing") == 0 && strcmp(c->init, "lattice") != 0;
+}
+
 /* The keys a resume may see changed: steps (--steps MORE rewrites it, and
 ** a run may be made longer by hand), quiet and checkpoint_every (neither
 ** changes what the run computes or records), cells (not recorded). */
@@ -518,7 +526,7 @@ static void write_record(FILE *fp, const run_cfg *c)
   for (k = 0; k < N_RUN_KEYS; k++) {
     char value[RUN_PATH_MAX + 32];
     size_t m;
-    if (run_keys[k].kind == K_PATH) continue;
+    if (run_keys[k].kind == K_PATH || key_unused(c, &run_keys[k])) continue;
     key_text(c, &run_keys[k], value, sizeof value);
     m = strlen(run_keys[k].name) + strlen(value) + 2;
     if (used == 0 || used + m > RECORD_WIDTH) {
@@ -554,7 +562,8 @@ static int record_line_agrees(char *line, const run_cfg *c, const int *set,
     const run_key *K;
     if (!eq) continue;
     *eq = 0;
-    if (!(K = find_key(word)) || resume_may_change(K)) continue;
+    if (!(K = find_key(word)) || resume_may_change(K) || key_unused(c, K))
+      continue;
     key_text(c, K, now, sizeof now);
     if (strcmp(now, eq + 1) == 0) continue;
     shortest_real(K, now, sizeof now);   /* 0.7, not 0.69999999999999996 */
@@ -583,14 +592,6 @@ int record_agrees(const char *path, const run_cfg *c, const int *set,
       ok = record_line_agrees(L.line, c, set, path, err, errlen);
   afv_lines_close(&L);
   return ok;
-}
-
-/* 1 for a key the run does not use, left out of params.txt: the lattice's
-** spacing unless init lattice.  (Read back, a missing key takes its
-** default, so a params.txt that records it still resumes.) */
-static int key_unused(const run_cfg *c, const run_key *K)
-{
-  return strcmp(K->name, "spacing") == 0 && strcmp(c->init, "lattice") != 0;
 }
 
 /* A value text of key K for a message: a real in the fewest digits that

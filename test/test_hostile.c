@@ -275,6 +275,23 @@ static void test_resume_refuses_edited_keys(void)
   }
 }
 
+/* A key the run does not use (spacing without init lattice) is in neither
+** params.txt nor its record, so a resume finds nothing edited, and the
+** params.txt written from a config that gives it reads back to the same
+** bytes (fuzz_config found both: the record held spacing=4, params.txt
+** none, and the resume was refused as edited). */
+static void test_unused_key_resumes(void)
+{
+  CHECK(test_sh("./afv run " QUICK " --steps 20 --spacing 4 --out %s/uk",
+                root) == 0, "the run");
+  CHECK(test_sh("grep -q spacing %s/uk/params.txt", root) != 0,
+        "params.txt records spacing for init cluster");
+  CHECK(test_sh("./afv run --resume %s/uk --steps 10 --quiet 2> %s/err.txt",
+                root, root) == 0, "the resume of a run given an unused key "
+        "was refused");
+  CHECK(!err_says("but afv wrote"), "the resume says spacing was edited");
+}
+
 /* afv analyze refuses a params.txt it cannot read whole (empty, garbage,
 ** v0 missing, v0 not a number), exit 2, nothing written (the code before
 ** used v0 = 0.5 and friends silently, D_eff 25 times off, and skipped the
@@ -514,6 +531,7 @@ void suite_hostile(void)
   RUN(test_lock_holds_whatever_is_replaced);
   RUN(test_two_analyses_serialise);
   RUN(test_resume_refuses_edited_keys);
+  RUN(test_unused_key_resumes);
   RUN(test_analyze_refuses_damaged_params);
   RUN(test_trajectory_checked);
   RUN(test_fifo_log_does_not_block);
