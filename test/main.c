@@ -64,12 +64,14 @@ static const struct { const char *name; void (*run)(void); } suites[] = {
   {"messages", suite_messages}};
 
 /* test/run_tests: every suite; test/run_tests NAME...: those suites only
-** (e.g. core geometry, while changing the geometry). */
+** (e.g. core geometry, while changing the geometry); test/run_tests
+** --except NAME...: every suite but those (make test runs the slow ones
+** beside the rest, test/run.sh). */
 int main(int argc, char **argv)
 {
   size_t k;
-  int a;
-  for (a = 1; a < argc; a++) {
+  int a, except = argc > 1 && strcmp(argv[1], "--except") == 0;
+  for (a = 1 + except; a < argc; a++) {
     for (k = 0; k < sizeof suites / sizeof suites[0]; k++)
       if (strcmp(argv[a], suites[k].name) == 0) break;
     if (k == sizeof suites / sizeof suites[0]) {
@@ -78,9 +80,9 @@ int main(int argc, char **argv)
     }
   }
   for (k = 0; k < sizeof suites / sizeof suites[0]; k++) {
-    int wanted = argc == 1;
-    for (a = 1; a < argc; a++) wanted |= !strcmp(argv[a], suites[k].name);
-    if (wanted) suites[k].run();
+    int named = 0;
+    for (a = 1 + except; a < argc; a++) named |= !strcmp(argv[a], suites[k].name);
+    if (argc == 1 || named != except) suites[k].run();
   }
   printf("%d passed, %d failed, %d skipped\n", passed, failed, skipped);
   return failed ? 1 : 0;

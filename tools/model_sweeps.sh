@@ -73,27 +73,30 @@ sweep fss_1600 --N 1600 --P0 4,8 --v0 1.4,1.85,2.3 --seeds 2 --cap 0 $(at_dt 0.0
 sweep fss_6400 --N 6400 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at_dt 0.01)
 
 # The queue: one line "SWEEP ID" per job, in the order of use: the dt
-# table's glass states with seed 1 (point by point: job k of dt_G1, dt_G2,
-# dt_G3 is the same state at the three dt), then seed 2, then the
-# dispersal states likewise; the cap grid's seed 1,
-# its dt check and the cap sequence; finite size; the cap grid's seed 2.
+# table's glass states, both seeds (point by point: job k of dt_G1, dt_G2,
+# dt_G3 is the same state at the three dt); the dispersal states' seed 1;
+# the cap grid's seed 1 and its dt check; N 1600's seed 1; the cap
+# sequence's seed 1; then the second seeds and N 6400.
+dt_set() { # G|D SEED: each state of that seed at the three dt, point by point
+  for id in $(jobs_of "dt_${1}1" "$2"); do
+    for i in 1 2 3; do echo "dt_$1$i $id"; done
+  done
+}
 jobs_of() { # SWEEP SEED: the ids of SWEEP's jobs with that seed
   awk -F, -v seed="$2" 'NR == 1 { for (c = 1; c <= NF; c++) if ($c == "seed") s = c; next }
                         $s == seed { print $1 }' "$OUT/$1/points.csv"
 }
 {
-  for set in G D; do
-    for seed in 1 2; do
-      for id in $(jobs_of dt_${set}1 $seed); do
-        for i in 1 2 3; do echo "dt_$set$i $id"; done
-      done
-    done
-  done
+  for seed in 1 2; do dt_set G $seed; done
+  dt_set D 1
   for id in $(jobs_of cap_grid 1); do echo "cap_grid $id"; done
   for id in $(jobs_of cap_dt 1); do echo "cap_dt $id"; done
-  for seed in 1 2; do for id in $(jobs_of cap_seq $seed); do echo "cap_seq $id"; done; done
-  for seed in 1 2; do for id in $(jobs_of fss_1600 $seed); do echo "fss_1600 $id"; done; done
+  for id in $(jobs_of fss_1600 1); do echo "fss_1600 $id"; done
+  for id in $(jobs_of cap_seq 1); do echo "cap_seq $id"; done
+  dt_set D 2
   for id in $(jobs_of fss_6400 1); do echo "fss_6400 $id"; done
+  for id in $(jobs_of fss_1600 2); do echo "fss_1600 $id"; done
+  for id in $(jobs_of cap_seq 2); do echo "cap_seq $id"; done
   for id in $(jobs_of cap_grid 2); do echo "cap_grid $id"; done
 } > "$OUT/queue.txt.tmp"
 mv "$OUT/queue.txt.tmp" "$OUT/queue.txt"
