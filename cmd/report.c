@@ -13,6 +13,7 @@
 #include <string.h>
 #include <dirent.h>
 #include <fcntl.h>
+#include <signal.h>     /* kill(PID, 0): is a staging folder's process alive */
 #include <sys/file.h>   /* flock: not POSIX, but in every libc afv meets */
 #include <sys/stat.h>
 #include <sys/types.h>
@@ -162,22 +163,6 @@ static int analyze_plots(const char *dir, const afv_analysis *a,
   return 0;
 }
 
-/* Removes the files in the staging folder dir, this process's own (made
-** by stage_make, written by this process), and dir itself. */
-static void stage_clear(const char *dir)
-{
-  char path[RUN_PATH_MAX + 320];
-  DIR *d = opendir(dir);
-  struct dirent *e;
-  while (d && (e = readdir(d)))
-    if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0) {
-      snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-      remove(path);
-    }
-  if (d) closedir(d);
-  rmdir(dir);
-}
-
 /* Moves every file of the staging folder into out, summary.txt last (the
 ** sign that an analysis is complete).  0, or EXIT_BAD_INPUT with a line. */
 static int stage_commit(const char *stage, const char *out)
@@ -204,6 +189,79 @@ static int stage_commit(const char *stage, const char *out)
   }
   rmdir(stage);
   return 0;
+}
+
+/* The files an analysis writes into its staging folder (analysis.c's
+** afv_analysis_write and analyze_plots), and nothing else. */
+static const char *const staged_files[] = {
+  "msd.csv", "csd.csv", "csd_binned.csv", "series.csv", "summary.txt",
+  "msd.svg", "series.svg", "csd.svg"
+};
+
+/* 1 if name is one of staged_files or the temporary of one
+** (NAME.PID.RAND.tmp, afv_atomic_open). */
+static int staged_name(const char *name)
+{
+  size_t k, m, n = strlen(name);
+  for (k = 0; k < sizeof staged_files / sizeof staged_files[0]; k++) {
+    m = strlen(staged_files[k]);
+    if (strncmp(name, staged_files[k], m) == 0
+        && (name[m] == 0 || (name[m] == '.' && n > m + 4
+                             && strcmp(name + n - 4, ".tmp") == 0)))
+      return 1;
+  }
+  return 0;
+}
+
+/* The process id of a staging folder's name, analysis.tmp.PID.XXXXXX
+** (stage_make), or 0 if name is not one. */
+static long stage_pid(const char *name)
+{
+  const char *pid = name + 13, *dot;       /* after "analysis.tmp." */
+  if (strncmp(name, "analysis.tmp.", 13) != 0 || !(dot = strchr(pid, '.'))
+      || dot == pid || dot - pid > 9 || strlen(dot + 1) != 6
+      || strspn(pid, "0123456789") != (size_t)(dot - pid))
+    return 0;
+  return atol(pid);
+}
+
+/* Removes the files of staged_files' names in the staging folder dir,
+** then dir itself if it is empty (a user's file in it keeps it). */
+static void stage_clear(const char *dir)
+{
+  char path[RUN_PATH_MAX + 600];
+  DIR *d = opendir(dir);
+  struct dirent *e;
+  while (d && (e = readdir(d)) != NULL)
+    if (staged_name(e->d_name)) {
+      snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+      unlink(path);
+    }
+  if (d) closedir(d);
+  rmdir(dir);
+}
+
+/* A killed analysis (SIGKILL cannot be caught) leaves its staging folder
+** in DIR.  The next analysis of DIR removes every staging folder whose
+** process is gone (kill(PID, 0): ESRCH) -- only the files of
+** staged_files' names, then the folder if it is empty -- so a folder
+** holding anything else (a user's file), a link, or a live analysis's
+** folder stays. */
+static void remove_stale_stages(const char *dir)
+{
+  char stage[RUN_PATH_MAX + 300];
+  DIR *d = opendir(dir);
+  struct dirent *e;
+  struct stat sb;
+  long pid;
+  while (d && (e = readdir(d)) != NULL) {
+    if ((pid = stage_pid(e->d_name)) <= 0 || kill((pid_t)pid, 0) == 0
+        || errno != ESRCH)
+      continue;
+    snprintf(stage, sizeof stage, "%s/%s", dir, e->d_name);
+    if (lstat(stage, &sb) == 0 && S_ISDIR(sb.st_mode)) stage_clear(stage);
+  }
+  if (d) closedir(d);
 }
 
 /* The staging folder of this analysis: a new directory
@@ -304,6 +362,7 @@ static int analyze_write(const char *dir, const afv_analysis *a)
   char err[RUN_PATH_MAX + 128];
   int lock = -1, st;
   snprintf(out, sizeof out, "%s/analysis", dir);
+  remove_stale_stages(dir);
   if (!stage_make(dir, stage, sizeof stage)) return EXIT_BAD_INPUT;
   if (analyze_plots(stage, a, out) != 0) {
     stage_clear(stage);

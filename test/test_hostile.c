@@ -157,6 +157,39 @@ static void test_stale_temporaries_removed(void)
         "a file afv did not leave was removed");
 }
 
+/* The staging folders a killed analysis left (analysis.tmp.PID.XXXXXX,
+** PID gone) are removed by the next analysis of the run: afv's files in
+** them and the folder; a user's file (and the folder holding it), a live
+** process's folder and a link of that name stay.  (The code before left
+** every killed analysis's folder, with its files, beside the run.) */
+static void test_stale_stages_removed(void)
+{
+  int st;
+  CHECK(test_sh("./afv run " QUICK " --steps 20 --out %s/sa", root) == 0,
+        "the run");
+  test_sh("cd %s/sa && mkdir analysis.tmp.999999999.abcdef "
+          "analysis.tmp.999999998.abcdef analysis.tmp.%ld.abcdef ../keepme "
+          "&& for f in msd.csv summary.txt msd.svg.999999999.0badf00d.tmp; "
+          "do echo x > analysis.tmp.999999999.abcdef/$f; done && echo x > "
+          "analysis.tmp.999999998.abcdef/msd.csv && echo mine > "
+          "analysis.tmp.999999998.abcdef/mine.txt && echo x > "
+          "analysis.tmp.%ld.abcdef/msd.csv && echo x > ../keepme/msd.csv && "
+          "ln -s ../keepme analysis.tmp.999999997.abcdef", root,
+          (long)getpid(), (long)getpid());
+  st = test_sh("./afv analyze %s/sa --steady-from 0 --lag 0.1 > /dev/null",
+               root);
+  CHECK(st == 0, "the analysis: exit %d", st);
+  CHECK(test_sh("test ! -e %s/sa/analysis.tmp.999999999.abcdef", root) == 0,
+        "a killed analysis's staging folder was left");
+  CHECK(test_sh("cd %s/sa && test ! -e analysis.tmp.999999998.abcdef/msd.csv"
+                , root) == 0, "afv's file in a dead folder was left");
+  CHECK(test_sh("cd %s/sa && test -e analysis.tmp.999999998.abcdef/mine.txt "
+                "&& test -e analysis.tmp.%ld.abcdef/msd.csv && test -L "
+                "analysis.tmp.999999997.abcdef && test -e ../keepme/msd.csv",
+                root, (long)getpid()) == 0,
+        "a user's file, a live analysis's folder or a link was removed");
+}
+
 /* ---- one writer per run directory ---------------------------------------- */
 /* With a run live in DIR, each file of the run replaced by a copy (a new
 ** inode), then deleted, one after the other (so that at the end none of
@@ -528,6 +561,7 @@ void suite_hostile(void)
   RUN(test_links_never_followed);
   RUN(test_user_files_never_removed);
   RUN(test_stale_temporaries_removed);
+  RUN(test_stale_stages_removed);
   RUN(test_lock_holds_whatever_is_replaced);
   RUN(test_two_analyses_serialise);
   RUN(test_resume_refuses_edited_keys);

@@ -74,8 +74,8 @@ sweep fss_6400 --N 6400 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at_dt 0.01)
 
 # The queue: one line "SWEEP ID" per job, in the order of use: the dt
 # table's glass states, both seeds (point by point: job k of dt_G1, dt_G2,
-# dt_G3 is the same state at the three dt); the dispersal states' seed 1;
-# the cap grid's seed 1 and its dt check; N 1600's seed 1; the cap
+# dt_G3 is the same state at the three dt); the cap grid's seed 1; the
+# dispersal states' seed 1; the cap grid's dt check; N 1600's seed 1; the cap
 # sequence's seed 1; then the second seeds and N 6400.
 dt_set() { # G|D SEED: each state of that seed at the three dt, point by point
   for id in $(jobs_of "dt_${1}1" "$2"); do
@@ -88,8 +88,8 @@ jobs_of() { # SWEEP SEED: the ids of SWEEP's jobs with that seed
 }
 {
   for seed in 1 2; do dt_set G $seed; done
-  dt_set D 1
   for id in $(jobs_of cap_grid 1); do echo "cap_grid $id"; done
+  dt_set D 1
   for id in $(jobs_of cap_dt 1); do echo "cap_dt $id"; done
   for id in $(jobs_of fss_1600 1); do echo "fss_1600 $id"; done
   for id in $(jobs_of cap_seq 1); do echo "cap_seq $id"; done
