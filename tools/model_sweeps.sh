@@ -82,13 +82,27 @@ dt_set() { # G|D SEED: each state of that seed at the three dt, point by point
     for i in 1 2 3; do echo "dt_$1$i $id"; done
   done
 }
+# SWEEP SEED: the grid's jobs of that seed, every other P0 and the v0 0.1,
+# 0.7, 1.4, 1.85, 2.6 first, then the rest: a queue stopped half-way
+# leaves a coarse diagram whole rather than half a fine one.
+coarse_first() {
+  awk -F, -v seed="$2" '
+    NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next }
+    $col["seed"] == seed {
+      p = $col["P0"]; v = $col["v0"]
+      if (!(p in rank)) rank[p] = np++
+      coarse = rank[p] % 2 == 0 && (v == 0.1 || v == 0.7 || v == 1.4 || v == 1.85 || v == 2.6)
+      if (coarse) print "'"$1"' " $1; else rest[n++] = "'"$1"' " $1
+    }
+    END { for (k = 0; k < n; k++) print rest[k] }' "$OUT/$1/points.csv"
+}
 jobs_of() { # SWEEP SEED: the ids of SWEEP's jobs with that seed
   awk -F, -v seed="$2" 'NR == 1 { for (c = 1; c <= NF; c++) if ($c == "seed") s = c; next }
                         $s == seed { print $1 }' "$OUT/$1/points.csv"
 }
 {
   for seed in 1 2; do dt_set G $seed; done
-  for id in $(jobs_of cap_grid 1); do echo "cap_grid $id"; done
+  coarse_first cap_grid 1
   dt_set D 1
   for id in $(jobs_of cap_dt 1); do echo "cap_dt $id"; done
   for id in $(jobs_of fss_1600 1); do echo "fss_1600 $id"; done
