@@ -108,7 +108,7 @@ print-lib-sources:
 CLI_SRC  = $(addprefix cmd/,main.c cli.c inspect.c run.c run_config.c \
            run_compute.c run_dir.c run_resume.c report.c sweep.c collect.c \
            collect_figures.c sweep_slurm.c \
-           paper.c paper_data.c claims.c) $(FITS_SRC)
+           paper.c paper_data.c claims.c dt_study.c) $(FITS_SRC)
 CLI_OBJ  = $(CLI_SRC:.c=.o)
 
 afv: $(CLI_OBJ) libafv.a .build-flags
@@ -118,7 +118,7 @@ afv: $(CLI_OBJ) libafv.a .build-flags
 	$(CC) $(CFLAGS) -c -o $@ $<
 
 $(CLI_OBJ): cmd/cli.h cmd/fits.h
-cmd/paper.o cmd/paper_data.o cmd/claims.o: cmd/paper.h
+cmd/paper.o cmd/paper_data.o cmd/claims.o cmd/dt_study.o: cmd/paper.h
 cmd/collect.o cmd/collect_figures.o: cmd/collect.h
 cmd/sweep.o cmd/sweep_slurm.o: cmd/sweep.h
 $(filter cmd/run%,$(CLI_OBJ)): cmd/run.h

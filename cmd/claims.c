@@ -20,6 +20,31 @@
 **     within the noise (alpha_interval below).
 ** `not measured` when the state point has no finished run.  The rules are
 ** the table `rules` below, one row per claim.
+**
+** Each claim's dependence on dt (the column dt_verdict, and the end of its
+** note) comes from the dt study at the paper's length (afv paper
+** --dt-table doc/reproduction/model/dt_table.csv), by dt_study.c's rule,
+** when the runs were integrated as the study's (Euler at dt 0.01 with its
+** cap).  The table's two last columns say where each claim is measured:
+**   DTC_LABEL   a label at (P0, v0): the same observable at the same state
+**               point, the conclusion the side of the label's threshold.
+**               msd_beta and D_eff at (P0, 0.4) are the glass rows of the
+**               same P0; (8, 0.4) and the states at v0 0.1 and at P0 4.4
+**               and 8.8, v0 2.6 are not in the study: `not measured`, the
+**               note names the nearest state it has, never its verdict;
+**   DTC_NUMBER  the cluster-size exponents at (4 or 8, 1.85): the
+**               conclusion is the claim's own judgement against the paper
+**               (yes / no / undetermined) at dt 0.01 and at 0.0025;
+**   DTC_CURVES  the claims built on the N_GC/N grid (v0*, N_GC/N at v0*,
+**               the dispersal line, the collapse, tau_NGC): N_GC/N at the
+**               six dispersal states (4 and 8 x 1.4, 1.85, 2.6), the
+**               conclusion its value (0.01 against 0.0025 by the same
+**               2-sigma rule, since the claims' numbers are built from
+**               those values); the worst state's verdict (missing if one
+**               is missing, then property of dt = 0.01, not converged);
+**   DTC_OFF     the Omega = 0.5 line at the grid's lowest v0: no state of
+**               the study (the note gives Omega at the study's lowest v0);
+**   DTC_NONE    the mean field: no dynamics, `none`.
 */
 #include "paper.h"
 
@@ -42,6 +67,15 @@ typedef struct claim {
   char note[1024];              /* what the paper says, how afv measures */
 } claim;
 
+/* Where the dt study measures a claim (the header's list). */
+typedef enum {
+  DTC_NONE,     /* no dynamics: "none" */
+  DTC_LABEL,    /* at the rule's (P0, v0): the side of its level */
+  DTC_NUMBER,   /* at the rule's (P0, v0): the claim's judgement */
+  DTC_CURVES,   /* the value at the dispersal states, the worst verdict */
+  DTC_OFF       /* at no state point of the study */
+} dt_check;
+
 struct claim_ctx;
 typedef struct claim_rule {
   const char *name;
@@ -54,6 +88,8 @@ typedef struct claim_rule {
   double p0, v0;                /* the paper's state point (labels, CSD) */
   void (*measure)(const struct claim_ctx *, const struct claim_rule *,
                   claim *);
+  dt_check dt;                  /* where the dt study measures it */
+  const char *dt_obs;           /* the dt table's observable (NAME_mean) */
 } claim_rule;
 
 /* ---- what the claims are computed from, once ----------------------------- */
@@ -366,14 +402,15 @@ static void m_collapse(const claim_ctx *X, const claim_rule *r, claim *c)
        "means (alpha in [0, 4]), jackknife error over the P0 curves");
 }
 
-/* Splits a line of claims.csv (modified) into at most 6 fields, quoted
-** ones unquoted ("" is a quote); returns the number of fields. */
+/* Splits a line of claims.csv (modified) into at most CLAIM_FIELDS
+** fields, quoted ones unquoted ("" is a quote); returns their number. */
+#define CLAIM_FIELDS 8
 static int claims_fields(char *line, char **field)
 {
   int n = 0;
   char *s = line, *w;
   line[strcspn(line, "\r\n")] = 0;
-  while (n < 6) {
+  while (n < CLAIM_FIELDS) {
     field[n++] = w = s;
     if (*s == '"') {
       for (s++; *s && !(s[0] == '"' && s[1] != '"'); s++) {
@@ -391,19 +428,33 @@ static int claims_fields(char *line, char **field)
   return n;
 }
 
+/* The column `name` of a claims.csv header (split by claims_fields). */
+static int claims_column(char **head, int n, const char *name)
+{
+  int k;
+  for (k = 0; k < n; k++) if (!strcmp(head[k], name)) return k;
+  return -1;
+}
+
 /* The row `name` of the earlier claims.csv (afv paper --claims-from):
-** its afv, afv_err and note; 0 if the file or the row is not there. */
+** its afv, afv_err and note, found by the header's names (a claims.csv
+** with or without dt_verdict); 0 if the file or the row is not there. */
 static int previous_claim(const claim_ctx *X, const char *name, double *afv,
                           double *err, char *note, size_t len)
 {
-  char line[8192], *f[6];
+  char head[512], line[8192], *h[CLAIM_FIELDS], *f[CLAIM_FIELDS];
   FILE *fp = X->S->previous ? fopen(X->S->previous, "r") : NULL;
-  int found = 0;
-  while (fp && !found && fgets(line, sizeof line, fp))
-    if (claims_fields(line, f) == 6 && strcmp(f[0], name) == 0) {
-      *afv = strtod(f[2], NULL);
-      *err = strtod(f[3], NULL);
-      snprintf(note, len, "%s", f[5]);
+  int found = 0, nh = 0, ca, ce, cn;
+  if (fp && fgets(head, sizeof head, fp)) nh = claims_fields(head, h);
+  ca = claims_column(h, nh, "afv");
+  ce = claims_column(h, nh, "afv_err");
+  cn = claims_column(h, nh, "note");
+  while (fp && ca >= 0 && ce >= 0 && cn >= 0 && !found
+         && fgets(line, sizeof line, fp))
+    if (claims_fields(line, f) == nh && strcmp(f[0], name) == 0) {
+      *afv = strtod(f[ca], NULL);
+      *err = strtod(f[ce], NULL);
+      snprintf(note, len, "%s", f[cn]);
       found = 1;
     }
   if (fp) fclose(fp);
@@ -572,33 +623,33 @@ static void m_glassy_deff(const claim_ctx *X, const claim_rule *r, claim *c)
 
 /* ---- the rules: one row per claim ---------------------------------------- */
 static const claim_rule rules[] = {
-/* name                      paper          value  err    rule         q        level  P0   v0    measured by */
-{"v0_star",                  "1.85",        1.85,  0.06,  BY_NUMBER,   Q_NGC,   0,     0,   0,    m_v0_star},
-{"ngc_at_v0_star",           "0.7",         0.7,   0,     BY_NUMBER,   Q_NGC,   0,     0,   0,    m_ngc_at_v0_star},
-{"vs_c",                     "0.06",        0.06,  0.005, BY_NUMBER,   Q_NGC,   0,     0,   0,    m_vs_c_held},
-{"vs_alpha",                 "1.5",         1.5,   0.12,  BY_NUMBER,   Q_NGC,   0,     0,   0,    m_vs_free},
-{"vs_v0_star",               "1.85",        1.85,  0.06,  BY_NUMBER,   Q_NGC,   0,     0,   0,    m_vs_free},
-{"vs_c_free",                "0.06",        0.06,  0.005, BY_NUMBER,   Q_NGC,   0,     0,   0,    m_vs_free},
-{"collapse_v0_star",         "1.85",        1.85,  0.06,  BY_NUMBER,   Q_NGC,   0,     0,   0,    m_collapse},
-{"collapse_alpha",           "1.5",         1.5,   0.12,  BY_NUMBER,   Q_NGC,   0,     0,   0,    m_collapse},
-{"csd_exponent_P0_4",        "-1.25",      -1.25,  0,     BY_NUMBER,   Q_NGC,   0,     4,   1.85, m_csd},
-{"csd_exponent_P0_8",        "-1.75",      -1.75,  0,     BY_NUMBER,   Q_NGC,   0,     8,   1.85, m_csd},
-{"tau_ngc_infinite_below_P0","5",           5,     0,     BY_BRACKET,  Q_TAU,   0,     0,   1,    m_tau},
-{"meanfield_P0_star",        "5.73",        5.73,  0.005, BY_NUMBER,   Q_OMEGA, 0,     0,   0,    m_meanfield},
-{"P0_omega_half_low_v0",     "5.73",        5.73,  0,     BY_BRACKET,  Q_OMEGA, 0,     0,   0,    m_omega_half},
-{"msd_beta_P0_4_v0_0.4",     "0",           0,     0,     LABEL_BELOW, Q_BETA,  0.5,   4,   0.4,  m_beta},
-{"msd_beta_P0_7.2_v0_0.4",   "1",           1,     0,     LABEL_ABOVE, Q_BETA,  0.5,   7.2, 0.4,  m_beta},
-{"msd_beta_P0_8_v0_0.4",     "1",           1,     0,     LABEL_ABOVE, Q_BETA,  0.5,   8,   0.4,  m_beta},
-{"msd_beta_P0_8.8_v0_0.4",   "1",           1,     0,     LABEL_ABOVE, Q_BETA,  0.5,   8.8, 0.4,  m_beta},
-{"glassy_P0_4_v0_0.4_D_eff", "<1e-8",       1e-8,  0,     LABEL_BELOW, Q_DEFF,  1e-8,  4,   0.4,  m_glassy_deff},
-{"state_P0_4_v0_0.1_cluster",        "clustered",   1, 0, LABEL_ABOVE, Q_NGC,   0.99,  4,   0.1,  m_label},
-{"state_P0_4_v0_0.1_confluency",     "epithelial",  1, 0, LABEL_ABOVE, Q_OMEGA, 0.5,   4,   0.1,  m_label},
-{"state_P0_8.8_v0_0.1_cluster",      "clustered",   1, 0, LABEL_ABOVE, Q_NGC,   0.99,  8.8, 0.1,  m_label},
-{"state_P0_8.8_v0_0.1_confluency",   "mesenchymal", 0, 0, LABEL_BELOW, Q_OMEGA, 0.5,   8.8, 0.1,  m_label},
-{"state_P0_4.4_v0_2.6_cluster",      "dispersed",   0, 0, LABEL_BELOW, Q_NGC,   0.99,  4.4, 2.6,  m_label},
-{"state_P0_4.4_v0_2.6_confluency",   "epithelial",  1, 0, LABEL_ABOVE, Q_OMEGA, 0.5,   4.4, 2.6,  m_label},
-{"state_P0_8.8_v0_2.6_cluster",      "dispersed",   0, 0, LABEL_BELOW, Q_NGC,   0.99,  8.8, 2.6,  m_label},
-{"state_P0_8.8_v0_2.6_confluency",   "mesenchymal", 0, 0, LABEL_BELOW, Q_OMEGA, 0.5,   8.8, 2.6,  m_label},
+/* name                      paper          value  err    rule         q        level  P0   v0    measured by       dt check    dt observable */
+{"v0_star",                  "1.85",        1.85,  0.06,  BY_NUMBER,   Q_NGC,   0,     0,   0,    m_v0_star,        DTC_CURVES, "ngc_frac_mean"},
+{"ngc_at_v0_star",           "0.7",         0.7,   0,     BY_NUMBER,   Q_NGC,   0,     0,   0,    m_ngc_at_v0_star, DTC_CURVES, "ngc_frac_mean"},
+{"vs_c",                     "0.06",        0.06,  0.005, BY_NUMBER,   Q_NGC,   0,     0,   0,    m_vs_c_held,      DTC_CURVES, "ngc_frac_mean"},
+{"vs_alpha",                 "1.5",         1.5,   0.12,  BY_NUMBER,   Q_NGC,   0,     0,   0,    m_vs_free,        DTC_CURVES, "ngc_frac_mean"},
+{"vs_v0_star",               "1.85",        1.85,  0.06,  BY_NUMBER,   Q_NGC,   0,     0,   0,    m_vs_free,        DTC_CURVES, "ngc_frac_mean"},
+{"vs_c_free",                "0.06",        0.06,  0.005, BY_NUMBER,   Q_NGC,   0,     0,   0,    m_vs_free,        DTC_CURVES, "ngc_frac_mean"},
+{"collapse_v0_star",         "1.85",        1.85,  0.06,  BY_NUMBER,   Q_NGC,   0,     0,   0,    m_collapse,       DTC_CURVES, "ngc_frac_mean"},
+{"collapse_alpha",           "1.5",         1.5,   0.12,  BY_NUMBER,   Q_NGC,   0,     0,   0,    m_collapse,       DTC_CURVES, "ngc_frac_mean"},
+{"csd_exponent_P0_4",        "-1.25",      -1.25,  0,     BY_NUMBER,   Q_NGC,   0,     4,   1.85, m_csd,            DTC_NUMBER, "csd_exponent"},
+{"csd_exponent_P0_8",        "-1.75",      -1.75,  0,     BY_NUMBER,   Q_NGC,   0,     8,   1.85, m_csd,            DTC_NUMBER, "csd_exponent"},
+{"tau_ngc_infinite_below_P0","5",           5,     0,     BY_BRACKET,  Q_TAU,   0,     0,   1,    m_tau,            DTC_CURVES, "ngc_frac_mean"},
+{"meanfield_P0_star",        "5.73",        5.73,  0.005, BY_NUMBER,   Q_OMEGA, 0,     0,   0,    m_meanfield,      DTC_NONE,   NULL},
+{"P0_omega_half_low_v0",     "5.73",        5.73,  0,     BY_BRACKET,  Q_OMEGA, 0,     0,   0,    m_omega_half,     DTC_OFF,    "omega_mean"},
+{"msd_beta_P0_4_v0_0.4",     "0",           0,     0,     LABEL_BELOW, Q_BETA,  0.5,   4,   0.4,  m_beta,           DTC_LABEL,  "msd_beta"},
+{"msd_beta_P0_7.2_v0_0.4",   "1",           1,     0,     LABEL_ABOVE, Q_BETA,  0.5,   7.2, 0.4,  m_beta,           DTC_LABEL,  "msd_beta"},
+{"msd_beta_P0_8_v0_0.4",     "1",           1,     0,     LABEL_ABOVE, Q_BETA,  0.5,   8,   0.4,  m_beta,           DTC_LABEL,  "msd_beta"},
+{"msd_beta_P0_8.8_v0_0.4",   "1",           1,     0,     LABEL_ABOVE, Q_BETA,  0.5,   8.8, 0.4,  m_beta,           DTC_LABEL,  "msd_beta"},
+{"glassy_P0_4_v0_0.4_D_eff", "<1e-8",       1e-8,  0,     LABEL_BELOW, Q_DEFF,  1e-8,  4,   0.4,  m_glassy_deff,    DTC_LABEL,  "D_eff"},
+{"state_P0_4_v0_0.1_cluster",        "clustered",   1, 0, LABEL_ABOVE, Q_NGC,   0.99,  4,   0.1,  m_label,          DTC_LABEL,  "ngc_frac_mean"},
+{"state_P0_4_v0_0.1_confluency",     "epithelial",  1, 0, LABEL_ABOVE, Q_OMEGA, 0.5,   4,   0.1,  m_label,          DTC_LABEL,  "omega_mean"},
+{"state_P0_8.8_v0_0.1_cluster",      "clustered",   1, 0, LABEL_ABOVE, Q_NGC,   0.99,  8.8, 0.1,  m_label,          DTC_LABEL,  "ngc_frac_mean"},
+{"state_P0_8.8_v0_0.1_confluency",   "mesenchymal", 0, 0, LABEL_BELOW, Q_OMEGA, 0.5,   8.8, 0.1,  m_label,          DTC_LABEL,  "omega_mean"},
+{"state_P0_4.4_v0_2.6_cluster",      "dispersed",   0, 0, LABEL_BELOW, Q_NGC,   0.99,  4.4, 2.6,  m_label,          DTC_LABEL,  "ngc_frac_mean"},
+{"state_P0_4.4_v0_2.6_confluency",   "epithelial",  1, 0, LABEL_ABOVE, Q_OMEGA, 0.5,   4.4, 2.6,  m_label,          DTC_LABEL,  "omega_mean"},
+{"state_P0_8.8_v0_2.6_cluster",      "dispersed",   0, 0, LABEL_BELOW, Q_NGC,   0.99,  8.8, 2.6,  m_label,          DTC_LABEL,  "ngc_frac_mean"},
+{"state_P0_8.8_v0_2.6_confluency",   "mesenchymal", 0, 0, LABEL_BELOW, Q_OMEGA, 0.5,   8.8, 2.6,  m_label,          DTC_LABEL,  "omega_mean"},
 };
 #define N_RULES ((int)(sizeof rules / sizeof rules[0]))
 
@@ -635,24 +686,220 @@ static const char *judge(const claim_rule *r, const claim *c, char *why,
   return above == (r->rule == LABEL_ABOVE) ? "yes" : "no";
 }
 
-/* How a claim's value moves with dt, from the committed convergence study
-** (doc/reproduction/convergence.md: N = 400, t = 1500, exact Euler at
-** Lambda = 0.2), for runs integrated that way; "" for the others and for
-** claims the study does not touch (the mean field). */
-static const char *dt_dependence(const claim_rule *r)
+/* ---- the dependence on dt (the header's list; the rule is dt_study.c's) -- */
+/* The six states of the dt study's dispersal sweeps (model/README.md). */
+static const double dispersal_states[][2] = {
+  {4, 1.4}, {4, 1.85}, {4, 2.6}, {8, 1.4}, {8, 1.85}, {8, 2.6}};
+#define N_DISPERSAL ((int)(sizeof dispersal_states / sizeof dispersal_states[0]))
+
+static const char *const dt_short[] = {"model", "dt 0.01", "not converged",
+                                       "missing", "not measured", "none"};
+
+/* The short study (convergence.md, t = 1500) measured N_GC/N at P0 4, 8 x
+** v0 1, 1.85, 2.6 against dt: pointed to by the claims built on N_GC/N
+** when the paper-length study gives them no verdict. */
+static const char *short_study(const claim_rule *r)
 {
-  if (!strstr(paper_integration, "integrator euler, dt 0.01, exact force")
-      || r->measure == m_meanfield)
-    return "";
-  if (r->q == Q_NGC || r->q == Q_TAU)
-    return " Depends on dt: built on N_GC/N, which does not converge in dt "
-           "(convergence.md: 0.41, 0.61, 0.77, 1.00 at P0 4, v0 1.85 for dt "
-           "0.02, 0.01, 0.005, 0.0025).";
-  if (r->q == Q_OMEGA)
-    return " Omega moves with dt where the tissue disperses (convergence.md, "
-           "P0 4, v0 2.6: 0.929, 0.886, 0.842, 0.808 for dt 0.02, 0.01, "
-           "0.005, 0.0025; below 0.02 at P0 8); not measured at v0 0.1.";
-  return " Its dependence on dt was not measured.";
+  if (r->dt == DTC_CURVES || (r->dt == DTC_NUMBER && r->v0 == 1.85))
+    return " The short study (convergence.md, t = 1500) measured N_GC/N at "
+           "P0 4 and 8, v0 1, 1.85, 2.6 against dt: 0.61, 0.77, 1.00 at "
+           "(4, 1.85) for dt 0.01, 0.005, 0.0025.";
+  return "";
+}
+
+/* The runs were integrated as the study's: Euler at dt 0.01 with the
+** table's cap (paper_integration, e.g. "afv 0.4.0, integrator euler, dt
+** 0.01, exact force"). */
+static int study_applies(const dt_table *T)
+{
+  static const char how[] = "integrator euler, dt 0.01, ";
+  const char *at = strstr(paper_integration, how);
+  if (!at) return 0;
+  at += sizeof how - 1;
+  if (T->cap == 0) return strncmp(at, "exact force", 11) == 0;
+  return strncmp(at, "cap ", 4) == 0 && strtod(at + 4, NULL) == T->cap;
+}
+
+/* The claim's judgement (judge) with afv's figure the mean at dt index i. */
+static const char *judged_at(const claim_rule *r, const dt_series *s, int i)
+{
+  claim c;
+  char why[256];
+  memset(&c, 0, sizeof c);
+  c.afv = s->mean[i];
+  c.afv_err = s->sem[i];
+  return judge(r, &c, why, sizeof why);
+}
+
+static int same_judgement(const dt_series *s, const void *rule)
+{
+  return !strcmp(judged_at(rule, s, 0), judged_at(rule, s, DT_STEPS - 1));
+}
+
+/* What the verdict rests on, for the note: the conclusions at dt 0.01
+** and 0.0025, and the finest two's gap when they differ. */
+static void conclusion_text(const claim_rule *r, const dt_series *s,
+                            dt_verdict v, char *buf, size_t len)
+{
+  size_t used = 0;
+  buf[0] = 0;
+  if (v == DT_MISSING) {
+    snprintf(buf, len, "; the rule needs two seeds at dt 0.005 and 0.0025 "
+             "and the mean at 0.01");
+    return;
+  }
+  if (r->dt == DTC_LABEL)
+    used = (size_t)snprintf(buf, len, "; %s %g at dt 0.01, %s at 0.0025",
+                            s->mean[0] >= r->level ? "above" : "below",
+                            r->level, s->mean[DT_STEPS - 1] >= r->level
+                            ? "above" : "below");
+  else
+    used = (size_t)snprintf(buf, len, "; against the paper: %s at dt 0.01, "
+                            "%s at 0.0025", judged_at(r, s, 0),
+                            judged_at(r, s, DT_STEPS - 1));
+  if (v == DT_NOT_CONVERGED && used < len)
+    snprintf(buf + used, len - used, "; dt 0.005 and 0.0025 differ by more "
+             "than 2 sqrt(sem^2 + sem^2)");
+}
+
+/* "obs at (p0, v0) m | m | m at dt 0.01 | 0.005 | 0.0025" of the state of
+** the table nearest (p0, v0) (the claim's own when it is there). */
+static void state_text(const dt_table *T, const char *obs, double p0,
+                       double v0, char *buf, size_t len)
+{
+  dt_series s;
+  char nums[160];
+  dt_series_at(T, p0, v0, obs, &s);
+  dt_series_text(&s, nums, sizeof nums);
+  snprintf(buf, len, "%s at (%g, %g) %s at dt 0.01 | 0.005 | 0.0025", obs,
+           p0, v0, nums);
+}
+
+/* A label's state point that the study does not hold: not measured; the
+** note names the nearest state it holds within NEAR_STATE in (P0, v0)
+** (the grid's P0 step is 0.8, its v0 step near 0.3 to 0.5; farther
+** states say nothing about the claim's), never its verdict. */
+#define NEAR_STATE 1.0
+static dt_verdict dt_absent(const dt_table *T, const claim_rule *r,
+                            char *text, size_t len)
+{
+  double pt[DT_MAX_POINTS][2], best = HUGE_VAL;
+  char near[300] = "";
+  int k, n = dt_state_points(T, pt, DT_MAX_POINTS), kb = -1;
+  for (k = 0; k < n; k++) {
+    double d = hypot(pt[k][0] - r->p0, pt[k][1] - r->v0);
+    if (d < best && d <= NEAR_STATE) { best = d; kb = k; }
+  }
+  if (kb >= 0)
+    state_text(T, r->dt_obs, pt[kb][0], pt[kb][1], near, sizeof near);
+  snprintf(text, len, " dt: not measured: the dt table has no row at (%g, "
+           "%g)%s%s%s.%s", r->p0, r->v0, kb >= 0 ? " (nearest: " : "", near,
+           kb >= 0 ? "; its verdict is not this claim's)" : "",
+           short_study(r));
+  return DT_NOT_MEASURED;
+}
+
+/* A label or a number at the rule's own (P0, v0). */
+static dt_verdict dt_at_state(const dt_table *T, const claim_rule *r,
+                              char *text, size_t len)
+{
+  dt_series s;
+  char state[300], why[200];
+  dt_verdict v;
+  if (!dt_series_at(T, r->p0, r->v0, r->dt_obs, &s))
+    return dt_absent(T, r, text, len);
+  v = r->dt == DTC_LABEL ? dt_rule(&s, dt_same_side, &r->level)
+                         : dt_rule(&s, same_judgement, r);
+  state_text(T, r->dt_obs, r->p0, r->v0, state, sizeof state);
+  conclusion_text(r, &s, v, why, sizeof why);
+  snprintf(text, len, " dt: %s: %s%s.", dt_verdict_name(v), state, why);
+  return v;
+}
+
+/* The claims built on the N_GC/N curves: the value at each dispersal
+** state, the worst verdict (a state the table lacks is missing). */
+static dt_verdict dt_curves(const dt_table *T, const claim_rule *r,
+                            char *text, size_t len)
+{
+  char list[900], nums[160];
+  size_t used = 0;
+  dt_verdict v = DT_MODEL, one;
+  dt_series s;
+  int k, found = 0;
+  list[0] = 0;
+  for (k = 0; k < N_DISPERSAL && used < sizeof list; k++) {
+    if (dt_series_at(T, dispersal_states[k][0], dispersal_states[k][1],
+                     r->dt_obs, &s)) {
+      found = 1;
+      one = dt_rule(&s, dt_same_value, NULL);
+      dt_series_text(&s, nums, sizeof nums);
+    } else {
+      one = DT_MISSING;
+      snprintf(nums, sizeof nums, "no row");
+    }
+    v = dt_worse(v, one);
+    used += (size_t)snprintf(list + used, sizeof list - used, "%s(%g, %g) "
+                             "%s %s", k ? "; " : "", dispersal_states[k][0],
+                             dispersal_states[k][1], nums, dt_short[one]);
+  }
+  if (!found) {
+    snprintf(text, len, " dt: not measured: the dt study holds none of the "
+             "dispersal states (P0 4 and 8 x v0 1.4, 1.85, 2.6).%s",
+             short_study(r));
+    return DT_NOT_MEASURED;
+  }
+  snprintf(text, len, " dt: %s, the worst of the dispersal states, N_GC/N "
+           "at dt 0.01 | 0.005 | 0.0025 by value (0.01 against 0.0025 by the "
+           "2-sigma rule): %s.%s", dt_verdict_name(v), list,
+           v == DT_MISSING ? short_study(r) : "");
+  return v;
+}
+
+/* The Omega line at the grid's lowest v0: no state of the study; the note
+** gives Omega at the study's lowest v0 along P0. */
+static dt_verdict dt_off_study(const dt_table *T, const claim_rule *r,
+                               char *text, size_t len)
+{
+  double pt[DT_MAX_POINTS][2], low = HUGE_VAL;
+  char list[700] = "", state[300];
+  size_t used = 0;
+  int k, n = dt_state_points(T, pt, DT_MAX_POINTS);
+  for (k = 0; k < n; k++) low = fmin(low, pt[k][1]);
+  for (k = 0; k < n && used < sizeof list; k++)
+    if (pt[k][1] == low) {
+      state_text(T, r->dt_obs, pt[k][0], low, state, sizeof state);
+      used += (size_t)snprintf(list + used, sizeof list - used, "%s%s",
+                               used ? "; " : " (nearest: ", state);
+    }
+  snprintf(text, len, " dt: not measured: the line is at no state point of "
+           "the dt study%s%s.", list, used ? "; not this claim's verdict)"
+           : "");
+  return DT_NOT_MEASURED;
+}
+
+/* The claim's dt verdict and the text that ends its note. */
+static dt_verdict dt_dependence(const claim_source *S, const claim_rule *r,
+                                char *text, size_t len)
+{
+  if (r->dt == DTC_NONE) {
+    snprintf(text, len, " dt: none (the mean field has no dynamics).");
+    return DT_NONE;
+  }
+  if (!S->dt) {
+    snprintf(text, len, " dt: not measured (no dt study given: afv paper "
+             "--dt-table FILE, e.g. doc/reproduction/model/dt_table.csv).%s",
+             short_study(r));
+    return DT_NOT_MEASURED;
+  }
+  if (!study_applies(S->dt)) {
+    snprintf(text, len, " dt: not measured (the dt study %.200s is of Euler "
+             "steps from dt 0.01 at cap %g, 0 the exact force; these runs "
+             "are not).%s", S->dt->path, S->dt->cap, short_study(r));
+    return DT_NOT_MEASURED;
+  }
+  if (r->dt == DTC_CURVES) return dt_curves(S->dt, r, text, len);
+  if (r->dt == DTC_OFF) return dt_off_study(S->dt, r, text, len);
+  return dt_at_state(S->dt, r, text, len);
 }
 
 /* A CSV field: quoted if it holds a comma or a quote. */
@@ -676,39 +923,54 @@ static void integration_from_previous(const claim_ctx *X)
              (int)(b - a - 1), a + 1);
 }
 
+/* One row of claims.csv: the claim measured, judged against the paper
+** and against dt; counts[] of the agrees (0 yes, 1 undetermined) and of
+** the dt verdicts (2 + verdict). */
+static void claim_row(FILE *fp, const claim_ctx *X, const claim_rule *r,
+                      int *counts)
+{
+  char why[256], dt_text[1200], note[3072];
+  claim c;
+  const char *verdict;
+  dt_verdict dv;
+  memset(&c, 0, sizeof c);
+  r->measure(X, r, &c);
+  verdict = judge(r, &c, why, sizeof why);
+  counts[0] += !strcmp(verdict, "yes");
+  counts[1] += !strcmp(verdict, "undetermined");
+  dv = dt_dependence(X->S, r, dt_text, sizeof dt_text);
+  counts[2 + dv]++;
+  if (paper_smoke) verdict = "not established (smoke run)";
+  put_field(fp, r->name);
+  fputc(',', fp);
+  put_field(fp, r->paper);
+  fprintf(fp, ",%.6g,%.6g,%s,%s,", c.afv, c.afv_err, verdict,
+          dt_verdict_name(dv));
+  snprintf(note, sizeof note, "%s%s%s [%s]%s", c.note,
+           why[0] ? "; undetermined: " : "", why, paper_integration,
+           dt_text);
+  put_field(fp, note);
+  fputc('\n', fp);
+}
+
 int claims_table(const claim_source *S, const char *path, char *summary,
                  size_t len)
 {
-  char tmp[PATH_LEN + 16], why[256], note[2048];
+  char tmp[PATH_LEN + 16];
   claim_ctx X;
-  claim c;
   FILE *fp;
-  int k, yes = 0, undetermined = 0;
+  int k, counts[2 + DT_NONE + 1] = {0};
   if (!ctx_init(&X, S)) return 0;
   if (!S->have_runs) integration_from_previous(&X);
   if (!(fp = afv_atomic_open(path, tmp, sizeof tmp))) { free(X.y); return 0; }
-  fprintf(fp, "claim,paper,afv,afv_err,agrees,note\n");
-  for (k = 0; k < N_RULES; k++) {
-    const claim_rule *r = &rules[k];
-    const char *verdict;
-    memset(&c, 0, sizeof c);
-    r->measure(&X, r, &c);
-    verdict = judge(r, &c, why, sizeof why);
-    yes += !strcmp(verdict, "yes");
-    undetermined += !strcmp(verdict, "undetermined");
-    if (paper_smoke) verdict = "not established (smoke run)";
-    put_field(fp, r->name);
-    fputc(',', fp);
-    put_field(fp, r->paper);
-    fprintf(fp, ",%.6g,%.6g,%s,", c.afv, c.afv_err, verdict);
-    snprintf(note, sizeof note, "%s%s%s [%s]%s", c.note,
-             why[0] ? "; undetermined: " : "", why, paper_integration,
-             dt_dependence(r));
-    put_field(fp, note);
-    fputc('\n', fp);
-  }
+  fprintf(fp, "claim,paper,afv,afv_err,agrees,dt_verdict,note\n");
+  for (k = 0; k < N_RULES; k++) claim_row(fp, &X, &rules[k], counts);
   free(X.y);
-  snprintf(summary, len, "%d claims, %d agree, %d undetermined", N_RULES, yes,
-           undetermined);
+  snprintf(summary, len, "%d claims, %d agree, %d undetermined; dt: %d "
+           "property of the model, %d property of dt = 0.01, %d not "
+           "converged, %d missing, %d not measured, %d none", N_RULES,
+           counts[0], counts[1], counts[2 + DT_MODEL], counts[2 + DT_OF_DT],
+           counts[2 + DT_NOT_CONVERGED], counts[2 + DT_MISSING],
+           counts[2 + DT_NOT_MEASURED], counts[2 + DT_NONE]);
   return afv_atomic_commit(fp, tmp, path) == AFV_OK;
 }

@@ -884,8 +884,9 @@ static int halves_table(const char *out, const plane *P)
 
 /* ---- the command ------------------------------------------------------------ */
 static const char *paper_usage =
-"usage: afv paper OUT\n"
-"       afv paper --claims-from DIR\n"
+"usage: afv paper OUT [--dt-table FILE]\n"
+"       afv paper --claims-from DIR [--dt-table FILE]\n"
+"       afv paper --dt-verdicts FILE OUTFILE\n"
 "\n"
 "The paper's figures and claims from the sweeps of make paper\n"
 "(tools/paper_sweeps.sh) after afv collect: OUT/grid (P0 x v0 at N = 400)\n"
@@ -893,12 +894,12 @@ static const char *paper_usage =
 "  OUT/figures/figN*_*.svg  one file per panel of the paper's figures\n"
 "                           (state points: the grid's nearest)\n"
 "  OUT/figures/fss_ngc_vs_v0.svg  N_GC/N against v0 for each N and P0\n"
-"  OUT/claims.csv           claim,paper,afv,afv_err,agrees,note: each\n"
-"                           number the paper states and afv's, judged by\n"
-"                           the rules of doc/reproduction/README.md\n"
+"  OUT/claims.csv           claim,paper,afv,afv_err,agrees,dt_verdict,note:\n"
+"                           each number the paper states and afv's, judged\n"
+"                           by the rules of doc/reproduction/README.md\n"
 "                           (agrees: yes, no, undetermined, not measured);\n"
 "                           each note ends with the runs' afv version and\n"
-"                           integration\n"
+"                           integration, then the claim's dependence on dt\n"
 "When OUT/grid/scale says smoke (make paper SCALE=smoke), every agrees\n"
 "is 'not established (smoke run)' and every figure says SMOKE RUN.\n"
 "  OUT/fss.csv              the finite-size table\n"
@@ -910,13 +911,21 @@ static const char *paper_usage =
 "and DIR/claims.csv, the earlier claims, for the two a table cannot give\n"
 "(the cluster-size exponents, fitted to the runs' csd.csv) and the runs'\n"
 "integration; rewrites DIR/claims.csv.\n"
+"--dt-table FILE: the dt study (tools/model_table.sh's dt_table.csv, e.g.\n"
+"doc/reproduction/model/dt_table.csv): each claim's dt_verdict is then\n"
+"property of the model, property of dt = 0.01, not converged, missing or\n"
+"not measured by the rule of doc/reproduction/model/README.md (none: the\n"
+"mean field); without it every dt_verdict is not measured.\n"
+"--dt-verdicts FILE OUTFILE: that rule applied to every state point and\n"
+"observable of the dt table FILE, written to OUTFILE (dt_verdicts.csv).\n"
 "Exit status: 0 written, 2 a sweep's table is missing, unreadable or\n"
-"a header only (no run finished).\n";
+"a header only (no run finished), or the dt table is malformed (a\n"
+"missing column, a field not a number, two cap values): nothing written.\n";
 
 /* afv paper --claims-from DIR. */
-static int claims_from(const char *dir)
+static int claims_from(const char *dir, const dt_table *dt)
 {
-  char path[PATH_LEN], summary[128];
+  char path[PATH_LEN], summary[256];
   plane P;
   claim_source S;
   int ok;
@@ -926,6 +935,7 @@ static int claims_from(const char *dir)
   S.P = &P;
   S.have_runs = 0;
   S.previous = path;
+  S.dt = dt;
   ok = claims_table(&S, path, summary, sizeof summary);
   if (ok) printf("afv paper: %s (%s)\n", path, summary);
   else fprintf(stderr, "afv paper: could not write %s\n", path);
@@ -934,9 +944,9 @@ static int claims_from(const char *dir)
 }
 
 /* afv paper OUT: figures, claims and tables from the sweeps in OUT. */
-static int paper_from_sweeps(const char *out)
+static int paper_from_sweeps(const char *out, const dt_table *dt)
 {
-  char path[PATH_LEN], summary[128];
+  char path[PATH_LEN], summary[256];
   plane P;
   fss F;
   claim_source S;
@@ -955,6 +965,7 @@ static int paper_from_sweeps(const char *out)
   S.P = &P;
   S.have_runs = 1;
   S.previous = NULL;
+  S.dt = dt;
   snprintf(path, sizeof path, "%s/claims.csv", out);
   ok = cluster_figures(out, &P) && fluctuation_figures(out, &P)
        && confluency_figures(out, &P) && dynamics_figures(out, &P)
@@ -970,23 +981,60 @@ static int paper_from_sweeps(const char *out)
   return ok ? 0 : EXIT_BAD_INPUT;
 }
 
+/* afv paper --dt-verdicts FILE OUTFILE. */
+static int dt_verdicts(const char *table, const char *out)
+{
+  dt_table T;
+  int ok;
+  if (!dt_table_read(table, &T)) return EXIT_BAD_INPUT;
+  ok = dt_verdicts_write(&T, out);
+  if (ok) printf("afv paper: %s\n", out);
+  else fprintf(stderr, "afv paper: could not write %s\n", out);
+  dt_table_free(&T);
+  return ok ? 0 : EXIT_BAD_INPUT;
+}
+
+/* The arguments: OUT or --claims-from DIR, then --dt-table FILE or not. */
+static int paper_run(const char *claims_dir, const char *out,
+                     const char *dt_path)
+{
+  dt_table T;
+  int st;
+  const char *dir = claims_dir ? claims_dir : out;
+  if (strlen(dir) > RUN_PATH_MAX - 64)
+    return bad_input(claims_dir ? "paper: --claims-from DIR too long"
+                                : "paper: OUT too long");
+  if (dt_path && strlen(dt_path) >= PATH_LEN)
+    return bad_input("paper: --dt-table FILE too long");
+  if (dt_path && !dt_table_read(dt_path, &T)) return EXIT_BAD_INPUT;
+  st = claims_dir ? claims_from(claims_dir, dt_path ? &T : NULL)
+                  : paper_from_sweeps(out, dt_path ? &T : NULL);
+  if (dt_path) dt_table_free(&T);
+  return st;
+}
+
 int cmd_paper(int argc, char **argv)
 {
+  const char *dt_path = NULL;
   if (argc == 2 && (strcmp(argv[1], "--help") == 0
                     || strcmp(argv[1], "-h") == 0)) {
     fputs(paper_usage, stdout);
     return 0;
   }
-  if (argc == 3 && strcmp(argv[1], "--claims-from") == 0) {
-    if (strlen(argv[2]) > RUN_PATH_MAX - 64)
-      return bad_input("paper: --claims-from DIR too long");
-    return claims_from(argv[2]);
+  if (argc == 4 && strcmp(argv[1], "--dt-verdicts") == 0) {
+    if (strlen(argv[2]) >= PATH_LEN || strlen(argv[3]) > RUN_PATH_MAX)
+      return bad_input("paper: --dt-verdicts FILE OUTFILE too long");
+    return dt_verdicts(argv[2], argv[3]);
   }
+  if (argc >= 4 && strcmp(argv[argc - 2], "--dt-table") == 0) {
+    dt_path = argv[argc - 1];
+    argc -= 2;
+  }
+  if (argc == 3 && strcmp(argv[1], "--claims-from") == 0)
+    return paper_run(argv[2], NULL, dt_path);
   if (argc != 2 || argv[1][0] == '-') {
     fputs(paper_usage, stderr);
     return EXIT_BAD_INPUT;
   }
-  if (strlen(argv[1]) > RUN_PATH_MAX - 64)
-    return bad_input("paper: OUT too long");
-  return paper_from_sweeps(argv[1]);
+  return paper_run(NULL, argv[1], dt_path);
 }

@@ -35,6 +35,7 @@ typedef struct csv {
   int ncol, nrow;
   char (*name)[CELL_MAX];   /* ncol column names */
   char (*cell)[CELL_MAX];   /* nrow x ncol fields */
+  int *line;                /* nrow: each row's line in the file (from 1) */
 } csv;
 
 void csv_free(csv *t);
@@ -104,6 +105,67 @@ void read_integration(const plane *P);
 ** is marked so. */
 extern int paper_smoke;
 
+/* ---- the dt study (dt_study.c) ------------------------------------------ */
+/* tools/model_table.sh's dt_table.csv: one row per state point (P0, v0)
+** and dt, n_seeds, each observable's NAME_mean and NAME_sem.  The rule
+** that reads it is dt_study.c's header. */
+#define DT_STEPS 3           /* the dt of the study, coarsest first */
+#define DT_KEYS 5            /* P0, v0, dt, cap, n_seeds */
+#define DT_OBS_MAX 16        /* observables (NAME_mean, NAME_sem) */
+#define DT_MAX_POINTS 256    /* distinct (P0, v0) written to dt_verdicts */
+extern const double dt_steps[DT_STEPS];      /* 0.01, 0.005, 0.0025 */
+
+typedef struct dt_table {
+  csv t;
+  char path[PATH_LEN];         /* for the messages */
+  int key[DT_KEYS];            /* columns of P0, v0, dt, cap, n_seeds */
+  int obs[2 * DT_OBS_MAX];     /* columns of each NAME_mean, NAME_sem */
+  double cap;                  /* every row's (the table holds one model) */
+} dt_table;
+
+/* One observable at one state point, at each dt of dt_steps. */
+typedef struct dt_series {
+  double p0, v0;
+  double mean[DT_STEPS], sem[DT_STEPS];  /* NaN where absent */
+  int seeds[DT_STEPS];                   /* 0: no row at that dt */
+} dt_series;
+
+typedef enum {
+  DT_MODEL, DT_OF_DT, DT_NOT_CONVERGED, DT_MISSING, DT_NOT_MEASURED, DT_NONE
+} dt_verdict;
+/* "property of the model", "property of dt = 0.01", "not converged",
+** "missing", "not measured", "none" */
+const char *dt_verdict_name(dt_verdict v);
+
+/* Reads and checks PATH: every column, every field a number, one cap, one
+** row per (P0, v0, dt); else 0 and one line naming the file, the line and
+** the key. */
+int dt_table_read(const char *path, dt_table *T);
+void dt_table_free(dt_table *T);
+/* Observable NAME (e.g. "msd_beta") at (p0, v0); 0 if no row is there. */
+int dt_series_at(const dt_table *T, double p0, double v0, const char *name,
+                 dt_series *s);
+/* Whether the conclusion at dt 0.01 is the one at 0.0025: 1 yes, 0 no, -1
+** a number it needs is missing.  how: what the conclusion is. */
+typedef int (*dt_same_fn)(const dt_series *s, const void *how);
+int dt_same_side(const dt_series *s, const void *level);  /* a double */
+int dt_same_value(const dt_series *s, const void *unused);
+/* The seed means at dt index a and b agree within 2 sqrt(sem^2 + sem^2). */
+int dt_agree(const dt_series *s, int a, int b);
+/* The rule (dt_study.c's header); never DT_NOT_MEASURED or DT_NONE. */
+dt_verdict dt_rule(const dt_series *s, dt_same_fn same, const void *how);
+/* The worse of two state points' verdicts for one claim. */
+dt_verdict dt_worse(dt_verdict a, dt_verdict b);
+/* The distinct (P0, v0) of the table (at most max), sorted by P0 then
+** v0; their number. */
+int dt_state_points(const dt_table *T, double (*pt)[2], int max);
+/* "m +- e | m +- e | m (1 seed)" at dt 0.01 | 0.005 | 0.0025. */
+void dt_series_text(const dt_series *s, char *buf, size_t len);
+/* dt_verdicts.csv: per observable and state point, the finest two dt
+** compared, dt 0.01 against 0.0025, and dt_rule's verdict on the value
+** and on the side of the observable's threshold (where it has one). */
+int dt_verdicts_write(const dt_table *T, const char *path);
+
 /* ---- the claims table (claims.c) ---------------------------------------- */
 /* Where the claims' numbers come from: the plane, and where the runs are
 ** gone (afv paper --claims-from) the earlier claims.csv for the claims a
@@ -112,6 +174,7 @@ typedef struct claim_source {
   const plane *P;
   int have_runs;               /* 1: P->dir's runs are read */
   const char *previous;        /* an earlier claims.csv's path, or NULL */
+  const dt_table *dt;          /* the dt study (--dt-table), or NULL */
 } claim_source;
 
 /* Judges every claim of the paper (the rule table of claims.c) and writes

@@ -21,6 +21,7 @@ void csv_free(csv *t)
 {
   free(t->name);
   free(t->cell);
+  free(t->line);
   memset(t, 0, sizeof *t);
 }
 
@@ -50,6 +51,7 @@ int csv_read(const char *path, csv *t)
 {
   char line[8192];
   FILE *fp = fopen(path, "r");
+  int lineno = 1;
   memset(t, 0, sizeof *t);
   if (!fp) {
     fprintf(stderr, "afv paper: %s: %s\n", path, strerror(errno));
@@ -64,7 +66,12 @@ int csv_read(const char *path, csv *t)
   split_fields(line, t->name, t->ncol);
   while (fgets(line, sizeof line, fp)) {
     void *grown;
+    lineno++;
     if (line[0] == '#' || line[0] == '\n') continue;
+    grown = realloc(t->line, (size_t)(t->nrow + 1) * sizeof *t->line);
+    if (!grown) goto bad;
+    t->line = grown;
+    t->line[t->nrow] = lineno;
     grown = realloc(t->cell, (size_t)(t->nrow + 1) * t->ncol * sizeof *t->cell);
     if (!grown) goto bad;
     t->cell = grown;
@@ -73,7 +80,7 @@ int csv_read(const char *path, csv *t)
     if (split_fields(line, t->cell + (size_t)t->nrow * t->ncol, t->ncol)
         != t->ncol) {
       fprintf(stderr, "afv paper: %s: line %d has not %d fields\n", path,
-              t->nrow + 2, t->ncol);
+              lineno, t->ncol);
       fclose(fp);
       csv_free(t);
       return 0;

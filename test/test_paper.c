@@ -245,18 +245,22 @@ static void paper_partial_grid_not_measured(void)
   snprintf(path, sizeof path, "%s/claims.csv", dir);
   if ((fp = fopen(path, "r"))) {
     while (fgets(line, sizeof line, fp)) {
-      /* each note says how the claim moves with dt (the convergence
-      ** study): N_GC/N's claims depend on it, the mean field does not */
+      /* each note ends with the claim's dependence on dt: without a dt
+      ** study not measured (N_GC/N's claims point to the short study),
+      ** the mean field none */
       if (strncmp(line, "v0_star,", 8) == 0) {
-        CHECK(strstr(line, "Depends on dt"), "v0_star's note does not say "
-              "that it depends on dt: %.200s", line);
+        CHECK(strstr(line, ",not measured,\"") && strstr(line, " dt: not "
+              "measured (no dt study given") && strstr(line, "convergence.md"),
+              "v0_star's note does not say that dt was not measured: %.200s",
+              line);
         CHECK(strstr(line, "[afv 9.8.7, integrator euler, dt 0.01,"),
               "v0_star's note does not name the grid runs' afv and dt: "
               "%.300s", line);
       }
       if (strncmp(line, "meanfield_P0_star,", 18) == 0)
-        CHECK(!strstr(line, "Depends on dt") && !strstr(line, "with dt"),
-              "the mean field's note gives it a dt dependence: %.200s", line);
+        CHECK(strstr(line, ",none,\"") && strstr(line, " dt: none (the mean "
+              "field has no dynamics)."), "the mean field's note gives it a "
+              "dt dependence: %.200s", line);
       if (strncmp(line, "msd_beta_P0_4_v0_0.4,", 21) == 0) {
         /* claim,paper,afv,afv_err,agrees: afv is NaN ("nan" or "-nan") */
         const char *afv = strchr(line + 21, ',');
@@ -445,6 +449,204 @@ static void claims_from_carries_over(void)
   test_sh("rm -rf %s", dir);
 }
 
+/* ---- the claims against dt (afv paper --dt-table) ------------------------ */
+/* A made-up dt_table.csv (tools/model_table.sh's columns) whose verdicts
+** are known, each at the state the claim maps to (claims.c's header):
+**   (4, 0.4)    msd_beta 0.30 | 0.10 | 0.11 +- 0.01, 0.004, 0.004: the
+**               finest two agree (0.01 <= 2 sqrt(2) 0.004 = 0.0113, not
+**               within sqrt(2) 0.004), caged at every dt: the model's;
+**               0.01 against 0.005 would not agree;
+**   (7.2, 0.4)  0.9 | 0.55 | 0.45 +- 0.05: agree, fluid at 0.01 and 0.005,
+**               caged at 0.0025: property of dt = 0.01;
+**   (8.8, 0.4)  1.2 | 1.0 | 0.6 +- 0.02, 0.01, 0.01: fluid throughout, the
+**               finest two apart: not converged;
+**   (8, 0.4)    absent: not measured;
+**   (4, 1.85)   csd -1.3 | -1.48 | -1.5 +- 0.05: yes against -1.25 at 0.01,
+**               no at 0.0025: property of dt = 0.01; (8, 1.85) -1.7 | -1.72
+**               | -1.74: yes throughout: the model's;
+**   dispersal   N_GC/N 0.9 +- 0.01 at every dt, but at (4, 1.85) 0.61 |
+**               0.77 | 1.00 (the short study's: property of dt = 0.01) and
+**               at (8, 2.6) one seed at 0.0025 (missing): the N_GC/N
+**               claims missing, the worst.
+** DT_CURVES_MOVE: every dispersal state two seeds: the N_GC/N claims
+** property of dt = 0.01; and (4, 0.4) with one seed at 0.0025:
+** msd_beta_P0_4 missing. */
+enum { DT_MADE_UP, DT_CURVES_MOVE, DT_NO_COLUMN, DT_NOT_NUMBER, DT_TWO_CAPS };
+
+static void dt_row(FILE *fp, double p0, double v0, int i, int seeds,
+                   double ngc, double ngc_sem, double beta, double beta_sem,
+                   double csd, const char *cap)
+{
+  static const double dts[3] = {0.01, 0.005, 0.0025};
+  fprintf(fp, "%g,%g,%g,%s,400,%d,%g,", p0, v0, dts[i], cap, seeds, ngc);
+  if (seeds > 1) fprintf(fp, "%g", ngc_sem);
+  fprintf(fp, ",1,%s,0.9,%s,1e-06,%s,%g,", seeds > 1 ? "0" : "",
+          seeds > 1 ? "0.001" : "", seeds > 1 ? "1e-08" : "", beta);
+  if (seeds > 1) fprintf(fp, "%g", beta_sem);
+  fprintf(fp, ",0.5,%s,1e-3,%s,%g,%s\n", seeds > 1 ? "0.01" : "",
+          seeds > 1 ? "1e-4" : "", csd, seeds > 1 ? "0.05" : "");
+}
+
+static void made_up_dt_table(const char *dir, int mutation)
+{
+  static const double glass[3] = {4, 7.2, 8.8};
+  static const double beta[3][3] = {{0.30, 0.10, 0.11}, {0.9, 0.55, 0.45},
+                                    {1.2, 1.0, 0.6}};
+  static const double beta_sem[3][3] = {{0.01, 0.004, 0.004},
+                                        {0.05, 0.05, 0.05},
+                                        {0.02, 0.01, 0.01}};
+  static const double moved[3] = {0.61, 0.77, 1.0}, csd4[3] = {-1.3, -1.48,
+                                  -1.5}, csd8[3] = {-1.7, -1.72, -1.74};
+  char path[256];
+  FILE *fp;
+  int g, i, p, v;
+  snprintf(path, sizeof path, "%s/dt_table.csv", dir);
+  if (!(fp = fopen(path, "w"))) return;
+  fprintf(fp, "P0,v0,dt,cap,N,n_seeds,ngc_frac_mean_mean,ngc_frac_mean_sem,"
+          "n_clusters_mean_mean,n_clusters_mean_sem,omega_mean_mean,"
+          "omega_mean_sem,D_eff_mean,D_eff_sem,msd_beta_mean,%s,"
+          "beta_long_mean,beta_long_sem,t1_rate_mean,t1_rate_sem,"
+          "csd_exponent_mean,csd_exponent_sem\n",
+          mutation == DT_NO_COLUMN ? "msd_beta_se" : "msd_beta_sem");
+  for (g = 0; g < 3; g++)
+    for (i = 0; i < 3; i++)
+      dt_row(fp, glass[g], 0.4, i, mutation == DT_CURVES_MOVE && g == 0
+             && i == 2 ? 1 : 2, 1, 0, beta[g][i], beta_sem[g][i], NAN,
+             mutation == DT_TWO_CAPS && g == 2 ? "0.45" : "0");
+  for (p = 4; p <= 8; p += 4)
+    for (v = 0; v < 3; v++)
+      for (i = 0; i < 3; i++) {
+        double v0 = v == 0 ? 1.4 : v == 1 ? 1.85 : 2.6;
+        int one = mutation != DT_CURVES_MOVE && p == 8 && v == 2 && i == 2;
+        double ngc = p == 4 && v == 1 ? moved[i] : 0.9;
+        dt_row(fp, p, v0, i, one ? 1 : 2, ngc, 0.01, 0.9, 0.01,
+               v != 1 ? NAN : p == 4 ? csd4[i] : csd8[i], "0");
+      }
+  if (mutation == DT_NOT_NUMBER)
+    fprintf(fp, "4,2.6,0.02,0,400,2,0.5,0.01,1,0,0.9,0.001,1e-06,1e-08,"
+            "0.9,0.01,0.5,0.01,1e-3,1e-4,abc,0.05\n");
+  fclose(fp);
+}
+
+/* The dt_verdict field of claim `name` in dir/claims.csv into out. */
+static void claim_dt_verdict(const char *dir, const char *name, char *out,
+                             size_t len)
+{
+  char v[64], note[4096];
+  const char *f;
+  claim_verdict(dir, name, v, sizeof v, note, sizeof note);
+  f = strchr(note, ',');
+  snprintf(out, len, "%.*s", f ? (int)strcspn(f + 1, ",") : 0, f ? f + 1 : "");
+}
+
+#define EXPECT_DT(dir, name, want) do { \
+    char d_[64], v_[64], n_[4096]; \
+    claim_dt_verdict(dir, name, d_, sizeof d_); \
+    claim_verdict(dir, name, v_, sizeof v_, n_, sizeof n_); \
+    CHECK(strcmp(d_, want) == 0, "%s: dt_verdict '%s', want '%s' (%.500s)", \
+          name, d_, want, strstr(n_, " dt:") ? strstr(n_, " dt:") : n_); \
+  } while (0)
+
+/* The made-up grid of claim_rules_on_made_up_tables, an earlier claims.csv
+** that says how the runs were integrated, and dt table `mutation`; the
+** exit status of afv paper --claims-from DIR --dt-table. */
+static int made_up_dt_claims(const char *dir, int mutation,
+                             const char *integration)
+{
+  char prev[256];
+  test_sh("rm -rf %s && mkdir -p %s", dir, dir);
+  made_up_table(dir, TABLE_PAPER);
+  made_up_dt_table(dir, mutation);
+  snprintf(prev, sizeof prev, "claim,paper,afv,afv_err,agrees,note\n"
+           "v0_star,1.85,1,1,yes,\"old [afv 9.9.9, %s]\"\n", integration);
+  put_file(dir, "claims.csv", prev);
+  return test_sh("./afv paper --claims-from %s --dt-table %s/dt_table.csv "
+                 "> /dev/null 2> %s/err", dir, dir, dir);
+}
+
+static void claims_against_dt(void)
+{
+  static const char euler[] = "integrator euler, dt 0.01, exact force";
+  char dir[128];
+  if (access("./afv", X_OK) != 0) { SKIP("./afv not built"); return; }
+  snprintf(dir, sizeof dir, "/tmp/afv_claims_dt.%ld", (long)getpid());
+  CHECK(made_up_dt_claims(dir, DT_MADE_UP, euler) == 0, "--dt-table failed");
+  EXPECT_DT(dir, "msd_beta_P0_4_v0_0.4", "property of the model");
+  EXPECT_DT(dir, "msd_beta_P0_7.2_v0_0.4", "property of dt = 0.01");
+  EXPECT_DT(dir, "msd_beta_P0_8.8_v0_0.4", "not converged");
+  EXPECT_DT(dir, "msd_beta_P0_8_v0_0.4", "not measured");
+  EXPECT_DT(dir, "glassy_P0_4_v0_0.4_D_eff", "property of the model");
+  EXPECT_DT(dir, "csd_exponent_P0_4", "property of dt = 0.01");
+  EXPECT_DT(dir, "csd_exponent_P0_8", "property of the model");
+  EXPECT_DT(dir, "v0_star", "missing");
+  EXPECT_DT(dir, "vs_c", "missing");
+  EXPECT_DT(dir, "tau_ngc_infinite_below_P0", "missing");
+  EXPECT_DT(dir, "state_P0_4_v0_0.1_cluster", "not measured");
+  EXPECT_DT(dir, "P0_omega_half_low_v0", "not measured");
+  EXPECT_DT(dir, "meanfield_P0_star", "none");
+  CHECK(made_up_dt_claims(dir, DT_CURVES_MOVE, euler) == 0, "curves move");
+  EXPECT_DT(dir, "v0_star", "property of dt = 0.01");
+  EXPECT_DT(dir, "collapse_alpha", "property of dt = 0.01");
+  EXPECT_DT(dir, "msd_beta_P0_4_v0_0.4", "missing");
+  /* runs integrated otherwise than the study: no verdict borrowed */
+  CHECK(made_up_dt_claims(dir, DT_MADE_UP, "integrator euler, dt 0.01, cap "
+                          "0.45") == 0, "capped runs");
+  EXPECT_DT(dir, "msd_beta_P0_4_v0_0.4", "not measured");
+  /* no dt table: not measured, the mean field none */
+  test_sh("./afv paper --claims-from %s > /dev/null", dir);
+  EXPECT_DT(dir, "msd_beta_P0_4_v0_0.4", "not measured");
+  EXPECT_DT(dir, "meanfield_P0_star", "none");
+  test_sh("rm -rf %s", dir);
+}
+
+/* --dt-verdicts applies the same rule per state point and observable. */
+static void dt_verdicts_table(void)
+{
+  char dir[128];
+  if (access("./afv", X_OK) != 0) { SKIP("./afv not built"); return; }
+  snprintf(dir, sizeof dir, "/tmp/afv_dt_verdicts.%ld", (long)getpid());
+  test_sh("rm -rf %s && mkdir -p %s", dir, dir);
+  made_up_dt_table(dir, DT_MADE_UP);
+  CHECK(test_sh("./afv paper --dt-verdicts %s/dt_table.csv %s/v.csv "
+                "> /dev/null", dir, dir) == 0, "--dt-verdicts failed");
+  CHECK(test_sh("grep -qx '7.2,0.4,msd_beta,0.9,0.55,0.45,yes,0.1,0.1414,no,"
+                "0.45,0.1414,0.5,property of dt = 0.01,property of dt = 0.01'"
+                " %s/v.csv", dir) == 0, "msd_beta at (7.2, 0.4)");
+  CHECK(test_sh("grep -qx '4,0.4,msd_beta,0.3,0.1,0.11,yes,0.01,0.01131,no,"
+                "0.19,0.02154,0.5,property of dt = 0.01,property of the model'"
+                " %s/v.csv", dir) == 0, "msd_beta at (4, 0.4)");
+  CHECK(test_sh("grep -qx '8,2.6,ngc_frac_mean,0.9,0.9,0.9,missing,,,missing,"
+                ",,0.99,missing,missing' %s/v.csv", dir) == 0,
+        "one seed: missing");
+  test_sh("rm -rf %s", dir);
+}
+
+/* A malformed dt table: one line naming the file, the line and the key,
+** exit status 2, claims.csv as it was. */
+static void dt_table_refused(void)
+{
+  static const struct { int mutation; const char *says; } bad[] = {
+    {DT_NO_COLUMN, "dt_table.csv line 1: msd_beta_sem: no such column"},
+    {DT_NOT_NUMBER, "dt_table.csv line 29: csd_exponent_mean: not a number"},
+    {DT_TWO_CAPS, "dt_table.csv line 8: cap: differs"}};
+  static const char euler[] = "integrator euler, dt 0.01, exact force";
+  char dir[128];
+  int k;
+  if (access("./afv", X_OK) != 0) { SKIP("./afv not built"); return; }
+  snprintf(dir, sizeof dir, "/tmp/afv_dt_bad.%ld", (long)getpid());
+  for (k = 0; k < 3; k++) {
+    CHECK(made_up_dt_claims(dir, bad[k].mutation, euler) == 2,
+          "bad dt table %d: exit status not 2", k);
+    CHECK(test_sh("test $(wc -l < %s/err) -eq 1 && grep -q '%s' %s/err", dir,
+                  bad[k].says, dir) == 0, "bad dt table %d: message not '%s'",
+          k, bad[k].says);
+    CHECK(test_sh("grep -q '^claim,paper,afv,afv_err,agrees,note$' "
+                  "%s/claims.csv", dir) == 0, "bad dt table %d: claims.csv "
+          "changed", k);
+  }
+  test_sh("rm -rf %s", dir);
+}
+
 /* tools/deff_estimators.sh on a made-up run: MSD_rel = 0.5 + 0.02 lag
 ** (a plateau offset, then diffusion), D_0 = 0.4^2 / 0.2 = 0.8, D_s lag 100:
 ** single 2.5 / 320, slope and fit 0.02 / 3.2 (the offset left out), the
@@ -506,5 +708,8 @@ void suite_paper(void)
   RUN(paper_partial_grid_not_measured);
   RUN(claim_rules_on_made_up_tables);
   RUN(claims_from_carries_over);
+  RUN(claims_against_dt);
+  RUN(dt_verdicts_table);
+  RUN(dt_table_refused);
   RUN(deff_estimators_side_by_side);
 }
