@@ -10,9 +10,11 @@
 #                   runs; sem empty with one seed)
 #   dt_verdicts.csv per state point and observable: dt 0.005 against
 #                   0.0025 (converged: |difference| <= 2 sqrt(sem1^2 +
-#                   sem2^2), the rule of convergence.md) and dt 0.01
-#                   against 0.0025 by the same rule; "missing" without
-#                   two seeds at both
+#                   sem2^2), the rule of convergence.md), dt 0.01 against
+#                   0.0025 by the same rule, and the verdict by value and
+#                   by the side of the observable's threshold: written by
+#                   afv paper --dt-verdicts (the claims table's rule,
+#                   cmd/dt_study.c), AFV the program (default ./afv)
 #   cap_table.csv   the same as dt_table.csv for the cap sweeps (cap column)
 #   fss_table.csv   the same for the finite-size sweeps (N column)
 #   progress.txt    how many runs of each sweep are in
@@ -26,6 +28,8 @@ set -e
 OUT=${1:?usage: tools/model_table.sh OUT DEST}
 DEST=${2:?usage: tools/model_table.sh OUT DEST}
 HERE=$(cd "$(dirname "$0")/.." && pwd)
+AFV=${AFV:-$HERE/afv}
+[ -x "$AFV" ] || { echo "tools/model_table.sh: no $AFV (make afv)" >&2; exit 2; }
 mkdir -p "$DEST"
 OBS="ngc_frac_mean n_clusters_mean omega_mean D_eff msd_beta beta_long t1_rate csd_exponent"
 
@@ -105,30 +109,10 @@ mv "$DEST/cap_table.csv.tmp" "$DEST/cap_table.csv"
 mean_table '^fss_' > "$DEST/fss_table.csv.tmp"
 mv "$DEST/fss_table.csv.tmp" "$DEST/fss_table.csv"
 
-# dt_verdicts.csv
-awk -F, '
-  NR == 1 { for (k = 7; k <= NF; k += 2) { nm = $k; sub(/_mean$/, "", nm); name[(k - 5) / 2] = nm }
-            nobs = (NF - 6) / 2; next }
-  { key = $1 "," $2; row[key, $3] = $0; keys[key] = 1 }
-  function cmp(a, b, o,   x, y, d, bound) {
-    split(a, x, ","); split(b, y, ",")
-    if (x[6] < 2 || y[6] < 2) return "missing,,,"
-    d = x[5 + 2 * o] - y[5 + 2 * o]; if (d < 0) d = -d
-    bound = 2 * sqrt(x[6 + 2 * o] ^ 2 + y[6 + 2 * o] ^ 2)
-    return sprintf("%s,%.4g,%.4g,%.4g", (d <= bound) ? "yes" : "no", y[5 + 2 * o], d, bound)
-  }
-  END {
-    print "P0,v0,observable,at_0.01,at_0.005,at_0.0025,converged_0.005_0.0025,diff_fine,bound_fine,same_at_0.01,diff_0.01,bound_0.01"
-    for (key in keys) for (o = 1; o <= nobs; o++) {
-      f = row[key, "0.0025"]; m = row[key, "0.005"]; c = row[key, "0.01"]
-      split(f, F, ","); split(m, M, ","); split(c, C, ",")
-      printf "%s,%s,%s,%s,%s", key, name[o], C[5 + 2 * o], M[5 + 2 * o], F[5 + 2 * o]
-      if (f == "" || m == "") printf ",missing,,"; else { r = cmp(f, m, o); split(r, R, ","); printf ",%s,%s,%s", R[1], R[3], R[4] }
-      if (f == "" || c == "") printf ",missing,,\n"; else { r = cmp(f, c, o); split(r, R, ","); printf ",%s,%s,%s\n", R[1], R[3], R[4] }
-    }
-  }' "$DEST/dt_table.csv" | { read -r head; echo "$head"; sort -t, -k3,3 -k1,1n -k2,2n; } \
-  > "$DEST/dt_verdicts.csv.tmp"
-mv "$DEST/dt_verdicts.csv.tmp" "$DEST/dt_verdicts.csv"
+# dt_verdicts.csv: the rule of the claims table, applied by the same code
+# (cmd/dt_study.c) to every state point and observable
+"$AFV" paper --dt-verdicts "$DEST/dt_table.csv" "$DEST/dt_verdicts.csv" \
+  > /dev/null
 # figures/: each observable against dt (tools/model_plot), the glass
 # states' observables at v0 0.4, the dispersal states' at the others
 PLOT=$HERE/tools/model_plot

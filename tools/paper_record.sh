@@ -9,6 +9,9 @@
 #                 KEY of its analysis/summary.txt (what collect tables)
 #   plateau.csv   tools/msd_plateau.sh OUT/grid (the relative MSD's plateau)
 #   progress.txt  how many runs of each sweep are in
+# Each claim is judged against dt from DT_TABLE (afv paper --dt-table;
+# default the committed dt study, doc/reproduction/model/dt_table.csv, the
+# paper's length as the record; DT_TABLE= leaves it out).
 # Trajectories and per-run files stay in OUT.  Safe while OUT's runners
 # are running (they never read what this writes); run it again as runs
 # finish.
@@ -17,6 +20,7 @@ OUT=${1:?usage: tools/paper_record.sh OUT DEST AFV}
 DEST=${2:?usage: tools/paper_record.sh OUT DEST AFV}
 AFV=${3:?usage: tools/paper_record.sh OUT DEST AFV}
 here=$(dirname "$0")
+DT_TABLE=${DT_TABLE-$here/../doc/reproduction/model/dt_table.csv}
 
 # collect: exit 1 means jobs are missing (a partial record), 2 an error
 for sweep in grid fss; do
@@ -24,7 +28,8 @@ for sweep in grid fss; do
     || st=$?
   [ $st -le 1 ] || { cat "$OUT/$sweep.collect.err" >&2; exit $st; }
 done
-"$AFV" paper "$OUT" 2> "$OUT/paper.err" || { cat "$OUT/paper.err" >&2; exit 2; }
+"$AFV" paper "$OUT" ${DT_TABLE:+--dt-table "$DT_TABLE"} 2> "$OUT/paper.err" \
+  || { cat "$OUT/paper.err" >&2; exit 2; }
 
 mkdir -p "$DEST/figures"
 rm -f "$DEST"/figures/*.svg
