@@ -47,6 +47,10 @@ static const struct {
   {"t1_rate", NAN},                  {"csd_exponent", NAN},
 };
 #define N_OBS ((int)(sizeof observables / sizeof observables[0]))
+typedef char obs_fit_dt_table[N_OBS <= DT_OBS_MAX ? 1 : -1];
+
+/* The columns of T->key, in find_columns' order. */
+enum { K_P0, K_V0, K_DT, K_CAP, K_SEEDS };
 
 static const char *const verdict_names[] = {
   "property of the model", "property of dt = 0.01", "not converged",
@@ -115,16 +119,16 @@ static int check_row(dt_table *T, int r)
   for (k = 0; k < 2 * N_OBS; k++)
     if (!cell_number(T, r, T->obs[k], k % 2, &x))
       return dt_bad(T, r, T->t.name[T->obs[k]], "not a number");
-  if (key[4] < 1 || key[4] != floor(key[4]))
+  if (key[K_SEEDS] < 1 || key[K_SEEDS] != floor(key[K_SEEDS]))
     return dt_bad(T, r, "n_seeds", "not a whole number of seeds");
-  if (r == 0) T->cap = key[3];
-  else if (!same_number(key[3], T->cap))
+  if (r == 0) T->cap = key[K_CAP];
+  else if (!same_number(key[K_CAP], T->cap))
     return dt_bad(T, r, "cap", "differs from the first row's: one dt table "
                   "holds one model");
   for (q = 0; q < r; q++)
-    if (same_number(csv_num(&T->t, q, T->key[0]), key[0])
-        && same_number(csv_num(&T->t, q, T->key[1]), key[1])
-        && same_number(csv_num(&T->t, q, T->key[2]), key[2]))
+    if (same_number(csv_num(&T->t, q, T->key[K_P0]), key[K_P0])
+        && same_number(csv_num(&T->t, q, T->key[K_V0]), key[K_V0])
+        && same_number(csv_num(&T->t, q, T->key[K_DT]), key[K_DT]))
       return dt_bad(T, r, "dt", "a second row for this P0, v0 and dt");
   return 1;
 }
@@ -164,13 +168,13 @@ int dt_series_at(const dt_table *T, double p0, double v0, const char *name,
     s->seeds[i] = 0;
   }
   for (r = 0; o >= 0 && r < T->t.nrow; r++) {
-    if (!same_number(csv_num(&T->t, r, T->key[0]), p0)
-        || !same_number(csv_num(&T->t, r, T->key[1]), v0))
+    if (!same_number(csv_num(&T->t, r, T->key[K_P0]), p0)
+        || !same_number(csv_num(&T->t, r, T->key[K_V0]), v0))
       continue;
     found = 1;
     for (i = 0; i < DT_STEPS; i++)
-      if (same_number(csv_num(&T->t, r, T->key[2]), dt_steps[i])) {
-        s->seeds[i] = (int)csv_num(&T->t, r, T->key[4]);
+      if (same_number(csv_num(&T->t, r, T->key[K_DT]), dt_steps[i])) {
+        s->seeds[i] = (int)csv_num(&T->t, r, T->key[K_SEEDS]);
         s->mean[i] = csv_num(&T->t, r, T->obs[2 * o]);
         s->sem[i] = *csv_str(&T->t, r, T->obs[2 * o + 1])   /* empty: */
                     ? csv_num(&T->t, r, T->obs[2 * o + 1]) : NAN; /* 1 seed */
@@ -283,7 +287,8 @@ int dt_state_points(const dt_table *T, double (*pt)[2], int max)
 {
   int r, k, n = 0;
   for (r = 0; r < T->t.nrow; r++) {
-    double p0 = csv_num(&T->t, r, T->key[0]), v0 = csv_num(&T->t, r, T->key[1]);
+    double p0 = csv_num(&T->t, r, T->key[K_P0]);
+    double v0 = csv_num(&T->t, r, T->key[K_V0]);
     for (k = 0; k < n; k++)
       if (same_number(pt[k][0], p0) && same_number(pt[k][1], v0)) break;
     if (k < n || n == max) continue;
