@@ -40,8 +40,11 @@
 **               six dispersal states (4 and 8 x 1.4, 1.85, 2.6), the
 **               conclusion its value (0.01 against 0.0025 by the same
 **               2-sigma rule, since the claims' numbers are built from
-**               those values); the worst state's verdict (missing if one
-**               is missing, then property of dt = 0.01, not converged);
+**               those values); the worst state's verdict (property of
+**               dt = 0.01 if one state is, then not converged, then
+**               missing: a state that moves with dt decides the claim
+**               whatever the missing ones would say, while "property of
+**               the model" needs every state);
 **   DTC_OFF     the Omega = 0.5 line at the grid's lowest v0: no state of
 **               the study (the note gives Omega at the study's lowest v0);
 **   DTC_NONE    the mean field: no dynamics, `none`.

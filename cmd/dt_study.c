@@ -226,11 +226,13 @@ dt_verdict dt_rule(const dt_series *s, dt_same_fn same, const void *how)
   return dt_agree(s, 1, 2) ? DT_MODEL : DT_NOT_CONVERGED;
 }
 
-/* The worse of two verdicts of one claim's state points: missing above
-** all, then property of dt = 0.01, not converged, property of the model. */
+/* The worse of two verdicts of one claim's state points: property of dt =
+** 0.01 above all (one state that moves with dt decides the claim, whatever
+** a missing state would say), then not converged, then missing (or not
+** measured), and property of the model only when every state is. */
 dt_verdict dt_worse(dt_verdict a, dt_verdict b)
 {
-  static const int rank[] = {0, 2, 1, 3, 3, 0};
+  static const int rank[] = {0, 3, 2, 1, 1, 0};
   return rank[b] > rank[a] ? b : a;
 }
 

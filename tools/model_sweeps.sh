@@ -74,8 +74,9 @@ sweep fss_6400 --N 6400 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at_dt 0.01)
 
 # The queue: one line "SWEEP ID" per job, in the order of use: the dt
 # table's glass states, both seeds (point by point: job k of dt_G1, dt_G2,
-# dt_G3 is the same state at the three dt); the cap grid's seed 1; the
-# dispersal states' seed 1; the cap grid's dt check; N 1600's seed 1; the cap
+# dt_G3 is the same state at the three dt); the dispersal states at v0
+# 1.85 (v0*, the CSD exponents), both seeds; the cap grid's seed 1, a
+# coarse diagram first; the other dispersal states' seed 1; the cap grid's dt check; N 1600's seed 1; the cap
 # sequence's seed 1; then the second seeds and N 6400.
 dt_set() { # G|D SEED: each state of that seed at the three dt, point by point
   for id in $(jobs_of "dt_${1}1" "$2"); do
@@ -96,12 +97,19 @@ coarse_first() {
     }
     END { for (k = 0; k < n; k++) print rest[k] }' "$OUT/$1/points.csv"
 }
+dt_at_v0() { # G|D V0: the states at that v0, both seeds, at the three dt
+  for id in $(awk -F, -v v0="$2" 'NR == 1 { for (c = 1; c <= NF; c++) col[$c] = c; next }
+                $col["v0"] == v0 { print $1 }' "$OUT/dt_${1}1/points.csv"); do
+    for i in 1 2 3; do echo "dt_$1$i $id"; done
+  done
+}
 jobs_of() { # SWEEP SEED: the ids of SWEEP's jobs with that seed
   awk -F, -v seed="$2" 'NR == 1 { for (c = 1; c <= NF; c++) if ($c == "seed") s = c; next }
                         $s == seed { print $1 }' "$OUT/$1/points.csv"
 }
 {
   for seed in 1 2; do dt_set G $seed; done
+  dt_at_v0 D 1.85
   coarse_first cap_grid 1
   dt_set D 1
   for id in $(jobs_of cap_dt 1); do echo "cap_dt $id"; done
@@ -112,7 +120,7 @@ jobs_of() { # SWEEP SEED: the ids of SWEEP's jobs with that seed
   for id in $(jobs_of fss_1600 2); do echo "fss_1600 $id"; done
   for id in $(jobs_of cap_seq 2); do echo "cap_seq $id"; done
   for id in $(jobs_of cap_grid 2); do echo "cap_grid $id"; done
-} > "$OUT/queue.txt.tmp"
+} | awk '!seen[$0]++' > "$OUT/queue.txt.tmp"   # each job once, at its first place
 mv "$OUT/queue.txt.tmp" "$OUT/queue.txt"
 [ "${QUEUE_ONLY:-0}" = 1 ] && exit 0
 
