@@ -739,11 +739,22 @@ static int same_judgement(const dt_series *s, const void *rule)
   return !strcmp(judged_at(rule, s, 0), judged_at(rule, s, DT_STEPS - 1));
 }
 
+/* "above", "below", or with ", unresolved" when the mean lies within 2
+** standard errors of the level (the label's side is then not known). */
+static const char *side_text(double mean, double sem, double level)
+{
+  int unresolved = isfinite(sem) && fabs(mean - level) <= 2 * sem;
+  if (mean >= level) return unresolved ? "above (unresolved: within 2 sem)"
+                                       : "above";
+  return unresolved ? "below (unresolved: within 2 sem)" : "below";
+}
+
 /* What the verdict rests on, for the note: the conclusions at dt 0.01
 ** and 0.0025, and the finest two's gap when they differ. */
 static void conclusion_text(const claim_rule *r, const dt_series *s,
                             dt_verdict v, char *buf, size_t len)
 {
+  const int f = DT_STEPS - 1;
   size_t used = 0;
   buf[0] = 0;
   if (v == DT_MISSING) {
@@ -753,14 +764,14 @@ static void conclusion_text(const claim_rule *r, const dt_series *s,
   }
   if (r->dt == DTC_LABEL)
     used = (size_t)snprintf(buf, len, "; %s %g at dt 0.01, %s at 0.0025",
-                            s->mean[0] >= r->level ? "above" : "below",
-                            r->level, s->mean[DT_STEPS - 1] >= r->level
-                            ? "above" : "below");
+                            side_text(s->mean[0], s->sem[0], r->level),
+                            r->level, side_text(s->mean[f], s->sem[f],
+                                                r->level));
   else
     used = (size_t)snprintf(buf, len, "; against the paper: %s at dt 0.01, "
                             "%s at 0.0025", judged_at(r, s, 0),
-                            judged_at(r, s, DT_STEPS - 1));
-  if (v == DT_NOT_CONVERGED && used < len)
+                            judged_at(r, s, f));
+  if (v != DT_MODEL && !dt_agree(s, 1, 2) && used < len)
     snprintf(buf + used, len - used, "; dt 0.005 and 0.0025 differ by more "
              "than 2 sqrt(sem^2 + sem^2)");
 }
