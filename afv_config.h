@@ -55,7 +55,9 @@
 ** may have a computed gap a hair below zero, which wraps around to a full
 ** turn; a gap within AFV_ANGLE_TOL (radians) of 2 pi between two distinct
 ** edges is taken as zero (a true gap that large would need every contact
-** edge of the cell shorter than about 1e-12 l).  Not pinned (0 passes). */
+** edge of the cell shorter than about 1e-12 l).  Pinned (0: 110 of 200000
+** junctions on the circle gave A = 2 pi l^2) by test_geometry.c
+** test_junction_on_the_circle. */
 #define AFV_ANGLE_TOL 1e-12
 
 /* clip_pairs and sliver_kept: two bisectors whose directions t_a, u_b have
@@ -73,13 +75,22 @@
 
 /* keep_parts: a part bounded by two junctions whose length came out
 ** negative by at most this times |tau0| + |tau1| is a sliver of length
-** zero lost to rounding, not an empty part.  Not pinned (0 passes). */
+** zero lost to rounding, not an empty part.  Pinned (-1: no sliver kept)
+** by test_geometry.c test_fuzz_cases.  0 (only a length of exactly 0
+** kept) cannot be pinned: in 400000 random cells between two centres
+** 1e-6..1e-16 l away nearly in a row (and two more), it changed the
+** forces of 1372 and no area, and only where the forces are rounding
+** on both sides (1e13..1e33 where the true ones are O(1); total force 0
+** to 1e-16 either way). */
 #define AFV_SLIVER_ROUNDING (8 * DBL_EPSILON)
 
 /* clip_pruned: a neighbour whose bisector lies farther than the cell's
 ** farthest vertex plus AFV_PRUNE_MARGIN l cannot cut the cell (the margin
 ** covers the rounding of the vertices, so pruning keeps the bits).
-** Not pinned (-1e-6 passes). */
+** Pinned (-1e-6: a corner cut 1e-7 l deep pruned away) by
+** test_geometry.c test_prune_keeps_a_corner_cut; 0 passes the suite (it
+** could differ only for a line within rounding of a vertex, whose edge,
+** ~1e-16 l, is no contact). */
 #define AFV_PRUNE_MARGIN 1e-9
 
 /* ---- 4. the neighbour search (neighbours.c) ------------------------------ */
@@ -153,8 +164,9 @@
 ** A step in which some cell moves farther than AFV_MAX_STEP_DISP l (the
 ** forces change on the scale l, so Euler's method no longer follows the
 ** continuous dynamics there) is a jump, counted (afv_sim_jumps), not
-** refused.  Not pinned (0.25 passes docs and dynamics: the help quotes
-** the macro itself). */
+** refused.  Pinned (0.25 and 1) by test_dynamics.c
+** test_jump_is_a_move_over_half_l (free cells moving 0.4 l and 0.6 l a
+** step). */
 #define AFV_MAX_STEP_DISP 0.5
 
 /* afv_sim_step refuses a step only if a force or position is not finite, or
@@ -187,8 +199,10 @@
 ** in one step (the forces change on the scale l); the search has stalled
 ** when its lowest energy did not drop by AFV_FIRE_STALL_DROP |E| over
 ** AFV_FIRE_STALL iterations (a minimum within rounding, or a kink).
-** Not pinned (AFV_FIRE_MAX_MOVE 10 and AFV_FIRE_STALL_DROP 0.5 pass
-** test_relax_fire.c). */
+** AFV_FIRE_MAX_MOVE is pinned (10: moves of 4.3 l) by test_relax_fire.c
+** fire_moves_capped, AFV_FIRE_STALL_DROP (0.5: a stop at iteration 2000,
+** 2e-5 of E above the state FIRE goes on to) by
+** fire_stalls_only_when_stuck. */
 #define AFV_FIRE_MAX_MOVE   0.1
 #define AFV_FIRE_STALL      1000
 #define AFV_FIRE_STALL_DROP 1e-8
@@ -196,25 +210,31 @@
 /* ---- 7. pictures (svg.c) --------------------------------------------------- */
 /* draw_arc: an arc within AFV_FULL_CIRCLE_TOL (radians) of 2 pi is a full
 ** circle (an isolated cell), drawn as two half arcs (one SVG arc command
-** cannot draw a whole circle).  Not pinned (-1 passes analysis and
-** pictures). */
+** cannot draw a whole circle).  Pinned (-1: the isolated cell not
+** drawn; 1: arcs of 2 pi - 0.2 drawn as whole circles) by
+** test_pictures.c draw_whole_and_nearly_whole_circles. */
 #define AFV_FULL_CIRCLE_TOL 1e-9
 
 /* A plotted range narrower than AFV_PLOT_SPAN_TOL (times |lo| + 1 on a
 ** line plot's axis; absolute for a phase map's colour scale) holds one
-** value, and is widened around it.  Not pinned (0 passes analysis and
-** pictures). */
+** value, and is widened around it.  Pinned (0: NaN axes; and the ticks
+** of a range of rounding, 0.1 + 0.2 against 0.3, loop forever) by
+** test_pictures.c plot_of_one_value (afv_svg_plot; afv_svg_map's colour
+** scale uses the same constant). */
 #define AFV_PLOT_SPAN_TOL 1e-12
 
 /* A tick within AFV_PLOT_TICK_TOL of a step from zero is labelled 0, and
 ** the ticks run to the axis end plus that much of a step (the rounding of
-** lo + k step).  Not pinned (0 passes analysis and pictures). */
+** lo + k step).  Pinned (0: the middle tick of -0.4 .. 0.4 labelled
+** -2.77556e-17) by test_pictures.c plot_ticks_symmetric. */
 #define AFV_PLOT_TICK_TOL 1e-9
 
 /* A drawn coordinate is printed to AFV_SVG_RESOLUTION l, or to
 ** AFV_SVG_RESOLUTION_PX pixels on a magnified picture, whichever is
 ** finer: far below what an eye or a renderer resolves, far above the
-** doubles' rounding.  Not pinned (AFV_SVG_RESOLUTION 1 passes pictures). */
+** doubles' rounding.  Pinned (AFV_SVG_RESOLUTION 1: 3 digits, a centre
+** 4.6e-4 l off, on a picture 100 pixels wide) by test_pictures.c
+** draw_coordinates_of_a_small_picture. */
 #define AFV_SVG_RESOLUTION    1e-4
 #define AFV_SVG_RESOLUTION_PX 0.01
 

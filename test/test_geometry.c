@@ -431,6 +431,39 @@ static void test_fuzz_cases(void)
   afv_geom_free(&g);
 }
 
+/* Three cells whose two bisectors meet on cell 0's circle (a junction at
+** angle theta, the lines' normals theta -+ alpha): the two edges end on
+** the circle at one point, up to rounding, and the arc between them is
+** ~0 and may come out a hair below 0, a full turn once wrapped.  gap_angle
+** takes a gap within AFV_ANGLE_TOL (1e-12) of 2 pi between two distinct
+** edges as 0.  With the tolerance 0, 110 of 200000 such cells had
+** A = 2 pi l^2 and P = 4 pi l (measured); here 20000 must all stay within
+** A <= pi l^2 and P <= 2 pi l (geom.c's invariant). */
+static void test_junction_on_the_circle(void)
+{
+  afv_geom g = {0};
+  afv_params p;
+  afv_box b = test_open_box();
+  double r[6] = {0, 0, 0, 0, 0, 0}, worst_A = 0, worst_P = 0;
+  int t, bad = -1;
+  afv_params_default(&p);
+  test_rng_seed(7);
+  for (t = 0; t < 20000; t++) {
+    double th = 2 * PI * test_rng_uniform(), al = 0.2 + 1.2 * test_rng_uniform();
+    r[2] = 2 * cos(al) * cos(th - al);
+    r[3] = 2 * cos(al) * sin(th - al);
+    r[4] = 2 * cos(al) * cos(th + al);
+    r[5] = 2 * cos(al) * sin(th + al);
+    CHECK(afv_geometry(&g, 3, r, &p, &b) == AFV_OK, "status");
+    if (g.area[0] > worst_A || g.perim[0] > worst_P) bad = t;
+    worst_A = fmax(worst_A, g.area[0]);
+    worst_P = fmax(worst_P, g.perim[0]);
+  }
+  CHECK(worst_A <= PI * (1 + 1e-12) && worst_P <= 2 * PI * (1 + 1e-12),
+        "largest A %.17g, P %.17g (case %d)", worst_A, worst_P, bad);
+  afv_geom_free(&g);
+}
+
 /* ---- pruning (dense input) --------------------------------------------- */
 /* A dense periodic tissue (k ~ 200 neighbours within 2l): the cells,
 ** clipped by their nearest neighbours only (geom.c, pruning), tile the
@@ -481,6 +514,39 @@ static void test_dense_tissue_tiles_the_box(void)
   CHECK_CLOSE(sum, 36.0, 1e-12, 0, "sum of the areas");
   CHECK(worst_edge <= 1e-12, "an edge differs seen from its two cells by "
         "%.3e", worst_edge);
+  afv_geom_free(&g);
+}
+
+/* A cell with 17 neighbours (so it is clipped by pruning): 16 on a ring
+** of radius 1 make it a regular 16-gon, vertices at R = 0.5 / cos(pi/16);
+** the 17th, towards a vertex, has its bisector 1e-7 l inside it and cuts
+** that corner off, an edge of 1e-6 l (2e-7 tan(7 pi/16)), a contact.  The
+** pruning takes in every line within the farthest vertex plus
+** AFV_PRUNE_MARGIN (1e-9 l, the vertices' rounding): with the margin
+** -1e-6 l it dropped this one (16 contacts). */
+static void test_prune_keeps_a_corner_cut(void)
+{
+  enum { N = 18 };
+  double r[2 * N], R = 0.5 / cos(PI / 16), corner = -1;
+  afv_geom g = {0};
+  afv_params p;
+  afv_box b = test_open_box();
+  int k, q;
+  afv_params_default(&p);
+  r[0] = r[1] = 0;
+  for (k = 0; k < 16; k++) {
+    r[2 * (k + 1)] = cos(2 * PI * k / 16);
+    r[2 * (k + 1) + 1] = sin(2 * PI * k / 16);
+  }
+  r[2 * 17] = 2 * (R - 1e-7) * cos(PI / 16);
+  r[2 * 17 + 1] = 2 * (R - 1e-7) * sin(PI / 16);
+  CHECK(afv_geometry(&g, N, r, &p, &b) == AFV_OK, "status");
+  for (q = g.piece_start[0]; q < g.piece_start[0] + g.n_pieces[0]; q++)
+    if (g.pieces[q].nbr == 17) corner = g.pieces[q].length;
+  CHECK(g.nbr_end[0] - g.nbr_start[0] > 16, "fixture: %d neighbours, the "
+        "pruning needs more than 16", g.nbr_end[0] - g.nbr_start[0]);
+  CHECK(g.contacts[0] == 17, "%d contacts, want 17", g.contacts[0]);
+  CHECK_CLOSE(corner, 2e-7 * tan(7 * PI / 16), 1e-6, 0, "the corner's edge");
   afv_geom_free(&g);
 }
 
@@ -805,7 +871,9 @@ void suite_geometry(void)
   RUN(test_near_pair_in_tissue);
   RUN(test_coincident_named);
   RUN(test_fuzz_cases);
+  RUN(test_junction_on_the_circle);
   RUN(test_dense_tissue_tiles_the_box);
+  RUN(test_prune_keeps_a_corner_cut);
   RUN(test_dense_input_linear);
   RUN(test_check_lattice_and_large_coordinates);
   RUN(test_check_report_scale);
