@@ -69,8 +69,14 @@
 
 /* clip_near_parallel: two nearly parallel neighbours whose displacements
 ** differ by AFV_NEAR_PARALLEL_GAP |D_a| or more have lines that meet 1e6 l
-** away or farther: the nearer line hides the other.  Not pinned (0.9
-** passes). */
+** away or farther: the nearer line hides the other.  Pinned (0: the
+** nearer line hid a close one that meets it in the disk) by
+** test_geometry.c test_near_parallel_lines_meet.  The other side (0.9,
+** 2, 1e6: the e-form for every nearly parallel pair) changed none of
+** 300000 random pairs 0.2..1.9 l and 1..1.9 times as far, 1e-6..1e-17
+** radians apart (measured): the e-form's signs held there, and
+** test_fuzz_cases passes at 1e6 too; a value that guards the rare case
+** of clip_near_parallel, which no fixture reaches. */
 #define AFV_NEAR_PARALLEL_GAP 1e-3
 
 /* keep_parts: a part bounded by two junctions whose length came out
@@ -96,7 +102,8 @@
 /* ---- 4. the neighbour search (neighbours.c) ------------------------------ */
 /* window_around and reanchor: a reach (the bins around a point) is widened
 ** by AFV_REACH_MARGIN l to cover the rounding of the positions it is
-** computed from.  Not pinned (-1e-6 passes core, geometry and perf). */
+** computed from.  Pinned (-1e-6: a pair re-anchored 5e-7 l inside the
+** reach (2 + SKIN) l missed) by test_perf.c test_mover_at_the_reach. */
 #define AFV_REACH_MARGIN 1e-9
 
 /* DENSE (geom.c, afv_reach_cuts): the dense search proposes a centre to
@@ -119,8 +126,10 @@
 /* ---- 5. rounding, the parameters' range, the finite-difference check ----- */
 /* The relative rounding of a sum of a few dozen rounded terms: a cell's
 ** area, perimeter or energy (afv.c, the finite-difference check's
-** uncertainty; geom.c, the asserted bounds of a shape).  Not pinned (0
-** passes core and geometry). */
+** uncertainty; geom.c, the asserted bounds of a shape).  Pinned (0: the
+** exact forces, checked with steps of 1e-10 l, resolved wrong by 3e-6
+** of the tension scale) by test_geometry.c
+** test_check_rounding_unresolved. */
 #define AFV_SUM_ROUNDING (64 * DBL_EPSILON)
 
 /* afv.c, check_component: a distance between two centres formed from

@@ -464,6 +464,36 @@ static void test_junction_on_the_circle(void)
   afv_geom_free(&g);
 }
 
+/* Two neighbours of cell 0 at d = 1 and 1 + 1e-9, 1e-7 radians apart:
+** their bisectors are nearly parallel (|t_a.u_b| = 1e-7, below
+** AFV_NEAR_PARALLEL) and, being close (|D_b - D_a| = 1e-7, below
+** AFV_NEAR_PARALLEL_GAP |D_a|), meet inside the disk, 0.005 l along
+** them: the cell's boundary runs along one and then the other, two
+** contacts of ~0.87 l.  With the gap 0 the nearer line hid the other
+** (one contact; 33845 of 300000 random such pairs changed). */
+static void test_near_parallel_lines_meet(void)
+{
+  afv_geom g = {0};
+  afv_params p;
+  afv_box b = test_open_box();
+  double r[6] = {0, 0, 0, 0, 0, 0};
+  int k, q;
+  afv_params_default(&p);
+  for (k = 0; k < 16; k++) {
+    double phi = 2 * PI * (k + 0.3) / 16, shortest = 1;
+    r[2] = cos(phi);
+    r[3] = sin(phi);
+    r[4] = (1 + 1e-9) * cos(phi + 1e-7);
+    r[5] = (1 + 1e-9) * sin(phi + 1e-7);
+    CHECK(afv_geometry(&g, 3, r, &p, &b) == AFV_OK, "status");
+    for (q = g.piece_start[0]; q < g.piece_start[0] + g.n_pieces[0]; q++)
+      if (g.pieces[q].nbr >= 0) shortest = fmin(shortest, g.pieces[q].length);
+    CHECK(g.contacts[0] == 2 && shortest > 0.8, "direction %d: %d contacts, "
+          "the shorter %.3g l, want 2 of ~0.87", k, g.contacts[0], shortest);
+  }
+  afv_geom_free(&g);
+}
+
 /* ---- pruning (dense input) --------------------------------------------- */
 /* A dense periodic tissue (k ~ 200 neighbours within 2l): the cells,
 ** clipped by their nearest neighbours only (geom.c, pruning), tile the
@@ -738,6 +768,33 @@ static void test_check_still_fails(void)
   afv_geom_free(&g);
 }
 
+/* The exact forces, checked with steps of 1e-10 l and 1e-12 l: there the
+** energies' rounding (AFV_SUM_ROUNDING of their size, ~1e-14 E) divided
+** by the step swamps the difference, and the check must call it
+** unresolved, never a wrong force (the criterion of afv check: resolved
+** errors above 1e-6 of the tension scale).  With the rounding left out
+** of the uncertainty (0), resolved errors of 3e-6 and 5e-4 of it. */
+static void test_check_rounding_unresolved(void)
+{
+  enum { N = 100 };
+  static const double steps[2] = {1e-10, 1e-12};
+  double r[2 * N];
+  afv_params p;
+  afv_box b = test_periodic_box(sqrt(N * PI / 0.6), sqrt(N * PI / 0.6));
+  afv_check_report rep;
+  int k;
+  afv_params_default(&p);
+  p.P0 = 5;
+  afv_init_random(N, 3, &b, 0, r);
+  for (k = 0; k < 2; k++) {
+    CHECK(afv_gradient_check(N, r, &p, &b, steps[k], &rep) == AFV_OK,
+          "status");
+    CHECK(rep.max_resolved <= 1e-6 * rep.tension_scale, "step %g: a "
+          "resolved error of %.3g of the tension scale", steps[k],
+          rep.max_resolved / rep.tension_scale);
+  }
+}
+
 /* A pair a few ulps (and up to 1e-11) short of detaching: the analytic
 ** force is right (test_pair_one_ulp_apart), and a step that is only ulps
 ** of the coordinates cannot resolve it, so the check is inconclusive or
@@ -872,6 +929,7 @@ void suite_geometry(void)
   RUN(test_coincident_named);
   RUN(test_fuzz_cases);
   RUN(test_junction_on_the_circle);
+  RUN(test_near_parallel_lines_meet);
   RUN(test_dense_tissue_tiles_the_box);
   RUN(test_prune_keeps_a_corner_cut);
   RUN(test_dense_input_linear);
@@ -881,5 +939,6 @@ void suite_geometry(void)
   RUN(test_check_near_kinks);
   RUN(test_check_still_fails);
   RUN(test_check_one_ulp_from_detaching);
+  RUN(test_check_rounding_unresolved);
   RUN(test_eval_refuses_overflow);
 }
