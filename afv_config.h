@@ -3,10 +3,11 @@
 ** every tolerance of the library, each with what it means geometrically
 ** and the test that pins it: the test that fails when the value is
 ** mutated as said (measured: test/run_tests of the suites named, -O1
-** -DNDEBUG).  "Not pinned" says the mutation passes the whole suite: a
-** fixture that needs the value is owed.  A numeric tolerance written
-** anywhere else in the library is a bug.  Included by afv.h, installed
-** beside it.
+** -DNDEBUG).  "Not pinned" says the mutation passes the whole suite,
+** with what was measured of its effect: a value that only guards
+** rounding no fixture reaches, or a fixture still owed.  A numeric
+** tolerance written anywhere else in the library is a bug.  Included by
+** afv.h, installed beside it.
 **
 ** Lengths are in units of l unless said.  API (kept across versions): the
 ** status codes, AFV_CONTACT_TOL, AFV_MAX_STEP_DISP, AFV_RUNAWAY_MOVE and
