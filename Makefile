@@ -108,7 +108,7 @@ print-lib-sources:
 CLI_SRC  = $(addprefix cmd/,main.c cli.c inspect.c run.c run_config.c \
            run_compute.c run_dir.c run_resume.c report.c sweep.c collect.c \
            collect_figures.c sweep_slurm.c \
-           paper.c paper_data.c claims.c dt_study.c) $(FITS_SRC)
+           paper.c paper_data.c claims.c dt_study.c figure.c) $(FITS_SRC)
 CLI_OBJ  = $(CLI_SRC:.c=.o)
 
 afv: $(CLI_OBJ) libafv.a .build-flags
@@ -118,8 +118,9 @@ afv: $(CLI_OBJ) libafv.a .build-flags
 	$(CC) $(CFLAGS) -c -o $@ $<
 
 $(CLI_OBJ): cmd/cli.h cmd/fits.h
-cmd/paper.o cmd/paper_data.o cmd/claims.o cmd/dt_study.o: cmd/paper.h
-cmd/collect.o cmd/collect_figures.o: cmd/collect.h
+cmd/paper.o cmd/paper_data.o cmd/claims.o cmd/dt_study.o: cmd/paper.h cmd/figure.h
+cmd/collect.o cmd/collect_figures.o: cmd/collect.h cmd/figure.h
+cmd/figure.o: cmd/figure.h
 cmd/sweep.o cmd/sweep_slurm.o: cmd/sweep.h
 $(filter cmd/run%,$(CLI_OBJ)): cmd/run.h
 
@@ -306,11 +307,11 @@ fuzz/build/%.o: %.c $(LIB_H) cmd/cli.h cmd/fits.h
 fuzz/build/libafv_fuzz.a: $(FUZZ_OBJ)
 	$(AR) rcs $@ $(FUZZ_OBJ)
 
-# (cmd/run*.c: the config and collect harnesses include them; cmd/collect*.c:
-# the collect harness)
+# (cmd/run*.c: the config and collect harnesses include them; cmd/collect*.c
+# and cmd/figure.c: the collect harness)
 fuzz/build/fuzz_%: fuzz/fuzz_%.c fuzz/build/libafv_fuzz.a $(wildcard fuzz/*.h) \
                    $(wildcard cmd/run*.c) cmd/run.h $(wildcard cmd/collect*.c) \
-                   cmd/collect.h cmd/cli.h \
+                   cmd/collect.h cmd/figure.c cmd/figure.h cmd/cli.h \
                    $(LIB_H)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -I. -o $@ $< \
 	  fuzz/build/libafv_fuzz.a -lm

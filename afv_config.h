@@ -3,10 +3,11 @@
 ** every tolerance of the library, each with what it means geometrically
 ** and the test that pins it: the test that fails when the value is
 ** mutated as said (measured: test/run_tests of the suites named, -O1
-** -DNDEBUG).  "Not pinned" says the mutation passes the whole suite: a
-** fixture that needs the value is owed.  A numeric tolerance written
-** anywhere else in the library is a bug.  Included by afv.h, installed
-** beside it.
+** -DNDEBUG).  "Not pinned" says the mutation passes the whole suite,
+** with what was measured of its effect: a value that only guards
+** rounding no fixture reaches, or a fixture still owed.  A numeric
+** tolerance written anywhere else in the library is a bug.  Included by
+** afv.h, installed beside it.
 **
 ** Lengths are in units of l unless said.  API (kept across versions): the
 ** status codes, AFV_CONTACT_TOL, AFV_MAX_STEP_DISP, AFV_RUNAWAY_MOVE and
@@ -55,7 +56,9 @@
 ** may have a computed gap a hair below zero, which wraps around to a full
 ** turn; a gap within AFV_ANGLE_TOL (radians) of 2 pi between two distinct
 ** edges is taken as zero (a true gap that large would need every contact
-** edge of the cell shorter than about 1e-12 l).  Not pinned (0 passes). */
+** edge of the cell shorter than about 1e-12 l).  Pinned (0: 110 of 200000
+** junctions on the circle gave A = 2 pi l^2) by test_geometry.c
+** test_junction_on_the_circle. */
 #define AFV_ANGLE_TOL 1e-12
 
 /* clip_pairs and sliver_kept: two bisectors whose directions t_a, u_b have
@@ -67,25 +70,41 @@
 
 /* clip_near_parallel: two nearly parallel neighbours whose displacements
 ** differ by AFV_NEAR_PARALLEL_GAP |D_a| or more have lines that meet 1e6 l
-** away or farther: the nearer line hides the other.  Not pinned (0.9
-** passes). */
+** away or farther: the nearer line hides the other.  Pinned (0: the
+** nearer line hid a close one that meets it in the disk) by
+** test_geometry.c test_near_parallel_lines_meet.  The other side (0.9,
+** 2, 1e6: the e-form for every nearly parallel pair) changed none of
+** 300000 random pairs 0.2..1.9 l and 1..1.9 times as far, 1e-6..1e-17
+** radians apart (measured): the e-form's signs held there, and
+** test_fuzz_cases passes at 1e6 too; a value that guards the rare case
+** of clip_near_parallel, which no fixture reaches. */
 #define AFV_NEAR_PARALLEL_GAP 1e-3
 
 /* keep_parts: a part bounded by two junctions whose length came out
 ** negative by at most this times |tau0| + |tau1| is a sliver of length
-** zero lost to rounding, not an empty part.  Not pinned (0 passes). */
+** zero lost to rounding, not an empty part.  Pinned (-1: no sliver kept)
+** by test_geometry.c test_fuzz_cases.  0 (only a length of exactly 0
+** kept) cannot be pinned: in 400000 random cells between two centres
+** 1e-6..1e-16 l away nearly in a row (and two more), it changed the
+** forces of 1372 and no area, and only where the forces are rounding
+** on both sides (1e13..1e33 where the true ones are O(1); total force 0
+** to 1e-16 either way). */
 #define AFV_SLIVER_ROUNDING (8 * DBL_EPSILON)
 
 /* clip_pruned: a neighbour whose bisector lies farther than the cell's
 ** farthest vertex plus AFV_PRUNE_MARGIN l cannot cut the cell (the margin
 ** covers the rounding of the vertices, so pruning keeps the bits).
-** Not pinned (-1e-6 passes). */
+** Pinned (-1e-6: a corner cut 1e-7 l deep pruned away) by
+** test_geometry.c test_prune_keeps_a_corner_cut; 0 passes the suite (it
+** could differ only for a line within rounding of a vertex, whose edge,
+** ~1e-16 l, is no contact). */
 #define AFV_PRUNE_MARGIN 1e-9
 
 /* ---- 4. the neighbour search (neighbours.c) ------------------------------ */
 /* window_around and reanchor: a reach (the bins around a point) is widened
 ** by AFV_REACH_MARGIN l to cover the rounding of the positions it is
-** computed from.  Not pinned (-1e-6 passes core, geometry and perf). */
+** computed from.  Pinned (-1e-6: a pair re-anchored 5e-7 l inside the
+** reach (2 + SKIN) l missed) by test_perf.c test_mover_at_the_reach. */
 #define AFV_REACH_MARGIN 1e-9
 
 /* DENSE (geom.c, afv_reach_cuts): the dense search proposes a centre to
@@ -108,8 +127,10 @@
 /* ---- 5. rounding, the parameters' range, the finite-difference check ----- */
 /* The relative rounding of a sum of a few dozen rounded terms: a cell's
 ** area, perimeter or energy (afv.c, the finite-difference check's
-** uncertainty; geom.c, the asserted bounds of a shape).  Not pinned (0
-** passes core and geometry). */
+** uncertainty; geom.c, the asserted bounds of a shape).  Pinned (0: the
+** exact forces, checked with steps of 1e-10 l, resolved wrong by 3e-6
+** of the tension scale) by test_geometry.c
+** test_check_rounding_unresolved. */
 #define AFV_SUM_ROUNDING (64 * DBL_EPSILON)
 
 /* afv.c, check_component: a distance between two centres formed from
@@ -153,8 +174,9 @@
 ** A step in which some cell moves farther than AFV_MAX_STEP_DISP l (the
 ** forces change on the scale l, so Euler's method no longer follows the
 ** continuous dynamics there) is a jump, counted (afv_sim_jumps), not
-** refused.  Not pinned (0.25 passes docs and dynamics: the help quotes
-** the macro itself). */
+** refused.  Pinned (0.25 and 1) by test_dynamics.c
+** test_jump_is_a_move_over_half_l (free cells moving 0.4 l and 0.6 l a
+** step). */
 #define AFV_MAX_STEP_DISP 0.5
 
 /* afv_sim_step refuses a step only if a force or position is not finite, or
@@ -175,8 +197,18 @@
 ** sum_i |e_i| since the previous window, and max_i |F_i| <=
 ** AFV_RELAX_KINK_FORCE.  AFV_RELAX_KINK_FORCE is pinned (0) by
 ** test_dynamics.c test_relax_stops_at_kink and test_protocol.c
-** test_protocol_reduced, test_run_relaxation_reports; the others were
-** not mutated. */
+** test_protocol_reduced, test_run_relaxation_reports; the others on
+** their strict side by test_relax_stops_at_kink (AFV_RELAX_KINK_DRIFT
+** 1e-9, AFV_RELAX_KINK_DROP 1e-12, AFV_RELAX_WINDOW 100000: no stop at
+** P0 6's kink) and AFV_RELAX_KINK_CHATTER on its loose side by
+** test_relax_energy_never_increases (100: P0 4's smooth convergence
+** stopped at 3000 steps as a kink, max |F| 1.5e-6).  Not pinned: DRIFT 1
+** (the chatter test binds first everywhere the suite relaxes), CHATTER 1
+** and 1e-4, DROP 1 and WINDOW 100 (these two stop P0 6 at 2000 and 600
+** steps instead of 3000, E 2e-4 and 3.6e-4 of E higher; but the flow at
+** that kink itself wanders 3.4e-4 of E below where it stops over 10000
+** more steps, so no energy tells an early stop from a late one:
+** measured). */
 #define AFV_RELAX_WINDOW      1000
 #define AFV_RELAX_KINK_DRIFT  1e-3   /* force units (KA l^3) */
 #define AFV_RELAX_KINK_CHATTER 0.1
@@ -187,8 +219,10 @@
 ** in one step (the forces change on the scale l); the search has stalled
 ** when its lowest energy did not drop by AFV_FIRE_STALL_DROP |E| over
 ** AFV_FIRE_STALL iterations (a minimum within rounding, or a kink).
-** Not pinned (AFV_FIRE_MAX_MOVE 10 and AFV_FIRE_STALL_DROP 0.5 pass
-** test_relax_fire.c). */
+** AFV_FIRE_MAX_MOVE is pinned (10: moves of 4.3 l) by test_relax_fire.c
+** fire_moves_capped, AFV_FIRE_STALL_DROP (0.5: a stop at iteration 2000,
+** 2e-5 of E above the state FIRE goes on to) by
+** fire_stalls_only_when_stuck. */
 #define AFV_FIRE_MAX_MOVE   0.1
 #define AFV_FIRE_STALL      1000
 #define AFV_FIRE_STALL_DROP 1e-8
@@ -196,25 +230,31 @@
 /* ---- 7. pictures (svg.c) --------------------------------------------------- */
 /* draw_arc: an arc within AFV_FULL_CIRCLE_TOL (radians) of 2 pi is a full
 ** circle (an isolated cell), drawn as two half arcs (one SVG arc command
-** cannot draw a whole circle).  Not pinned (-1 passes analysis and
-** pictures). */
+** cannot draw a whole circle).  Pinned (-1: the isolated cell not
+** drawn; 1: arcs of 2 pi - 0.2 drawn as whole circles) by
+** test_pictures.c draw_whole_and_nearly_whole_circles. */
 #define AFV_FULL_CIRCLE_TOL 1e-9
 
 /* A plotted range narrower than AFV_PLOT_SPAN_TOL (times |lo| + 1 on a
 ** line plot's axis; absolute for a phase map's colour scale) holds one
-** value, and is widened around it.  Not pinned (0 passes analysis and
-** pictures). */
+** value, and is widened around it.  Pinned (0: NaN axes; and the ticks
+** of a range of rounding, 0.1 + 0.2 against 0.3, loop forever) by
+** test_pictures.c plot_of_one_value (afv_svg_plot; afv_svg_map's colour
+** scale uses the same constant). */
 #define AFV_PLOT_SPAN_TOL 1e-12
 
 /* A tick within AFV_PLOT_TICK_TOL of a step from zero is labelled 0, and
 ** the ticks run to the axis end plus that much of a step (the rounding of
-** lo + k step).  Not pinned (0 passes analysis and pictures). */
+** lo + k step).  Pinned (0: the middle tick of -0.4 .. 0.4 labelled
+** -2.77556e-17) by test_pictures.c plot_ticks_symmetric. */
 #define AFV_PLOT_TICK_TOL 1e-9
 
 /* A drawn coordinate is printed to AFV_SVG_RESOLUTION l, or to
 ** AFV_SVG_RESOLUTION_PX pixels on a magnified picture, whichever is
 ** finer: far below what an eye or a renderer resolves, far above the
-** doubles' rounding.  Not pinned (AFV_SVG_RESOLUTION 1 passes pictures). */
+** doubles' rounding.  Pinned (AFV_SVG_RESOLUTION 1: 3 digits, a centre
+** 4.6e-4 l off, on a picture 100 pixels wide) by test_pictures.c
+** draw_coordinates_of_a_small_picture. */
 #define AFV_SVG_RESOLUTION    1e-4
 #define AFV_SVG_RESOLUTION_PX 0.01
 

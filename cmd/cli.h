@@ -12,6 +12,7 @@
 **   collect.c  collect: a sweep's table, missing jobs, fits and figures
 **   paper.c    paper: the paper's figures and claims table (make paper);
 **              paper_data.c its tables, claims.c its claim rules (paper.h)
+**   figure.c   what collect's and paper's figures share (figure.h)
 **   phase.c,   phase diagrams and the paper's fits (fits.h): afv collect's
 **   fits.c     and afv paper's, not the library's
 **

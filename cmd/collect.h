@@ -8,21 +8,13 @@
 #define AFV_COLLECT_H
 
 #include "cli.h"
+#include "figure.h"  /* the paper's thresholds, the figures' colours */
 
 #include <sys/stat.h>
 
 #define COLLECT_MAX_KEYS 32   /* swept keys in points.csv */
 #define FIELD_MAX 64          /* longest value in points.csv */
 #define LINE_MAX_POINTS 4096  /* longest line of points.csv */
-
-/* The paper's thresholds (Sec. Results): clustered if N_GC/N >= 0.99,
-** epithelial if Omega >= 0.5, glassy if D_eff < 1e-8. */
-#define CLUSTER_LEVEL 0.99
-#define CONFLUENCY_LEVEL 0.5
-#define DEFF_GLASS_LEVEL 1e-8
-/* Glassy if msd_beta < 0.5: halfway between a caged relative MSD (slope 0)
-** and a diffusive one (slope 1), at lags set as fractions of the window. */
-#define BETA_GLASS_LEVEL 0.5
 
 /* Order parameters of the table: column name and summary.txt key. */
 typedef struct order_param {

@@ -142,19 +142,6 @@ static int write_fits(const char *dir, int nb, const double *bp,
 }
 
 /* ---- figures ------------------------------------------------------------------ */
-static const char *palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728",
-                                "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
-                                "#bcbd22", "#17becf"};
-#define N_COLORS ((int)(sizeof palette / sizeof palette[0]))
-
-/* Opens DIR/figures/NAME for an atomic write. */
-static FILE *figure_open(const char *dir, const char *name, char *path,
-                         char *tmp)
-{
-  snprintf(path, RUN_PATH_MAX + 64, "%s/figures/%s", dir, name);
-  return afv_atomic_open(path, tmp, RUN_PATH_MAX + 128);
-}
-
 /* The curves of one figure: the points sharing all keys but v0, in order
 ** of v0; x = v0, y = mean, e = sem. */
 typedef struct curves {
@@ -248,7 +235,7 @@ static const char *axis_label(const char *key)
 static int plot_against(const char *dir, const sweep_table *T, int kv,
                       const curves *C, int k)
 {
-  char name[64], path[RUN_PATH_MAX + 64], tmp[RUN_PATH_MAX + 128];
+  char name[64], path[FIGURE_PATH_LEN], tmp[FIGURE_TMP_LEN];
   int n = T->npoints, c, i, ns = 0;
   double *x = malloc((size_t)n * 3 * sizeof(double)), *y = x ? x + n : NULL;
   double *bar = malloc((size_t)n * 4 * sizeof(double));
@@ -264,7 +251,7 @@ static int plot_against(const char *dir, const sweep_table *T, int kv,
     s[ns].y = y + C->start[c];
     s[ns].n = C->len[c];
     s[ns].label = C->label[c];
-    s[ns].color = palette[c % N_COLORS];
+    s[ns].color = figure_color(c);
     ns++;
     for (i = 0; i < C->len[c]; i++) {
       const point *p = &T->points[o[i]];
@@ -284,7 +271,7 @@ static int plot_against(const char *dir, const sweep_table *T, int kv,
       s[ns].x = b;
       s[ns].y = b + 2;
       s[ns].n = 2;
-      s[ns].color = palette[c % N_COLORS];
+      s[ns].color = figure_color(c);
       s[ns].points = AFV_PLOT_LINE;
       ns++;
     }
@@ -320,7 +307,7 @@ static int draw_map(const char *dir, const sweep_table *T, const plane *P,
                     int k, int logz, double level, const double *cx,
                     const double *cy, int cn)
 {
-  char name[64], path[RUN_PATH_MAX + 64], tmp[RUN_PATH_MAX + 128];
+  char name[64], path[FIGURE_PATH_LEN], tmp[FIGURE_TMP_LEN];
   char title[128];
   double *z = malloc((size_t)(P->nx * P->ny) * sizeof(double));
   afv_map m;
@@ -353,7 +340,7 @@ static int plot_boundary(const char *dir, int nb, const double *bp,
                          const double *bv, const double *cx, const double *cy,
                          int cn)
 {
-  char path[RUN_PATH_MAX + 64], tmp[RUN_PATH_MAX + 128];
+  char path[FIGURE_PATH_LEN], tmp[FIGURE_TMP_LEN];
   afv_plot pl;
   afv_plot_series s[2];
   FILE *fp;

@@ -28,19 +28,7 @@
 #include <sys/types.h>
 #include <unistd.h>
 
-static const char *palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728",
-                                "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
-                                "#bcbd22", "#17becf"};
-#define N_COLORS ((int)(sizeof palette / sizeof palette[0]))
-
 /* ---- figures ------------------------------------------------------------ */
-static FILE *figure_open(const char *out, const char *name, char *path,
-                         char *tmp)
-{
-  snprintf(path, PATH_LEN, "%s/figures/%s", out, name);
-  return afv_atomic_open(path, tmp, PATH_LEN + 16);
-}
-
 static int figure_close(FILE *fp, const char *tmp, const char *path)
 {
   /* a smoke figure gets a red line at its bottom left, before the "</svg>\n" that
@@ -79,7 +67,7 @@ static int plot_curves(const char *out, const char *name, const afv_plot *pl,
                        const curveset *cs, const afv_plot_series *extra,
                        int nextra)
 {
-  char path[PATH_LEN], tmp[PATH_LEN + 16];
+  char path[FIGURE_PATH_LEN], tmp[FIGURE_TMP_LEN];
   int total = cs->nc * cs->n, c, k, ns = 0, m, ok = 0;
   afv_plot_series *s = calloc((size_t)(cs->nc + total + nextra + 1),
                               sizeof *s);
@@ -99,7 +87,7 @@ static int plot_curves(const char *out, const char *name, const afv_plot *pl,
     s[ns].y = py + c * cs->n;
     s[ns].n = m;
     s[ns].label = cs->label ? cs->label[c] : NULL;
-    s[ns].color = palette[c % N_COLORS];
+    s[ns].color = figure_color(c);
     s[ns].points = m == 1;
     ns++;
   }
@@ -115,7 +103,7 @@ static int plot_curves(const char *out, const char *name, const afv_plot *pl,
       s[ns].x = b;
       s[ns].y = b + 2;
       s[ns].n = 2;
-      s[ns].color = palette[c % N_COLORS];
+      s[ns].color = figure_color(c);
       ns++;
     }
   for (k = 0; k < nextra; k++) s[ns++] = extra[k];
@@ -166,7 +154,7 @@ static int plane_map(const char *out, const plane *P, int q, const char *name,
                      const char *title, const char *zlabel, int logz,
                      double level, const double *cx, const double *cy, int cn)
 {
-  char path[PATH_LEN], tmp[PATH_LEN + 16];
+  char path[FIGURE_PATH_LEN], tmp[FIGURE_TMP_LEN];
   afv_map m;
   FILE *fp;
   memset(&m, 0, sizeof m);
@@ -188,7 +176,8 @@ static int plane_map(const char *out, const plane *P, int q, const char *name,
 static int snapshot(const char *out, const plane *P, double p0, double v0,
                     const char *name)
 {
-  char dir[PATH_LEN], src[PATH_LEN + 16], path[PATH_LEN], tmp[PATH_LEN + 16];
+  char dir[PATH_LEN], src[PATH_LEN + 16];
+  char path[FIGURE_PATH_LEN], tmp[FIGURE_TMP_LEN];
   char buf[65536];
   size_t got;
   FILE *in, *fp;
@@ -302,7 +291,7 @@ static int plot_csd(const char *out, const plane *P, double p0, double v0,
   pl.ylabel = "p(n)";
   pl.logx = pl.logy = 1;
   {
-    char path[PATH_LEN], tmp[PATH_LEN + 16];
+    char path[FIGURE_PATH_LEN], tmp[FIGURE_TMP_LEN];
     FILE *fp = figure_open(out, name, path, tmp);
     if (!fp) { free(csd); return 0; }
     afv_svg_plot(fp, &pl, s, fit->nbins >= 2 ? 2 : 1);
@@ -620,7 +609,7 @@ static int summary_figures(const char *out, const plane *P)
   afv_plot pl;
   afv_plot_series s[5];
   int nb[4], fitted, ns = 0, k, ok;
-  char path[PATH_LEN], tmp[PATH_LEN + 16];
+  char path[FIGURE_PATH_LEN], tmp[FIGURE_TMP_LEN];
   FILE *fp;
   static const char *lab[4] = {"dispersal: N_GC/N = 0.99",
                                "confluency: Omega = 0.5",

@@ -11,20 +11,13 @@
 #define AFV_PAPER_H
 
 #include "cli.h"
+#include "figure.h"  /* the paper's thresholds, the figures' colours */
 
 #include <stdio.h>
 
-/* The paper's thresholds (as afv collect): clustered if N_GC/N >= 0.99,
-** epithelial if Omega >= 0.5, glassy if D_eff < 1e-8; and collect's own
-** run-length-independent one, glassy if msd_beta < 0.5. */
-#define CLUSTER_LEVEL 0.99
-#define CONFLUENCY_LEVEL 0.5
-#define DEFF_GLASS_LEVEL 1e-8
-#define BETA_GLASS_LEVEL 0.5
-
 #define MAX_VALUES 64        /* distinct P0 (or v0, N) values of a sweep */
 #define CELL_MAX 64          /* longest field of a CSV file */
-#define PATH_LEN (RUN_PATH_MAX + 128)
+#define PATH_LEN FIGURE_PATH_LEN
 
 /* The giant cluster is left out of the power-law fit: sizes <= N/4 (at
 ** v0* the giant cluster holds about 0.7 N). */

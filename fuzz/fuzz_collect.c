@@ -17,6 +17,7 @@
 #include "../cmd/run_resume.c"
 #include "../cmd/collect.c"
 #include "../cmd/collect_figures.c"
+#include "../cmd/figure.c"
 #include "reader_fuzz.h"
 
 #include <fcntl.h>

@@ -549,6 +549,40 @@ static void test_relax_energy_never_increases(void)
   relax_case(1, 1, 1);
 }
 
+/* A jump is a step that moves some cell farther than half a cell radius
+** (AFV_MAX_STEP_DISP = 0.5 l: the forces change on the scale l): two free
+** cells (no force) crawling v0 dt = 0.4 l a step take no jump, at 0.6 l
+** every step is one. */
+static int free_jumps(double v0)
+{
+  static const double r[4] = {0, 0, 10, 0};
+  afv_box b = {0, 0, 0};
+  afv_params p;
+  afv_dyn d;
+  afv_sim *s = afv_sim_new();
+  long long jumps = -1;
+  int k;
+  afv_params_default(&p);
+  afv_dyn_default(&d);
+  d.v0 = v0;
+  d.Dr = 0;
+  if (s && afv_sim_init(s, 2, r, NULL, &p, &b, &d) == AFV_OK) {
+    for (k = 0; k < 3; k++) CHECK(afv_sim_step(s) == AFV_OK, "step %d", k);
+    CHECK(fabs(afv_sim_largest_move(s) - v0 * d.dt) < 1e-12,
+          "largest move %.17g, want %g", afv_sim_largest_move(s), v0 * d.dt);
+    jumps = afv_sim_jumps(s);
+  }
+  afv_sim_delete(s);
+  return (int)jumps;
+}
+
+static void test_jump_is_a_move_over_half_l(void)
+{
+  int below = free_jumps(40), above = free_jumps(60);
+  CHECK(below == 0, "moves of 0.4 l: %d jumps, want 0", below);
+  CHECK(above == 3, "moves of 0.6 l: %d jumps in 3 steps, want 3", above);
+}
+
 /* Above P0* the relaxed tissue sits on a kink of E (a triple junction on a
 ** cell's circle), where the force does not vanish: the relaxation must
 ** stop there by its criterion (afv.h: every cell's mean force over a
@@ -973,6 +1007,7 @@ void suite_dynamics(void)
   RUN(test_energy_decrease_first_order);
   RUN(test_relax_energy_never_increases);
   RUN(test_relax_stops_at_kink);
+  RUN(test_jump_is_a_move_over_half_l);
   RUN(test_cluster_start);
   RUN(test_large_cluster_start);
   if (mkdir(tmpdir, 0777) != 0) {

@@ -431,6 +431,69 @@ static void test_fuzz_cases(void)
   afv_geom_free(&g);
 }
 
+/* Three cells whose two bisectors meet on cell 0's circle (a junction at
+** angle theta, the lines' normals theta -+ alpha): the two edges end on
+** the circle at one point, up to rounding, and the arc between them is
+** ~0 and may come out a hair below 0, a full turn once wrapped.  gap_angle
+** takes a gap within AFV_ANGLE_TOL (1e-12) of 2 pi between two distinct
+** edges as 0.  With the tolerance 0, 110 of 200000 such cells had
+** A = 2 pi l^2 and P = 4 pi l (measured); here 20000 must all stay within
+** A <= pi l^2 and P <= 2 pi l (geom.c's invariant). */
+static void test_junction_on_the_circle(void)
+{
+  afv_geom g = {0};
+  afv_params p;
+  afv_box b = test_open_box();
+  double r[6] = {0, 0, 0, 0, 0, 0}, worst_A = 0, worst_P = 0;
+  int t, bad = -1;
+  afv_params_default(&p);
+  test_rng_seed(7);
+  for (t = 0; t < 20000; t++) {
+    double th = 2 * PI * test_rng_uniform(), al = 0.2 + 1.2 * test_rng_uniform();
+    r[2] = 2 * cos(al) * cos(th - al);
+    r[3] = 2 * cos(al) * sin(th - al);
+    r[4] = 2 * cos(al) * cos(th + al);
+    r[5] = 2 * cos(al) * sin(th + al);
+    CHECK(afv_geometry(&g, 3, r, &p, &b) == AFV_OK, "status");
+    if (g.area[0] > worst_A || g.perim[0] > worst_P) bad = t;
+    worst_A = fmax(worst_A, g.area[0]);
+    worst_P = fmax(worst_P, g.perim[0]);
+  }
+  CHECK(worst_A <= PI * (1 + 1e-12) && worst_P <= 2 * PI * (1 + 1e-12),
+        "largest A %.17g, P %.17g (case %d)", worst_A, worst_P, bad);
+  afv_geom_free(&g);
+}
+
+/* Two neighbours of cell 0 at d = 1 and 1 + 1e-9, 1e-7 radians apart:
+** their bisectors are nearly parallel (|t_a.u_b| = 1e-7, below
+** AFV_NEAR_PARALLEL) and, being close (|D_b - D_a| = 1e-7, below
+** AFV_NEAR_PARALLEL_GAP |D_a|), meet inside the disk, 0.005 l along
+** them: the cell's boundary runs along one and then the other, two
+** contacts of ~0.87 l.  With the gap 0 the nearer line hid the other
+** (one contact; 33845 of 300000 random such pairs changed). */
+static void test_near_parallel_lines_meet(void)
+{
+  afv_geom g = {0};
+  afv_params p;
+  afv_box b = test_open_box();
+  double r[6] = {0, 0, 0, 0, 0, 0};
+  int k, q;
+  afv_params_default(&p);
+  for (k = 0; k < 16; k++) {
+    double phi = 2 * PI * (k + 0.3) / 16, shortest = 1;
+    r[2] = cos(phi);
+    r[3] = sin(phi);
+    r[4] = (1 + 1e-9) * cos(phi + 1e-7);
+    r[5] = (1 + 1e-9) * sin(phi + 1e-7);
+    CHECK(afv_geometry(&g, 3, r, &p, &b) == AFV_OK, "status");
+    for (q = g.piece_start[0]; q < g.piece_start[0] + g.n_pieces[0]; q++)
+      if (g.pieces[q].nbr >= 0) shortest = fmin(shortest, g.pieces[q].length);
+    CHECK(g.contacts[0] == 2 && shortest > 0.8, "direction %d: %d contacts, "
+          "the shorter %.3g l, want 2 of ~0.87", k, g.contacts[0], shortest);
+  }
+  afv_geom_free(&g);
+}
+
 /* ---- pruning (dense input) --------------------------------------------- */
 /* A dense periodic tissue (k ~ 200 neighbours within 2l): the cells,
 ** clipped by their nearest neighbours only (geom.c, pruning), tile the
@@ -481,6 +544,39 @@ static void test_dense_tissue_tiles_the_box(void)
   CHECK_CLOSE(sum, 36.0, 1e-12, 0, "sum of the areas");
   CHECK(worst_edge <= 1e-12, "an edge differs seen from its two cells by "
         "%.3e", worst_edge);
+  afv_geom_free(&g);
+}
+
+/* A cell with 17 neighbours (so it is clipped by pruning): 16 on a ring
+** of radius 1 make it a regular 16-gon, vertices at R = 0.5 / cos(pi/16);
+** the 17th, towards a vertex, has its bisector 1e-7 l inside it and cuts
+** that corner off, an edge of 1e-6 l (2e-7 tan(7 pi/16)), a contact.  The
+** pruning takes in every line within the farthest vertex plus
+** AFV_PRUNE_MARGIN (1e-9 l, the vertices' rounding): with the margin
+** -1e-6 l it dropped this one (16 contacts). */
+static void test_prune_keeps_a_corner_cut(void)
+{
+  enum { N = 18 };
+  double r[2 * N], R = 0.5 / cos(PI / 16), corner = -1;
+  afv_geom g = {0};
+  afv_params p;
+  afv_box b = test_open_box();
+  int k, q;
+  afv_params_default(&p);
+  r[0] = r[1] = 0;
+  for (k = 0; k < 16; k++) {
+    r[2 * (k + 1)] = cos(2 * PI * k / 16);
+    r[2 * (k + 1) + 1] = sin(2 * PI * k / 16);
+  }
+  r[2 * 17] = 2 * (R - 1e-7) * cos(PI / 16);
+  r[2 * 17 + 1] = 2 * (R - 1e-7) * sin(PI / 16);
+  CHECK(afv_geometry(&g, N, r, &p, &b) == AFV_OK, "status");
+  for (q = g.piece_start[0]; q < g.piece_start[0] + g.n_pieces[0]; q++)
+    if (g.pieces[q].nbr == 17) corner = g.pieces[q].length;
+  CHECK(g.nbr_end[0] - g.nbr_start[0] > 16, "fixture: %d neighbours, the "
+        "pruning needs more than 16", g.nbr_end[0] - g.nbr_start[0]);
+  CHECK(g.contacts[0] == 17, "%d contacts, want 17", g.contacts[0]);
+  CHECK_CLOSE(corner, 2e-7 * tan(7 * PI / 16), 1e-6, 0, "the corner's edge");
   afv_geom_free(&g);
 }
 
@@ -672,6 +768,33 @@ static void test_check_still_fails(void)
   afv_geom_free(&g);
 }
 
+/* The exact forces, checked with steps of 1e-10 l and 1e-12 l: there the
+** energies' rounding (AFV_SUM_ROUNDING of their size, ~1e-14 E) divided
+** by the step swamps the difference, and the check must call it
+** unresolved, never a wrong force (the criterion of afv check: resolved
+** errors above 1e-6 of the tension scale).  With the rounding left out
+** of the uncertainty (0), resolved errors of 3e-6 and 5e-4 of it. */
+static void test_check_rounding_unresolved(void)
+{
+  enum { N = 100 };
+  static const double steps[2] = {1e-10, 1e-12};
+  double r[2 * N];
+  afv_params p;
+  afv_box b = test_periodic_box(sqrt(N * PI / 0.6), sqrt(N * PI / 0.6));
+  afv_check_report rep;
+  int k;
+  afv_params_default(&p);
+  p.P0 = 5;
+  afv_init_random(N, 3, &b, 0, r);
+  for (k = 0; k < 2; k++) {
+    CHECK(afv_gradient_check(N, r, &p, &b, steps[k], &rep) == AFV_OK,
+          "status");
+    CHECK(rep.max_resolved <= 1e-6 * rep.tension_scale, "step %g: a "
+          "resolved error of %.3g of the tension scale", steps[k],
+          rep.max_resolved / rep.tension_scale);
+  }
+}
+
 /* A pair a few ulps (and up to 1e-11) short of detaching: the analytic
 ** force is right (test_pair_one_ulp_apart), and a step that is only ulps
 ** of the coordinates cannot resolve it, so the check is inconclusive or
@@ -805,7 +928,10 @@ void suite_geometry(void)
   RUN(test_near_pair_in_tissue);
   RUN(test_coincident_named);
   RUN(test_fuzz_cases);
+  RUN(test_junction_on_the_circle);
+  RUN(test_near_parallel_lines_meet);
   RUN(test_dense_tissue_tiles_the_box);
+  RUN(test_prune_keeps_a_corner_cut);
   RUN(test_dense_input_linear);
   RUN(test_check_lattice_and_large_coordinates);
   RUN(test_check_report_scale);
@@ -813,5 +939,6 @@ void suite_geometry(void)
   RUN(test_check_near_kinks);
   RUN(test_check_still_fails);
   RUN(test_check_one_ulp_from_detaching);
+  RUN(test_check_rounding_unresolved);
   RUN(test_eval_refuses_overflow);
 }

@@ -492,6 +492,39 @@ static int movers_trial(const double *r0, int n, const afv_params *p,
   return nbits;
 }
 
+/* A mover re-anchored (2 + SKIN) l - 5e-7 l from a cell's anchor (SKIN
+** = 0.3 l), then each brought 0.15 l - 1e-7 l (just within SKIN / 2 of
+** its anchor, so neither is re-anchored again) towards the other, to
+** 2 l - 3e-7 l: they touch, an edge of 1.1e-3 l, which the kept
+** candidates must find as a fresh evaluation does.  The reach is widened
+** by AFV_REACH_MARGIN (1e-9 l) for the rounding of the positions; a
+** reach 1e-6 l short of (2 + SKIN) l missed the pair. */
+static void test_mover_at_the_reach(void)
+{
+  double r[4] = {0, 0, 10, 0}, f[4], reach = 2.3 - 5e-7, in = 0.15 - 1e-7;
+  afv_geom kept, fresh;
+  afv_params p;
+  afv_box b = {0, 0, 0};
+  memset(&kept, 0, sizeof kept);
+  memset(&fresh, 0, sizeof fresh);
+  afv_params_default(&p);
+  CHECK(afv_compute(&kept, 2, r, &p, &b, f) == AFV_OK, "start");
+  r[2] = reach;                            /* cell 1 moved 7.7 l */
+  CHECK(afv_compute(&kept, 2, r, &p, &b, f) == AFV_OK, "mover");
+  CHECK(kept.contacts[1] == 0, "2.3 l apart, in contact");
+  r[0] = in;
+  r[2] = reach - in;
+  CHECK(afv_compute(&kept, 2, r, &p, &b, f) == AFV_OK
+        && afv_compute(&fresh, 2, r, &p, &b, f) == AFV_OK, "moved in");
+  CHECK(fresh.contacts[0] == 1, "fixture: %.17g l apart, %d contacts",
+        r[2] - r[0], fresh.contacts[0]);
+  CHECK(kept.contacts[0] == fresh.contacts[0] && kept.n_rebuilds == 1,
+        "kept candidates: %d contacts (fresh %d), %d rebuilds",
+        kept.contacts[0], fresh.contacts[0], kept.n_rebuilds);
+  afv_geom_free(&kept);
+  afv_geom_free(&fresh);
+}
+
 /* movers_trial for the first `want` pairs of cells about d apart (within
 ** 0.05 l), brought towards each other by moves of mi and mj: the same bits
 ** as a fresh evaluation (the pair ends closer than 2l), without a
@@ -855,6 +888,7 @@ void suite_perf(void)
   RUN(test_steps_reuse_their_buffers);
   RUN(test_candidates_change_nothing);
   RUN(test_candidates_with_movers);
+  RUN(test_mover_at_the_reach);
   RUN(test_movers_over_many_calls);
   RUN(test_cells_around);
   RUN(test_spatial_order_renumbering);

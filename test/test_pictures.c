@@ -102,6 +102,27 @@ static void write_lattice(const char *name, int nx, int ny, double x0,
   fclose(fp);
 }
 
+/* The centres drawn in svg (a write_lattice of nx columns from (x0,
+** y0)): how many; *err the largest |dx| + |dy| of one from its cell, at
+** centre *worst. */
+static int centres_off(const char *svg, int nx, double x0, double y0,
+                       double *err, int *worst)
+{
+  const char *at;
+  int i = 0;
+  *err = 0;
+  *worst = -1;
+  for (at = svg; at && (at = strstr(at, "class=\"centre\"")); at++, i++) {
+    double e = fabs(attr(at, "cx") - (x0 + 1.5 * (i % nx)))
+               + fabs(attr(at, "cy") - (y0 + 1.5 * (i / nx)));
+    if (!(e <= *err)) {
+      *err = e;
+      *worst = i;
+    }
+  }
+  return i;
+}
+
 /* ---- afv draw's options ------------------------------------------------- */
 /* Every option accepted with a good value; each bad value refused with one
 ** line naming the option, exit status 2, and nothing written. */
@@ -237,23 +258,16 @@ static void draw_color_by_two_types(void)
 ** coordinate within 1e-4 l (with %.6g, 100000.75 was printed 100001). */
 static void draw_coordinates_at_1e5(void)
 {
-  char pts[128], so[128], *s, *at;
-  int i = 0, worst = -1;
-  double err = 0;
+  char pts[128], so[128], *s;
+  int i, worst;
+  double err;
   if (!have_afv()) return;
   write_lattice("far.xy", 3, 3, 100000.125, -99999.875);
   in_tmp(pts, sizeof pts, "far.xy");
   in_tmp(so, sizeof so, "far.svg");
   CHECK(shell("./afv draw %s >%s", pts, so) == 0, "draw far cells");
   s = read_all(so);
-  for (at = s; at && (at = strstr(at, "class=\"centre\"")); at++, i++) {
-    double x = 100000.125 + 1.5 * (i % 3), y = -99999.875 + 1.5 * (i / 3);
-    double e = fabs(attr(at, "cx") - x) + fabs(attr(at, "cy") - y);
-    if (!(e <= err)) {
-      err = e;
-      worst = i;
-    }
-  }
+  i = centres_off(s, 3, 100000.125, -99999.875, &err, &worst);
   CHECK(i == 9, "%d centres drawn, want 9", i);
   CHECK(err <= 1e-4, "centre %d drawn %g l from its place", worst, err);
   free(s);
@@ -292,6 +306,69 @@ static void draw_marks_visible_at_default_size(void)
   lw = at ? attr(at, "stroke-width") * px : 0;
   CHECK(jr >= 2.5, "junction radius %.3g pixels", jr);
   CHECK(lw >= 1, "edge width %.3g pixels", lw);
+  free(s);
+}
+
+/* On a picture of many cells at a small size, a centre is still printed
+** to 1e-4 l (AFV_SVG_RESOLUTION: a pixel there is 0.16 l, and the
+** resolution of a hundredth of a pixel alone would print 3 digits). */
+static void draw_coordinates_of_a_small_picture(void)
+{
+  char pts[128], so[128], *s;
+  int i, worst;
+  double err;
+  if (!have_afv()) return;
+  write_lattice("small.xy", 10, 10, 0.123456789, 0.987654321);
+  in_tmp(pts, sizeof pts, "small.xy");
+  in_tmp(so, sizeof so, "small.svg");
+  CHECK(shell("./afv draw %s --width 100 >%s", pts, so) == 0, "draw");
+  s = read_all(so);
+  i = centres_off(s, 10, 0.123456789, 0.987654321, &err, &worst);
+  CHECK(i == 100, "%d centres drawn, want 100", i);
+  CHECK(err <= 1e-4, "centre %d drawn %g l from its place", worst, err);
+  free(s);
+}
+
+/* The arcs of SVG path d (after "d=\""): how many; 0 if one of them ends
+** where it starts (SVG draws no such arc: SVG 1.1, F.6.2) or d is not
+** "M x y" followed by "A rx ry 0 large sweep x y" commands. */
+static int arcs_drawn(const char *d)
+{
+  double x, y, nx, ny, rx, ry, rot;
+  int large, sweep, used, n = 0;
+  if (sscanf(d, "M %lf %lf%n", &x, &y, &used) != 2) return 0;
+  for (d += used; sscanf(d, " A %lf %lf %lf %d %d %lf %lf%n", &rx, &ry, &rot,
+                         &large, &sweep, &nx, &ny, &used) == 7; d += used) {
+    if (nx == x && ny == y) return 0;
+    x = nx;
+    y = ny;
+    n++;
+  }
+  return *d == '"' ? n : 0;
+}
+
+/* An isolated cell's outline is a whole circle, drawn as two half arcs (a
+** single arc from a point to itself draws nothing); two cells 1.99 l
+** apart are each outlined by one arc of 2 pi - 0.2 (AFV_FULL_CIRCLE_TOL:
+** only an arc within rounding of a full turn is a whole circle). */
+static void draw_whole_and_nearly_whole_circles(void)
+{
+  char pts[128], so[128], *s, *at;
+  int paths = 0, whole = 0, single = 0, k;
+  if (!have_afv()) return;
+  write_text("arcs.xy", "0 0\n1.99 0\n20 0\n");
+  in_tmp(pts, sizeof pts, "arcs.xy");
+  in_tmp(so, sizeof so, "arcs.svg");
+  CHECK(shell("./afv draw %s >%s", pts, so) == 0, "draw");
+  s = read_all(so);
+  for (at = s; at && (at = strstr(at, "class=\"arc\" d=\"")); at++, paths++) {
+    k = arcs_drawn(at + strlen("class=\"arc\" d=\""));
+    whole += k == 2;
+    single += k == 1;
+  }
+  CHECK(paths == 3 && whole == 1 && single == 2, "%d arc paths: %d whole "
+        "circles (want 1), %d single arcs (want 2), the rest not drawn",
+        paths, whole, single);
   free(s);
 }
 
@@ -369,6 +446,93 @@ static void plot_legend_beside_data(void)
   at = strstr(svg, ">second<");
   while (at && at > svg && strncmp(at, "<text", 5)) at--;
   CHECK(at && attr(at, "x") > most + 5, "second legend entry over the data");
+  free(svg);
+}
+
+/* afv_svg_plot of one series of n points (markers only), as a string
+** (NULL if it could not be written: the caller frees). */
+static char *plot_string(const double *x, const double *y, int n)
+{
+  afv_plot pl = {"t", "x", "y", 0, 0, 0, 0, NULL};
+  afv_plot_series sr;
+  FILE *fp = tmpfile();
+  char *svg = NULL;
+  long size;
+  if (!fp) return NULL;
+  memset(&sr, 0, sizeof sr);
+  sr.x = x;
+  sr.y = y;
+  sr.n = n;
+  sr.color = "#000000";
+  sr.points = AFV_PLOT_MARKS;
+  CHECK(afv_svg_plot(fp, &pl, &sr, 1) == AFV_OK, "plot");
+  size = ftell(fp);
+  rewind(fp);
+  svg = size > 0 ? malloc((size_t)size + 1) : NULL;
+  if (svg) svg[fread(svg, 1, (size_t)size, fp)] = 0;
+  fclose(fp);
+  return svg;
+}
+
+/* The y axis's tick labels of a plot, bottom to top, into lab (at most
+** max); how many. */
+static int y_tick_labels(const char *svg, char lab[][32], int max)
+{
+  const char *at = svg, *key = "text-anchor=\"end\">";
+  int n = 0;
+  while (n < max && (at = strstr(at, key)) != NULL) {
+    at += strlen(key);
+    sscanf(at, "%31[^<]", lab[n++]);
+  }
+  return n;
+}
+
+/* A plotted range that holds one value is widened around it
+** (AFV_PLOT_SPAN_TOL): the points sit inside the frame, and the y axis
+** has at least two ticks, labelled apart.  (A range of rounding, 0.1 + 0.2
+** and 0.3, is one value too: with the tolerance 0 its ticks, 1e-17
+** apart, never reached the axis end, and the plot never ended.) */
+static void plot_of_one_value(void)
+{
+  static const double x[3] = {1, 2, 3}, y[3] = {0.5, 0.5, 0.5};
+  char lab[64][32], *svg = plot_string(x, y, 3), *c;
+  const char *frame = svg ? strstr(svg, "<rect x=") : NULL;
+  int bad = 0, count = 0, n, k;
+  CHECK(frame != NULL, "no plot frame");
+  if (!frame) {
+    free(svg);
+    return;
+  }
+  for (c = strstr(svg, "<circle"); c; c = strstr(c + 1, "<circle")) {
+    double cy = attr(c, "cy");
+    count++;
+    bad += !(cy > attr(frame, "y") + 5
+             && cy < attr(frame, "y") + attr(frame, "height") - 5);
+  }
+  CHECK(count == 3 && bad == 0, "%d of %d points off the frame", bad, count);
+  n = y_tick_labels(svg, lab, 64);
+  CHECK(n >= 2, "%d y ticks", n);
+  for (k = 1; k < n; k++)
+    CHECK(strcmp(lab[k - 1], lab[k]) != 0, "two ticks labelled %s", lab[k]);
+  free(svg);
+}
+
+/* The ticks of a range symmetric about 0 (data -0.3 .. 0.3: ticks every
+** 0.1 from -0.4 to 0.4, summed as lo + step + step ...) are symmetric: the
+** middle one labelled 0, not the rounding of the sum (AFV_PLOT_TICK_TOL),
+** the last at the axis end although the sum overshoots it by rounding. */
+static void plot_ticks_symmetric(void)
+{
+  static const double x[3] = {1, 2, 3}, y[3] = {-0.3, 0.1, 0.3};
+  char lab[64][32], *svg = plot_string(x, y, 3);
+  int n = svg ? y_tick_labels(svg, lab, 64) : 0, k;
+  CHECK(n == 9, "%d y ticks, want 9 (-0.4 .. 0.4)", n);
+  for (k = 0; k < n; k++) {
+    const char *a = lab[k], *b = lab[n - 1 - k];
+    if (k == n / 2) CHECK(!strcmp(a, "0"), "middle tick labelled %s", a);
+    else CHECK(a[0] == '-' ? !strcmp(a + 1, b) : !strcmp(a, b + 1),
+               "ticks %d and %d labelled %s and %s", k, n - 1 - k, a, b);
+  }
   free(svg);
 }
 
@@ -688,12 +852,16 @@ void suite_pictures(void)
   RUN(draw_color_by_two_types);
   RUN(draw_coordinates_at_1e5);
   RUN(draw_marks_visible_at_default_size);
+  RUN(draw_coordinates_of_a_small_picture);
+  RUN(draw_whole_and_nearly_whole_circles);
   RUN(draw_frames_of_a_trajectory);
   RUN(frames_dir_replaced_or_refused);
   RUN(caption_and_scale_bar);
   RUN(cluster_colours_stable);
   RUN(plot_points_inside_frame);
   RUN(plot_legend_beside_data);
+  RUN(plot_of_one_value);
+  RUN(plot_ticks_symmetric);
   RUN(csd_log_bins_sum);
   RUN(analyze_writes_binned_csd_and_plots);
   RUN(analysis_does_not_draw);

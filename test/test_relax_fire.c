@@ -164,10 +164,127 @@ static void fire_relaxes_lambda0_to_isolated_disks(void)
   afv_sim_delete(s);
 }
 
+/* What a monitor sees of a FIRE search: the largest move of a cell in one
+** iteration, and the lowest energy after each iteration. */
+typedef struct watch {
+  afv_sim *s;
+  double *prev;     /* positions after the previous iteration */
+  double most;      /* largest move of a cell in one iteration, in l */
+  double *low;      /* low[k]: lowest E after k iterations (low[0]: start) */
+  long max_iter;
+} watch;
+
+static void watch_moves(void *ctx, long iter, double energy, double max_force)
+{
+  watch *w = ctx;
+  const double *r = afv_sim_positions(w->s);
+  int i, n = afv_sim_n(w->s);
+  (void)max_force;
+  for (i = 0; i < n; i++) {
+    double d = hypot(r[2*i] - w->prev[2*i], r[2*i+1] - w->prev[2*i+1]);
+    if (d > w->most) w->most = d;
+  }
+  memcpy(w->prev, r, (size_t)(2 * n) * sizeof *r);
+  if (iter <= w->max_iter) w->low[iter] = fmin(w->low[iter - 1], energy);
+}
+
+/* N cells of the authors' start (a square of side AFV_AUTHORS_SQUARE L at
+** packing fraction 0.5) at Lambda, P0, not relaxed, and a watch of it
+** for max_iter iterations (w->s NULL if out of memory). */
+static void authors_start(watch *w, int N, double Lambda, double P0,
+                          long max_iter)
+{
+  afv_box b = {1, 0, 0};
+  afv_params p;
+  afv_dyn d;
+  afv_protocol pr;
+  afv_relax_report rep;
+  memset(w, 0, sizeof *w);
+  afv_params_default(&p);
+  afv_dyn_default(&d);
+  p.Lambda = Lambda;
+  p.P0 = P0;
+  b.Lx = b.Ly = sqrt(N * 3.14159265358979323846 / 0.5);
+  memset(&pr, 0, sizeof pr);
+  pr.start = AFV_START_CLUSTER;
+  pr.side = AFV_AUTHORS_SQUARE * b.Lx;
+  w->s = afv_sim_new();
+  w->prev = malloc((size_t)(2 * N) * sizeof *w->prev);
+  w->low = malloc((size_t)(max_iter + 1) * sizeof *w->low);
+  w->max_iter = max_iter;
+  if (!w->s || !w->prev || !w->low
+      || afv_protocol_start(w->s, N, &p, &b, &d, &pr, &rep, NULL, NULL)
+         != AFV_OK) {
+    afv_sim_delete(w->s);
+    free(w->prev);
+    free(w->low);
+    w->s = NULL;
+    return;
+  }
+  memcpy(w->prev, afv_sim_positions(w->s), (size_t)(2 * N) * sizeof *w->prev);
+  w->low[0] = afv_sim_geom(w->s)->energy;
+}
+
+static void watch_free(watch *w)
+{
+  afv_sim_delete(w->s);
+  free(w->prev);
+  free(w->low);
+}
+
+/* No cell moves farther than 0.15 l in an iteration: FIRE's move of at
+** most AFV_FIRE_MAX_MOVE = 0.1 l, and, on an uphill restart, half of the
+** previous move undone first.  At Lambda 0, P0 8.8 the authors' dense
+** start has forces of ~1000 (an uncapped move of 4 l), and FIRE still
+** reaches the isolated disks. */
+static void fire_moves_capped(void)
+{
+  watch w;
+  afv_relax_report rep;
+  authors_start(&w, 100, 0, 8.8, 10000);
+  CHECK(w.s != NULL, "no simulation");
+  if (!w.s) return;
+  CHECK(afv_relax_fire(w.s, 1e-6, 10000, &rep, watch_moves, &w) == AFV_OK
+        && rep.converged, "not converged: %ld steps, max |F| %.3g",
+        rep.iterations, rep.max_force);
+  CHECK(w.most <= 0.15 + 1e-12, "a cell moved %.4g l in one iteration",
+        w.most);
+  watch_free(&w);
+}
+
+/* FIRE stops at a stall (at a kink, or refused) only where its lowest
+** energy stopped falling: over the last AFV_FIRE_STALL = 1000 iterations
+** it fell by less than AFV_FIRE_STALL_DROP |E| (1e-8).  From the authors'
+** start at Lambda 1, P0 4 it still falls by 2e-5 of E in the 1000
+** iterations before iteration 2000 (with AFV_FIRE_STALL_DROP 0.5 it
+** stopped there, at a kink, 1e-4 of E above where it goes on to). */
+static void fire_stalls_only_when_stuck(void)
+{
+  enum { MAX_ITER = 3000 };
+  watch w;
+  afv_relax_report rep;
+  long it;
+  double drop;
+  authors_start(&w, 100, 1, 4, MAX_ITER);
+  CHECK(w.s != NULL, "no simulation");
+  if (!w.s) return;
+  CHECK(afv_relax_fire(w.s, 1e-8, MAX_ITER, &rep, watch_moves, &w) == AFV_OK,
+        "FIRE failed");
+  it = rep.iterations;
+  drop = it >= 1000 ? w.low[it - 1000] - w.low[it] : HUGE_VAL;
+  CHECK(!(rep.at_kink || rep.refused) || drop <= 1e-6 * fabs(rep.energy),
+        "stopped (at_kink %d, refused %d) after %ld iterations while E fell "
+        "by %.3g (%.2g of E) in the last 1000", rep.at_kink, rep.refused, it,
+        drop, drop / fabs(rep.energy));
+  watch_free(&w);
+}
+
 void suite_relax_fire(void)
 {
   RUN(fire_stops_at_the_flows_kink);
   RUN(fire_converges_to_the_flows_minimum);
   RUN(fire_keeps_the_best_state);
   RUN(fire_relaxes_lambda0_to_isolated_disks);
+  RUN(fire_moves_capped);
+  RUN(fire_stalls_only_when_stuck);
 }
