@@ -734,8 +734,13 @@ static const char *judged_at(const claim_rule *r, const dt_series *s, int i)
   return judge(r, &c, why, sizeof why);
 }
 
+/* The judgement weighs afv's figure by its error (judge: 2 sigma, or
+** undetermined within it), so at dt 0.01 it needs the standard error of
+** two seeds: without it (one seed, an empty field) the judgement is not
+** drawn and the rule says missing (-1), as dt_same_value does. */
 static int same_judgement(const dt_series *s, const void *rule)
 {
+  if (s->seeds[0] < 2 || !isfinite(s->sem[0])) return -1;
   return !strcmp(judged_at(rule, s, 0), judged_at(rule, s, DT_STEPS - 1));
 }
 
@@ -759,7 +764,8 @@ static void conclusion_text(const claim_rule *r, const dt_series *s,
   buf[0] = 0;
   if (v == DT_MISSING) {
     snprintf(buf, len, "; the rule needs two seeds at dt 0.005 and 0.0025 "
-             "and the mean at 0.01");
+             "and the mean at 0.01%s", r->dt == DTC_LABEL ? ""
+             : " with its error");
     return;
   }
   if (r->dt == DTC_LABEL)

@@ -473,9 +473,12 @@ static void claims_from_carries_over(void)
 ** state the model's but (8, 2.6): the N_GC/N claims missing.
 ** DT_CURVES_MOVE: every dispersal state two seeds: the N_GC/N claims
 ** property of dt = 0.01; and (4, 0.4) with one seed at 0.0025:
-** msd_beta_P0_4 missing. */
+** msd_beta_P0_4 missing.
+** DT_COARSE_ONE_SEED: as DT_MADE_UP, but one seed at (4, 1.85), dt 0.01:
+** csd -1.3 has no error there, so its judgement against the paper (a
+** number within 2 sigma) cannot be drawn: csd_exponent_P0_4 missing. */
 enum { DT_MADE_UP, DT_CURVES_MOVE, DT_ONE_MISSING, DT_NO_COLUMN,
-       DT_NOT_NUMBER, DT_TWO_CAPS };
+       DT_NOT_NUMBER, DT_TWO_CAPS, DT_COARSE_ONE_SEED };
 
 static void dt_row(FILE *fp, double p0, double v0, int i, int seeds,
                    double ngc, double ngc_sem, double beta, double beta_sem,
@@ -521,7 +524,9 @@ static void made_up_dt_table(const char *dir, int mutation)
     for (v = 0; v < 3; v++)
       for (i = 0; i < 3; i++) {
         double v0 = v == 0 ? 1.4 : v == 1 ? 1.85 : 2.6;
-        int one = mutation != DT_CURVES_MOVE && p == 8 && v == 2 && i == 2;
+        int one = (mutation != DT_CURVES_MOVE && p == 8 && v == 2 && i == 2)
+                  || (mutation == DT_COARSE_ONE_SEED && p == 4 && v == 1
+                      && i == 0);
         double ngc = p == 4 && v == 1 && mutation != DT_ONE_MISSING
                      ? moved[i] : 0.9;
         dt_row(fp, p, v0, i, one ? 1 : 2, ngc, 0.01, 0.9, 0.01,
@@ -596,6 +601,9 @@ static void claims_against_dt(void)
   EXPECT_DT(dir, "v0_star", "property of dt = 0.01");
   EXPECT_DT(dir, "collapse_alpha", "property of dt = 0.01");
   EXPECT_DT(dir, "msd_beta_P0_4_v0_0.4", "missing");
+  /* no error at dt 0.01: the claim's judgement there is not drawn */
+  CHECK(made_up_dt_claims(dir, DT_COARSE_ONE_SEED, euler) == 0, "one seed");
+  EXPECT_DT(dir, "csd_exponent_P0_4", "missing");
   /* runs integrated otherwise than the study: no verdict borrowed */
   CHECK(made_up_dt_claims(dir, DT_MADE_UP, "integrator euler, dt 0.01, cap "
                           "0.45") == 0, "capped runs");
