@@ -471,12 +471,16 @@ static void claims_from_carries_over(void)
 **               decides, whatever the missing one would say).
 ** DT_ONE_MISSING: as DT_MADE_UP, but N_GC/N 0.9 at (4, 1.85) too: every
 ** state the model's but (8, 2.6): the N_GC/N claims missing.
-** DT_CURVES_MOVE: every dispersal state two seeds: the N_GC/N claims
-** property of dt = 0.01; and (4, 0.4) with one seed at 0.0025:
+** DT_CURVES_MOVE: every dispersal state two seeds, and at (8, 1.4)
+** N_GC/N 0.9 | 0.8 | 0.9 (the same value at 0.01 and 0.0025, the finest
+** two apart: not converged): the N_GC/N claims property of dt = 0.01 (it
+** ranks above not converged); and (4, 0.4) with one seed at 0.0025:
 ** msd_beta_P0_4 missing.
-** DT_COARSE_ONE_SEED: as DT_MADE_UP, but one seed at (4, 1.85), dt 0.01:
-** csd -1.3 has no error there, so its judgement against the paper (a
-** number within 2 sigma) cannot be drawn: csd_exponent_P0_4 missing. */
+** DT_COARSE_ONE_SEED: as DT_MADE_UP with (8, 1.4) not converged, but one
+** seed at (4, 1.85), dt 0.01: neither N_GC/N's value there nor csd -1.3's
+** judgement against the paper (a number within 2 sigma) can be weighed
+** without its error: csd_exponent_P0_4 missing, and the N_GC/N claims not
+** converged (above the missing states, below property of dt = 0.01). */
 enum { DT_MADE_UP, DT_CURVES_MOVE, DT_ONE_MISSING, DT_NO_COLUMN,
        DT_NOT_NUMBER, DT_TWO_CAPS, DT_COARSE_ONE_SEED };
 
@@ -502,6 +506,7 @@ static void made_up_dt_table(const char *dir, int mutation)
   static const double beta_sem[3][3] = {{0.01, 0.004, 0.004},
                                         {0.05, 0.05, 0.05},
                                         {0.02, 0.01, 0.01}};
+  static const double stall[3] = {0.9, 0.8, 0.9};
   static const double moved[3] = {0.61, 0.77, 1.0}, csd4[3] = {-1.3, -1.48,
                                   -1.5}, csd8[3] = {-1.7, -1.72, -1.74};
   char path[256];
@@ -527,8 +532,10 @@ static void made_up_dt_table(const char *dir, int mutation)
         int one = (mutation != DT_CURVES_MOVE && p == 8 && v == 2 && i == 2)
                   || (mutation == DT_COARSE_ONE_SEED && p == 4 && v == 1
                       && i == 0);
+        int stalled = (mutation == DT_CURVES_MOVE
+                       || mutation == DT_COARSE_ONE_SEED) && p == 8 && v == 0;
         double ngc = p == 4 && v == 1 && mutation != DT_ONE_MISSING
-                     ? moved[i] : 0.9;
+                     ? moved[i] : stalled ? stall[i] : 0.9;
         dt_row(fp, p, v0, i, one ? 1 : 2, ngc, 0.01, 0.9, 0.01,
                v != 1 ? NAN : p == 4 ? csd4[i] : csd8[i], "0");
       }
@@ -604,6 +611,7 @@ static void claims_against_dt(void)
   /* no error at dt 0.01: the claim's judgement there is not drawn */
   CHECK(made_up_dt_claims(dir, DT_COARSE_ONE_SEED, euler) == 0, "one seed");
   EXPECT_DT(dir, "csd_exponent_P0_4", "missing");
+  EXPECT_DT(dir, "v0_star", "not converged");
   /* runs integrated otherwise than the study: no verdict borrowed */
   CHECK(made_up_dt_claims(dir, DT_MADE_UP, "integrator euler, dt 0.01, cap "
                           "0.45") == 0, "capped runs");
@@ -634,6 +642,13 @@ static void dt_verdicts_table(void)
   CHECK(test_sh("grep -qx '8,2.6,ngc_frac_mean,0.9,0.9,0.9,missing,,,missing,"
                 ",,0.99,missing,missing' %s/v.csv", dir) == 0,
         "one seed: missing");
+  /* one seed at dt 0.01: its value cannot be weighed, its side can */
+  made_up_dt_table(dir, DT_COARSE_ONE_SEED);
+  CHECK(test_sh("./afv paper --dt-verdicts %s/dt_table.csv %s/v.csv "
+                "> /dev/null", dir, dir) == 0, "--dt-verdicts failed");
+  CHECK(test_sh("grep -qx '4,1.85,ngc_frac_mean,0.61,0.77,1,no,0.23,0.02828,"
+                "missing,,,0.99,missing,property of dt = 0.01' %s/v.csv", dir)
+        == 0, "one seed at dt 0.01: value missing, side moved");
   test_sh("rm -rf %s", dir);
 }
 
