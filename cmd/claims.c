@@ -27,7 +27,8 @@
 ** when the runs were integrated as the study's (Euler at dt 0.01 with its
 ** cap).  The table's two last columns say where each claim is measured:
 **   DTC_LABEL   a label at (P0, v0): the same observable at the same state
-**               point, the conclusion the side of the label's threshold.
+**               point, the conclusion the side of the label's threshold
+**               (or unresolved, within 2 sem: dt_same_side).
 **               msd_beta and D_eff at (P0, 0.4) are the glass rows of the
 **               same P0; (8, 0.4) and the states at v0 0.1 and at P0 4.4
 **               and 8.8, v0 2.6 are not in the study: `not measured`, the
@@ -73,7 +74,7 @@ typedef struct claim {
 /* Where the dt study measures a claim (the header's list). */
 typedef enum {
   DTC_NONE,     /* no dynamics: "none" */
-  DTC_LABEL,    /* at the rule's (P0, v0): the side of its level */
+  DTC_LABEL,    /* at the rule's (P0, v0): the resolved side of its level */
   DTC_NUMBER,   /* at the rule's (P0, v0): the claim's judgement */
   DTC_CURVES,   /* the value at the dispersal states, the worst verdict */
   DTC_OFF       /* at no state point of the study */
@@ -775,7 +776,10 @@ static void conclusion_text(const claim_rule *r, const dt_series *s,
                                                 r->level));
   else
     used = (size_t)snprintf(buf, len, "; against the paper: %s at dt 0.01, "
-                            "%s at 0.0025", judged_at(r, s, 0),
+                            "%s at 0.0025 (the study's exponent is each run's "
+                            "fit, tools/csd_exponent, averaged over the "
+                            "seeds: another estimate than this claim's, "
+                            "the seeds pooled)", judged_at(r, s, 0),
                             judged_at(r, s, f));
   if (v != DT_MODEL && !dt_agree(s, 1, 2) && used < len)
     snprintf(buf + used, len - used, "; dt 0.005 and 0.0025 differ by more "

@@ -203,10 +203,22 @@ int dt_agree(const dt_series *s, int a, int b)
          <= 2 * sqrt(s->sem[a] * s->sem[a] + s->sem[b] * s->sem[b]);
 }
 
+/* A label's conclusion at dt index i, as the claims table draws it
+** (claims.c's judge): above (1) or below (-1) the level, or unresolved
+** (0) when the mean lies within 2 standard errors of it. */
+static int resolved_side(const dt_series *s, int i, double level)
+{
+  if (fabs(s->mean[i] - level) <= 2 * s->sem[i]) return 0;
+  return s->mean[i] >= level ? 1 : -1;
+}
+
+/* The same conclusion of a label at dt 0.01 and 0.0025: the same resolved
+** side; missing (-1) without the standard error at 0.01 (one seed). */
 int dt_same_side(const dt_series *s, const void *level)
 {
   double l = *(const double *)level;
-  return (s->mean[0] >= l) == (s->mean[DT_STEPS - 1] >= l);
+  if (!has_sem(s, 0)) return -1;
+  return resolved_side(s, 0, l) == resolved_side(s, DT_STEPS - 1, l);
 }
 
 int dt_same_value(const dt_series *s, const void *unused)

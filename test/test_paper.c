@@ -500,12 +500,13 @@ static void dt_row(FILE *fp, double p0, double v0, int i, int seeds,
 
 static void made_up_dt_table(const char *dir, int mutation)
 {
-  static const double glass[3] = {4, 7.2, 8.8};
-  static const double beta[3][3] = {{0.30, 0.10, 0.11}, {0.9, 0.55, 0.45},
-                                    {1.2, 1.0, 0.6}};
-  static const double beta_sem[3][3] = {{0.01, 0.004, 0.004},
+  static const double glass[4] = {4, 7.2, 8.8, 5.6};
+  static const double beta[4][3] = {{0.30, 0.10, 0.11}, {0.9, 0.55, 0.45},
+                                    {1.2, 1.0, 0.6}, {0.2, 0.45, 0.42}};
+  static const double beta_sem[4][3] = {{0.01, 0.004, 0.004},
                                         {0.05, 0.05, 0.05},
-                                        {0.02, 0.01, 0.01}};
+                                        {0.02, 0.01, 0.01},
+                                        {0.01, 0.03, 0.05}};
   static const double stall[3] = {0.9, 0.8, 0.9};
   static const double moved[3] = {0.61, 0.77, 1.0}, csd4[3] = {-1.3, -1.48,
                                   -1.5}, csd8[3] = {-1.7, -1.72, -1.74};
@@ -520,7 +521,7 @@ static void made_up_dt_table(const char *dir, int mutation)
           "beta_long_mean,beta_long_sem,t1_rate_mean,t1_rate_sem,"
           "csd_exponent_mean,csd_exponent_sem\n",
           mutation == DT_NO_COLUMN ? "msd_beta_se" : "msd_beta_sem");
-  for (g = 0; g < 3; g++)
+  for (g = 0; g < 4; g++)
     for (i = 0; i < 3; i++)
       dt_row(fp, glass[g], 0.4, i, mutation == DT_CURVES_MOVE && g == 0
              && i == 2 ? 1 : 2, 1, 0, beta[g][i], beta_sem[g][i], NAN,
@@ -642,13 +643,21 @@ static void dt_verdicts_table(void)
   CHECK(test_sh("grep -qx '8,2.6,ngc_frac_mean,0.9,0.9,0.9,missing,,,missing,"
                 ",,0.99,missing,missing' %s/v.csv", dir) == 0,
         "one seed: missing");
-  /* one seed at dt 0.01: its value cannot be weighed, its side can */
+  /* (5.6, 0.4): below 0.5 at dt 0.01 (0.2 +- 0.01), below it but within
+  ** 2 sem at 0.0025 (0.42 +- 0.05), the finest two agree: the label is not
+  ** resolved at the finer dt, a conclusion other than dt 0.01's (a side
+  ** alone would call it the model's) */
+  CHECK(test_sh("grep -q '^5.6,0.4,msd_beta,.*,0.5,[a-z =.0-9]*,"
+                "property of dt = 0.01$' %s/v.csv", dir) == 0,
+        "msd_beta at (5.6, 0.4): an unresolved side at dt 0.0025");
+  /* one seed at dt 0.01: neither its value nor its side can be weighed
+  ** (a side is resolved only beyond 2 standard errors) */
   made_up_dt_table(dir, DT_COARSE_ONE_SEED);
   CHECK(test_sh("./afv paper --dt-verdicts %s/dt_table.csv %s/v.csv "
                 "> /dev/null", dir, dir) == 0, "--dt-verdicts failed");
   CHECK(test_sh("grep -qx '4,1.85,ngc_frac_mean,0.61,0.77,1,no,0.23,0.02828,"
-                "missing,,,0.99,missing,property of dt = 0.01' %s/v.csv", dir)
-        == 0, "one seed at dt 0.01: value missing, side moved");
+                "missing,,,0.99,missing,missing' %s/v.csv", dir)
+        == 0, "one seed at dt 0.01: value and side missing");
   test_sh("rm -rf %s", dir);
 }
 
@@ -658,7 +667,7 @@ static void dt_table_refused(void)
 {
   static const struct { int mutation; const char *says; } bad[] = {
     {DT_NO_COLUMN, "dt_table.csv line 1: msd_beta_sem: no such column"},
-    {DT_NOT_NUMBER, "dt_table.csv line 29: csd_exponent_mean: not a number"},
+    {DT_NOT_NUMBER, "dt_table.csv line 32: csd_exponent_mean: not a number"},
     {DT_TWO_CAPS, "dt_table.csv line 8: cap: differs"}};
   static const char euler[] = "integrator euler, dt 0.01, exact force";
   char dir[128];
