@@ -72,7 +72,7 @@ TEST_SRC = test/main.c test/fixtures.c $(wildcard test/test_*.c)
         clean FORCE \
         paper paper-sweeps paper-grid paper-fss paper-claims convergence \
         relax-cost diagram-budget diagram-budget-sweep diagram-budget-project lambda \
-        model model-table web test-web
+        model model-table test-model-study web test-web
 
 all: afv libafv.a
 
@@ -108,7 +108,8 @@ print-lib-sources:
 CLI_SRC  = $(addprefix cmd/,main.c cli.c inspect.c run.c run_config.c \
            run_compute.c run_dir.c run_resume.c report.c sweep.c collect.c \
            collect_figures.c sweep_slurm.c \
-           paper.c paper_data.c claims.c dt_study.c figure.c) $(FITS_SRC)
+           paper.c paper_data.c paper_compare.c claims.c dt_study.c \
+           figure.c) $(FITS_SRC)
 CLI_OBJ  = $(CLI_SRC:.c=.o)
 
 afv: $(CLI_OBJ) libafv.a .build-flags
@@ -118,7 +119,8 @@ afv: $(CLI_OBJ) libafv.a .build-flags
 	$(CC) $(CFLAGS) -c -o $@ $<
 
 $(CLI_OBJ): cmd/cli.h cmd/fits.h
-cmd/paper.o cmd/paper_data.o cmd/claims.o cmd/dt_study.o: cmd/paper.h cmd/figure.h
+cmd/paper.o cmd/paper_data.o cmd/paper_compare.o cmd/claims.o cmd/dt_study.o: cmd/paper.h \
+  cmd/figure.h
 cmd/collect.o cmd/collect_figures.o: cmd/collect.h cmd/figure.h
 cmd/figure.o: cmd/figure.h
 cmd/sweep.o cmd/sweep_slurm.o: cmd/sweep.h
@@ -401,8 +403,10 @@ convergence: afv tools/convergence_plot
 # make model-table tables and draws without running anything.
 MODEL_OUT ?= model
 
-tools/model_plot: tools/model_plot.c libafv.a $(LIB_H) .build-flags
-	$(CC) $(CFLAGS) -I. -o $@ tools/model_plot.c libafv.a $(LDLIBS)
+tools/model_plot: tools/model_plot.c $(FITS_OBJ) libafv.a $(LIB_H) \
+                  cmd/fits.h .build-flags
+	$(CC) $(CFLAGS) -I. -o $@ tools/model_plot.c $(FITS_OBJ) libafv.a \
+	  $(LDLIBS)
 
 tools/csd_exponent: tools/csd_exponent.c $(FITS_OBJ) libafv.a $(LIB_H) \
                     cmd/fits.h .build-flags
@@ -415,6 +419,11 @@ model: afv tools/model_plot tools/csd_exponent
 
 model-table: afv tools/model_plot tools/csd_exponent
 	sh tools/model_table.sh $(MODEL_OUT) doc/reproduction/model
+
+# tools/model_table.sh (and tools/model_cap.sh) on a mini study of a few
+# short runs, partly run (test/model_study.sh, about 10-15 s: .ci/run)
+test-model-study: afv tools/model_plot tools/csd_exponent
+	sh test/model_study.sh ./afv
 
 # Cost of relaxing the authors' start against N (doc/performance.md,
 # "Relaxation: cost against N"): test/bench --relax-vs-400 relaxes the

@@ -18,8 +18,12 @@
 **   - a fit's parameter is not identifiable: the dispersal boundary's free
 **     three-parameter fit, when its residual profile over alpha is flat
 **     within the noise (alpha_interval below).
-** `not measured` when the state point has no finished run.  The rules are
-** the table `rules` below, one row per claim.
+** `not measured` when the state point has no finished run; `missing`
+** when it has fewer seeds than the design (one seed has no standard
+** error), or, for a claim drawn from the whole grid (the crossing, the
+** fits, the brackets along P0), when any point has: the value is given,
+** no verdict is drawn until the runs are in.  The rules are the table
+** `rules` below, one row per claim.
 **
 ** Each claim's dependence on dt (the column dt_verdict, and the end of its
 ** note) comes from the dt study at the paper's length (afv paper
@@ -440,14 +444,14 @@ static int claims_column(char **head, int n, const char *name)
   return -1;
 }
 
-/* The row `name` of the earlier claims.csv (afv paper --claims-from):
-** its afv, afv_err and note, found by the header's names (a claims.csv
-** with or without dt_verdict); 0 if the file or the row is not there. */
-static int previous_claim(const claim_ctx *X, const char *name, double *afv,
-                          double *err, char *note, size_t len)
+/* The row `name` of the claims.csv at path (may be NULL): its afv,
+** afv_err and note, found by the header's names (a claims.csv with or
+** without dt_verdict); 0 if the file or the row is not there. */
+static int claims_row(const char *path, const char *name, double *afv,
+                      double *err, char *note, size_t len)
 {
   char head[512], line[8192], *h[CLAIM_FIELDS], *f[CLAIM_FIELDS];
-  FILE *fp = X->S->previous ? fopen(X->S->previous, "r") : NULL;
+  FILE *fp = path ? fopen(path, "r") : NULL;
   int found = 0, nh = 0, ca, ce, cn;
   if (fp && fgets(head, sizeof head, fp)) nh = claims_fields(head, h);
   ca = claims_column(h, nh, "afv");
@@ -463,6 +467,13 @@ static int previous_claim(const claim_ctx *X, const char *name, double *afv,
     }
   if (fp) fclose(fp);
   return found;
+}
+
+/* The row `name` of the earlier claims.csv (afv paper --claims-from). */
+static int previous_claim(const claim_ctx *X, const char *name, double *afv,
+                          double *err, char *note, size_t len)
+{
+  return claims_row(X->S->previous, name, afv, err, note, len);
 }
 
 /* The note of a carried-over claim: the earlier note without its
@@ -658,6 +669,33 @@ static const claim_rule rules[] = {
 #define N_RULES ((int)(sizeof rules / sizeof rules[0]))
 
 /* ---- the judgement ----------------------------------------------------------- */
+/* 1 (why says what) when the runs a claim is drawn from are not all in:
+** the claim's own point (a label, an exponent) short of the design's
+** seeds, or any point of the grid for the claims drawn from all of it.
+** The mean field reads no run. */
+static int runs_missing(const claim_ctx *X, const claim_rule *r, char *why,
+                        size_t len)
+{
+  const plane *P = X->P;
+  int design = P->design_seeds, all = P->np * P->nv * design;
+  if (r->measure == m_meanfield) return 0;
+  if (r->measure == m_label || r->measure == m_beta
+      || r->measure == m_glassy_deff || r->measure == m_csd) {
+    int ip = nearest(P->p0, P->np, r->p0), iv = nearest(P->v0, P->nv, r->v0);
+    int n = seeds_at(P, ip, iv);
+    if (n >= design) return 0;
+    snprintf(why, len, "%d of %d seeds in at (%g, %g)%s", n, design,
+             P->p0[ip], P->v0[iv], n == 1 ? ": one seed has no standard "
+             "error" : "");
+    return 1;
+  }
+  if (runs_in(P) >= all) return 0;
+  snprintf(why, len, "the grid is partial: %d of %d runs in (%d P0 x %d v0 x "
+           "%d seeds); the value is from those in", runs_in(P), all, P->np,
+           P->nv, design);
+  return 1;
+}
+
 /* "yes", "no", "undetermined" or "not measured" by the claim's rule (the
 ** header's list); why: the reason of an undetermined figure, for the note. */
 static const char *judge(const claim_rule *r, const claim *c, char *why,
@@ -688,6 +726,16 @@ static const char *judge(const claim_rule *r, const claim *c, char *why,
   }
   above = c->afv >= r->level;
   return above == (r->rule == LABEL_ABOVE) ? "yes" : "no";
+}
+
+/* The claim's verdict on the grid's runs: judge's, or "missing" (why
+** says which runs) when its runs are not all in. */
+static const char *judge_claim(const claim_ctx *X, const claim_rule *r,
+                               const claim *c, char *why, size_t len)
+{
+  why[0] = 0;
+  if (isfinite(c->afv) && runs_missing(X, r, why, len)) return "missing";
+  return judge(r, c, why, len);
 }
 
 /* ---- the dependence on dt (the header's list; the rule is dt_study.c's) -- */
@@ -935,21 +983,30 @@ static void put_field(FILE *fp, const char *s)
   fputc('"', fp);
 }
 
+int claims_integration(const char *path, char *buf, size_t len)
+{
+  double afv, err;
+  char note[1024], *a, *b;
+  if (!claims_row(path, rules[0].name, &afv, &err, note, sizeof note)
+      || !(a = strrchr(note, '[')) || !(b = strchr(a, ']')))
+    return 0;
+  snprintf(buf, len, "%.*s", (int)(b - a - 1), a + 1);
+  return 1;
+}
+
 /* The integration of the runs: read_integration's, or with the runs gone,
 ** the "[...]" that ends the earlier claims.csv's first note. */
 static void integration_from_previous(const claim_ctx *X)
 {
-  double afv, err;
-  char note[1024], *a, *b;
-  if (previous_claim(X, rules[0].name, &afv, &err, note, sizeof note)
-      && (a = strrchr(note, '[')) && (b = strchr(a, ']')))
-    snprintf(paper_integration, sizeof paper_integration, "%.*s",
-             (int)(b - a - 1), a + 1);
+  if (X->S->previous)
+    claims_integration(X->S->previous, paper_integration,
+                       sizeof paper_integration);
 }
 
 /* One row of claims.csv: the claim measured, judged against the paper
-** and against dt; counts[] of the agrees (0 yes, 1 undetermined) and of
-** the dt verdicts (2 + verdict). */
+** and against dt; counts[] of the agrees (0 yes, 1 undetermined,
+** COUNT_MISSING missing) and of the dt verdicts (2 + verdict). */
+#define COUNT_MISSING (2 + DT_NONE + 1)
 static void claim_row(FILE *fp, const claim_ctx *X, const claim_rule *r,
                       int *counts)
 {
@@ -959,9 +1016,10 @@ static void claim_row(FILE *fp, const claim_ctx *X, const claim_rule *r,
   dt_verdict dv;
   memset(&c, 0, sizeof c);
   r->measure(X, r, &c);
-  verdict = judge(r, &c, why, sizeof why);
+  verdict = judge_claim(X, r, &c, why, sizeof why);
   counts[0] += !strcmp(verdict, "yes");
   counts[1] += !strcmp(verdict, "undetermined");
+  counts[COUNT_MISSING] += !strcmp(verdict, "missing");
   dv = dt_dependence(X->S, r, dt_text, sizeof dt_text);
   counts[2 + dv]++;
   if (paper_smoke) verdict = "not established (smoke run)";
@@ -970,9 +1028,9 @@ static void claim_row(FILE *fp, const claim_ctx *X, const claim_rule *r,
   put_field(fp, r->paper);
   fprintf(fp, ",%.6g,%.6g,%s,%s,", c.afv, c.afv_err, verdict,
           dt_verdict_name(dv));
-  snprintf(note, sizeof note, "%s%s%s [%s]%s", c.note,
-           why[0] ? "; undetermined: " : "", why, paper_integration,
-           dt_text);
+  snprintf(note, sizeof note, "%s%s%s%s%s [%s]%s", c.note,
+           why[0] ? "; " : "", why[0] ? verdict : "", why[0] ? ": " : "",
+           why, paper_integration, dt_text);
   put_field(fp, note);
   fputc('\n', fp);
 }
@@ -983,17 +1041,19 @@ int claims_table(const claim_source *S, const char *path, char *summary,
   char tmp[PATH_LEN + 16];
   claim_ctx X;
   FILE *fp;
-  int k, counts[2 + DT_NONE + 1] = {0};
+  int k, counts[2 + DT_NONE + 2] = {0};
   if (!ctx_init(&X, S)) return 0;
   if (!S->have_runs) integration_from_previous(&X);
   if (!(fp = afv_atomic_open(path, tmp, sizeof tmp))) { free(X.y); return 0; }
   fprintf(fp, "claim,paper,afv,afv_err,agrees,dt_verdict,note\n");
   for (k = 0; k < N_RULES; k++) claim_row(fp, &X, &rules[k], counts);
   free(X.y);
-  snprintf(summary, len, "%d claims, %d agree, %d undetermined; dt: %d "
+  snprintf(summary, len, "%d claims, %d agree, %d undetermined, %d missing "
+           "(runs not in); dt: %d "
            "property of the model, %d property of dt = 0.01, %d not "
            "converged, %d missing, %d not measured, %d none", N_RULES,
-           counts[0], counts[1], counts[2 + DT_MODEL], counts[2 + DT_OF_DT],
+           counts[0], counts[1], counts[COUNT_MISSING],
+           counts[2 + DT_MODEL], counts[2 + DT_OF_DT],
            counts[2 + DT_NOT_CONVERGED], counts[2 + DT_MISSING],
            counts[2 + DT_NOT_MEASURED], counts[2 + DT_NONE]);
   return afv_atomic_commit(fp, tmp, path) == AFV_OK;

@@ -11,7 +11,8 @@
 **   sweep.c    sweep: a grid of runs and its runners (make, parallel, SLURM)
 **   collect.c  collect: a sweep's table, missing jobs, fits and figures
 **   paper.c    paper: the paper's figures and claims table (make paper);
-**              paper_data.c its tables, claims.c its claim rules (paper.h)
+**              paper_data.c its tables, claims.c its claim rules,
+**              paper_compare.c two records side by side (paper.h)
 **   figure.c   what collect's and paper's figures share (figure.h)
 **   phase.c,   phase diagrams and the paper's fits (fits.h): afv collect's
 **   fits.c     and afv paper's, not the library's

@@ -65,6 +65,11 @@ typedef struct afv_map {
   int           cn;
 } afv_map;
 int afv_svg_map(FILE *out, const afv_map *m);
+/* n <= AFV_MAPS_MAX maps side by side in one figure on one colour scale
+** (the range of all their values), e.g. two models' diagrams: afv_svg_map's
+** panel each.  AFV_EINVAL for n out of range or an empty map. */
+#define AFV_MAPS_MAX 4
+int afv_svg_maps(FILE *out, const afv_map *m, int n);
 
 /* ---- 2. the paper's fits (fits.c) --------------------------------------- */
 /* Power law p(n) ~ n^exponent fitted to the decay of a cluster-size

@@ -29,7 +29,7 @@
 #include <unistd.h>
 
 /* ---- figures ------------------------------------------------------------ */
-static int figure_close(FILE *fp, const char *tmp, const char *path)
+int figure_close(FILE *fp, const char *tmp, const char *path)
 {
   /* a smoke figure gets a red line at its bottom left, before the "</svg>\n" that
   ** ends every SVG afv writes */
@@ -149,7 +149,22 @@ static int plot_vs_v0(const char *out, const plane *P, int q,
 }
 
 /* A map of quantity q over the plane with its contour at level and an
-** optional dashed curve. */
+** optional dashed curve: m filled, nothing written. */
+void map_of(const plane *P, int q, const char *title,
+                   const char *zlabel, int logz, double level,
+                   const double *cx, const double *cy, int cn, afv_map *m)
+{
+  memset(m, 0, sizeof *m);
+  m->title = title;
+  m->xlabel = "P0 (l)";
+  m->ylabel = "v0 (l/time)";
+  m->zlabel = zlabel;
+  m->nx = P->np; m->ny = P->nv; m->x = P->p0; m->y = P->v0; m->z = P->mean[q];
+  m->logz = logz;
+  m->level = level;
+  m->cx = cx; m->cy = cy; m->cn = cn;
+}
+
 static int plane_map(const char *out, const plane *P, int q, const char *name,
                      const char *title, const char *zlabel, int logz,
                      double level, const double *cx, const double *cy, int cn)
@@ -157,15 +172,7 @@ static int plane_map(const char *out, const plane *P, int q, const char *name,
   char path[FIGURE_PATH_LEN], tmp[FIGURE_TMP_LEN];
   afv_map m;
   FILE *fp;
-  memset(&m, 0, sizeof m);
-  m.title = title;
-  m.xlabel = "P0 (l)";
-  m.ylabel = "v0 (l/time)";
-  m.zlabel = zlabel;
-  m.nx = P->np; m.ny = P->nv; m.x = P->p0; m.y = P->v0; m.z = P->mean[q];
-  m.logz = logz;
-  m.level = level;
-  m.cx = cx; m.cy = cy; m.cn = cn;
+  map_of(P, q, title, zlabel, logz, level, cx, cy, cn, &m);
   if (!(fp = figure_open(out, name, path, tmp))) return 0;
   afv_svg_map(fp, &m);
   return figure_close(fp, tmp, path);
@@ -310,7 +317,7 @@ static void ngc_column(const plane *P, int ip, double *y)
 }
 
 /* The dispersal points v_s(P0) (N_GC/N falls below 0.99) and their fit. */
-static int dispersal_boundary(const plane *P, double *bp, double *bv,
+int dispersal_boundary(const plane *P, double *bp, double *bv,
                               afv_boundary *fit, int *fitted)
 {
   double y[MAX_VALUES];
@@ -327,8 +334,7 @@ static int dispersal_boundary(const plane *P, double *bp, double *bv,
 }
 
 /* Curve of the fitted boundary over the P0 range. */
-#define CURVE_POINTS 60
-static int boundary_curve(const plane *P, const afv_boundary *fit,
+int boundary_curve(const plane *P, const afv_boundary *fit,
                           double *cx, double *cy)
 {
   int k;
@@ -601,33 +607,41 @@ static int boundary_points(const plane *P, int q, double level, int sign,
   return nb;
 }
 
+const char *const boundary_label[N_BOUNDARIES] = {
+  "dispersal: N_GC/N = 0.99", "confluency: Omega = 0.5",
+  "glass: D_eff = 1e-8", "glass: msd_beta = 0.5"};
+
+void phase_boundaries(const plane *P, boundaries *B)
+{
+  B->nb[0] = dispersal_boundary(P, B->bx[0], B->by[0], &B->fit, &B->fitted);
+  B->nb[1] = boundary_points(P, Q_OMEGA, CONFLUENCY_LEVEL, 1, 0, 1, B->bx[1],
+                             B->by[1]);
+  B->nb[2] = boundary_points(P, Q_DEFF, DEFF_GLASS_LEVEL, -1, 1, 0, B->bx[2],
+                             B->by[2]);
+  B->nb[3] = boundary_points(P, Q_BETA, BETA_GLASS_LEVEL, -1, 0, 0, B->bx[3],
+                             B->by[3]);
+}
+
 static int summary_figures(const char *out, const plane *P)
 {
-  double bx[4][MAX_VALUES], by[4][MAX_VALUES], cx[CURVE_POINTS],
-         cy[CURVE_POINTS];
-  afv_boundary fit;
+  double cx[CURVE_POINTS], cy[CURVE_POINTS];
+  boundaries B;
   afv_plot pl;
   afv_plot_series s[5];
-  int nb[4], fitted, ns = 0, k, ok;
+  int ns = 0, k, ok;
   char path[FIGURE_PATH_LEN], tmp[FIGURE_TMP_LEN];
   FILE *fp;
-  static const char *lab[4] = {"dispersal: N_GC/N = 0.99",
-                               "confluency: Omega = 0.5",
-                               "glass: D_eff = 1e-8",
-                               "glass: msd_beta = 0.5"};
   static const char *col[4] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd"};
-  nb[0] = dispersal_boundary(P, bx[0], by[0], &fit, &fitted);
-  nb[1] = boundary_points(P, Q_OMEGA, CONFLUENCY_LEVEL, 1, 0, 1, bx[1], by[1]);
-  nb[2] = boundary_points(P, Q_DEFF, DEFF_GLASS_LEVEL, -1, 1, 0, bx[2], by[2]);
-  nb[3] = boundary_points(P, Q_BETA, BETA_GLASS_LEVEL, -1, 0, 0, bx[3], by[3]);
+  phase_boundaries(P, &B);
   memset(s, 0, sizeof s);
-  for (k = 0; k < 4; k++) {
-    s[ns].x = bx[k]; s[ns].y = by[k]; s[ns].n = nb[k];
-    s[ns].label = lab[k]; s[ns].color = col[k]; s[ns].points = nb[k] < 2;
+  for (k = 0; k < N_BOUNDARIES; k++) {
+    s[ns].x = B.bx[k]; s[ns].y = B.by[k]; s[ns].n = B.nb[k];
+    s[ns].label = boundary_label[k]; s[ns].color = col[k];
+    s[ns].points = B.nb[k] < 2;
     ns++;
   }
-  if (fitted) {
-    s[ns].n = boundary_curve(P, &fit, cx, cy);
+  if (B.fitted) {
+    s[ns].n = boundary_curve(P, &B.fit, cx, cy);
     s[ns].x = cx; s[ns].y = cy; s[ns].color = "#000000";
     s[ns].label = "v_s fit";
     ns++;
@@ -874,8 +888,10 @@ static int halves_table(const char *out, const plane *P)
 /* ---- the command ------------------------------------------------------------ */
 static const char *paper_usage =
 "usage: afv paper OUT [--dt-table FILE]\n"
+"       afv paper --grid-only OUT [--dt-table FILE]\n"
 "       afv paper --claims-from DIR [--dt-table FILE]\n"
 "       afv paper --dt-verdicts FILE OUTFILE\n"
+"       afv paper --compare DIR_A DIR_B OUT\n"
 "\n"
 "The paper's figures and claims from the sweeps of make paper\n"
 "(tools/paper_sweeps.sh) after afv collect: OUT/grid (P0 x v0 at N = 400)\n"
@@ -900,6 +916,9 @@ static const char *paper_usage =
 "and DIR/claims.csv, the earlier claims, for the two a table cannot give\n"
 "(the cluster-size exponents, fitted to the runs' csd.csv) and the runs'\n"
 "integration; rewrites DIR/claims.csv.\n"
+"A claim whose runs are not all in (its point short of the design's\n"
+"seeds, or for a claim drawn from the whole grid any point) says\n"
+"'missing' (its value given, no verdict).\n"
 "--dt-table FILE: the dt study (tools/model_table.sh's dt_table.csv, e.g.\n"
 "doc/reproduction/model/dt_table.csv): each claim's dt_verdict is then\n"
 "property of the model, property of dt = 0.01, not converged, missing or\n"
@@ -907,6 +926,15 @@ static const char *paper_usage =
 "mean field); without it every dt_verdict is not measured.\n"
 "--dt-verdicts FILE OUTFILE: that rule applied to every state point and\n"
 "observable of the dt table FILE, written to OUTFILE (dt_verdicts.csv).\n"
+"--grid-only OUT: as afv paper OUT for a study without OUT/fss (e.g. the\n"
+"regularised model's grid): no fss.csv, no finite-size figure.\n"
+"--compare DIR_A DIR_B OUT: two records (DIR/grid_table.csv, and\n"
+"DIR/claims.csv for the runs' integration) side by side on one colour\n"
+"scale: OUT/figures/compare_fig2b_cluster_phase.svg (N_GC/N),\n"
+"compare_fig4b_omega_map.svg (Omega), compare_fig5d_dynamic_phase.svg\n"
+"(D_eff), compare_fig5d_dynamic_phase_msd_beta.svg (grey: no run;\n"
+"both on the design of both tables), and compare_fig7a_summary_phase.svg\n"
+"(both records' boundaries in one plot).\n"
 "Exit status: 0 written, 2 a sweep's table is missing, unreadable or\n"
 "a header only (no run finished), or the dt table is malformed (a\n"
 "missing column, a field not a number, two cap values): nothing written.\n";
@@ -932,8 +960,10 @@ static int claims_from(const char *dir, const dt_table *dt)
   return ok ? 0 : EXIT_BAD_INPUT;
 }
 
-/* afv paper OUT: figures, claims and tables from the sweeps in OUT. */
-static int paper_from_sweeps(const char *out, const dt_table *dt)
+/* afv paper OUT: figures, claims and tables from the sweeps in OUT
+** (without OUT/fss's outputs unless with_fss). */
+static int paper_from_sweeps(const char *out, const dt_table *dt,
+                             int with_fss)
 {
   char path[PATH_LEN], summary[256];
   plane P;
@@ -943,7 +973,11 @@ static int paper_from_sweeps(const char *out, const dt_table *dt)
   read_scale(out);
   if (!plane_read(out, &P)) { plane_free(&P); return EXIT_BAD_INPUT; }
   read_integration(&P);
-  if (!fss_read(out, &F)) { plane_free(&P); return EXIT_BAD_INPUT; }
+  memset(&F, 0, sizeof F);
+  if (with_fss && !fss_read(out, &F)) {
+    plane_free(&P);
+    return EXIT_BAD_INPUT;
+  }
   snprintf(path, sizeof path, "%s/figures", out);
   if (mkdir(path, 0777) != 0 && errno != EEXIST) {
     fprintf(stderr, "afv paper: %s: %s\n", path, strerror(errno));
@@ -958,12 +992,13 @@ static int paper_from_sweeps(const char *out, const dt_table *dt)
   snprintf(path, sizeof path, "%s/claims.csv", out);
   ok = cluster_figures(out, &P) && fluctuation_figures(out, &P)
        && confluency_figures(out, &P) && dynamics_figures(out, &P)
-       && summary_figures(out, &P) && fss_outputs(out, &F, &P)
+       && summary_figures(out, &P) && (!with_fss || fss_outputs(out, &F, &P))
        && halves_table(out, &P)
        && claims_table(&S, path, summary, sizeof summary);
-  if (ok) printf("afv paper: %s/figures, %s (%s), %s/fss.csv%s\n", out, path,
-                 summary, out, paper_smoke ? " (smoke run: figures and "
-                 "claims marked, the numbers mean nothing)" : "");
+  if (ok) printf("afv paper: %s/figures, %s (%s)%s%s%s%s\n", out, path,
+                 summary, with_fss ? ", " : "", with_fss ? out : "",
+                 with_fss ? "/fss.csv" : "", paper_smoke ? " (smoke run: "
+                 "figures and claims marked, the numbers mean nothing)" : "");
   else fprintf(stderr, "afv paper: could not write into %s\n", out);
   plane_free(&P);
   free(F.mean);
@@ -983,9 +1018,10 @@ static int dt_verdicts(const char *table, const char *out)
   return ok ? 0 : EXIT_BAD_INPUT;
 }
 
-/* The arguments: OUT or --claims-from DIR, then --dt-table FILE or not. */
+/* The arguments: OUT or --claims-from DIR, then --dt-table FILE or not;
+** with_fss 0 for --grid-only OUT. */
 static int paper_run(const char *claims_dir, const char *out,
-                     const char *dt_path)
+                     const char *dt_path, int with_fss)
 {
   dt_table T;
   int st;
@@ -997,7 +1033,7 @@ static int paper_run(const char *claims_dir, const char *out,
     return bad_input("paper: --dt-table FILE too long");
   if (dt_path && !dt_table_read(dt_path, &T)) return EXIT_BAD_INPUT;
   st = claims_dir ? claims_from(claims_dir, dt_path ? &T : NULL)
-                  : paper_from_sweeps(out, dt_path ? &T : NULL);
+                  : paper_from_sweeps(out, dt_path ? &T : NULL, with_fss);
   if (dt_path) dt_table_free(&T);
   return st;
 }
@@ -1015,15 +1051,24 @@ int cmd_paper(int argc, char **argv)
       return bad_input("paper: --dt-verdicts FILE OUTFILE too long");
     return dt_verdicts(argv[2], argv[3]);
   }
+  if (argc == 5 && strcmp(argv[1], "--compare") == 0) {
+    int k;
+    for (k = 2; k < 5; k++)
+      if (strlen(argv[k]) > RUN_PATH_MAX - 64)
+        return bad_input("paper: --compare: a path too long");
+    return paper_compare(argv[2], argv[3], argv[4]);
+  }
   if (argc >= 4 && strcmp(argv[argc - 2], "--dt-table") == 0) {
     dt_path = argv[argc - 1];
     argc -= 2;
   }
   if (argc == 3 && strcmp(argv[1], "--claims-from") == 0)
-    return paper_run(argv[2], NULL, dt_path);
+    return paper_run(argv[2], NULL, dt_path, 1);
+  if (argc == 3 && strcmp(argv[1], "--grid-only") == 0)
+    return paper_run(NULL, argv[2], dt_path, 0);
   if (argc != 2 || argv[1][0] == '-') {
     fputs(paper_usage, stderr);
     return EXIT_BAD_INPUT;
   }
-  return paper_run(NULL, argv[1], dt_path);
+  return paper_run(NULL, argv[1], dt_path, 1);
 }

@@ -1,10 +1,11 @@
 /*
-** paper.h -- what the three files of `afv paper` share:
+** paper.h -- what the files of `afv paper` share:
 **   paper_data.c  the sweeps' tables (CSV), the (P0, v0) plane of means,
 **                 a run's analysis files, the runs' integration
 **   claims.c      the claims table: each claim of the paper, its rule,
 **                 afv's value, the judgement
 **   paper.c       the figures, the finite-size table and the command
+**   paper_compare.c  two records side by side (afv paper --compare)
 ** Not part of the library.
 */
 #ifndef AFV_PAPER_H
@@ -49,6 +50,11 @@ typedef struct plane {
   int np, nv;                  /* distinct P0, v0 values */
   double p0[MAX_VALUES], v0[MAX_VALUES];
   double *mean[N_Q], *sem[N_Q];  /* [iv np + ip]; NaN where no job ended */
+  double *seeds;               /* [iv np + ip]: the table's n_seeds, the
+                               ** runs in at the point (0 where none) */
+  int design_seeds;            /* seeds per point by design: points.csv's
+                               ** most at a point, or with a table alone
+                               ** the table's largest n_seeds */
   csv points;                  /* points.csv: id, P0, v0, seed (no rows
                                ** when read from a table alone) */
   char dir[RUN_PATH_MAX];      /* the sweep's folder ("" without runs) */
@@ -60,6 +66,9 @@ int plane_read(const char *out, plane *P);
 /* A table alone (afv collect's table.csv, e.g. a committed
 ** grid_table.csv): the design is the table's rows, no run is read. */
 int plane_read_table(const char *path, plane *P);
+/* The same on the design of both tables, path's and also's (two records
+** of one grid compared: a point that one lacks stays NaN, not left out). */
+int plane_read_table_over(const char *path, const char *also, plane *P);
 void plane_free(plane *P);
 /* A sweep's table.csv (afv collect) with one state point or more; else 0
 ** and one line naming the file and what it lacks. */
@@ -67,6 +76,10 @@ int table_read(const char *sweep_dir, csv *t);
 /* Adds v to the sorted set vals (n values, at most MAX_VALUES) if it is
 ** not there yet. */
 void add_value(double *vals, int *n, double v);
+/* Runs in at (ip, iv), and over the whole design (np nv design_seeds):
+** a point or a grid with fewer is partial. */
+int seeds_at(const plane *P, int ip, int iv);
+int runs_in(const plane *P);
 /* Mean (sem = 0) or standard error (sem = 1) of quantity q at (ip, iv). */
 double at(const plane *P, int q, int ip, int iv, int sem);
 int index_of(const double *vals, int n, double v);
@@ -159,6 +172,39 @@ void dt_series_text(const dt_series *s, char *buf, size_t len);
 ** and on the side of the observable's threshold (where it has one). */
 int dt_verdicts_write(const dt_table *T, const char *path);
 
+/* ---- figures (paper.c), shared with paper_compare.c ----------------------- */
+/* Commits a figure opened by figure_open (figure.h): a smoke run's, or a
+** partial grid's, marked so. */
+int figure_close(FILE *fp, const char *tmp, const char *path);
+/* The map of quantity q over the plane, its contour at level and an
+** optional dashed curve (cx, cy; cn points): m filled, nothing written. */
+void map_of(const plane *P, int q, const char *title, const char *zlabel,
+            int logz, double level, const double *cx, const double *cy,
+            int cn, afv_map *m);
+/* The dispersal points v_s(P0) (N_GC/N falls below 0.99 along v0) into
+** bp, bv (their number returned) and their fit (*fitted 1 if made). */
+int dispersal_boundary(const plane *P, double *bp, double *bv,
+                       afv_boundary *fit, int *fitted);
+/* The fitted boundary over the plane's P0 range: CURVE_POINTS points. */
+#define CURVE_POINTS 60
+int boundary_curve(const plane *P, const afv_boundary *fit, double *cx,
+                   double *cy);
+/* The boundaries of Fig. 7(a) on the plane (afv paper's summary): the
+** dispersal points and fit, the Omega = 0.5 line (along P0), the D_eff =
+** 1e-8 and msd_beta = 0.5 lines (along v0); boundary_label names them. */
+#define N_BOUNDARIES 4
+typedef struct boundaries {
+  double bx[N_BOUNDARIES][MAX_VALUES], by[N_BOUNDARIES][MAX_VALUES];
+  int nb[N_BOUNDARIES];        /* points of each */
+  afv_boundary fit;            /* the dispersal points' fit, */
+  int fitted;                  /* if made */
+} boundaries;
+extern const char *const boundary_label[N_BOUNDARIES];
+void phase_boundaries(const plane *P, boundaries *B);
+/* afv paper --compare DIR_A DIR_B OUT (paper_compare.c): 0, or
+** EXIT_BAD_INPUT with a message. */
+int paper_compare(const char *a, const char *b, const char *out);
+
 /* ---- the claims table (claims.c) ---------------------------------------- */
 /* Where the claims' numbers come from: the plane, and where the runs are
 ** gone (afv paper --claims-from) the earlier claims.csv for the claims a
@@ -175,5 +221,9 @@ typedef struct claim_source {
 ** summary.  0 on a write error. */
 int claims_table(const claim_source *S, const char *path, char *summary,
                  size_t len);
+/* The runs' integration ("afv 0.2.0, integrator euler, dt 0.01, exact
+** force") that ends the first note of the claims.csv at path, into buf;
+** 0 if there is none. */
+int claims_integration(const char *path, char *buf, size_t len);
 
 #endif /* AFV_PAPER_H */

@@ -171,6 +171,7 @@ void plane_free(plane *P)
 {
   int q;
   for (q = 0; q < N_Q; q++) { free(P->mean[q]); free(P->sem[q]); }
+  free(P->seeds);
   csv_free(&P->points);
 }
 
@@ -180,11 +181,13 @@ void plane_free(plane *P)
 static int plane_fill(plane *P, const csv *t, const char *path)
 {
   int r, q, cq[N_Q], cs[N_Q];
-  int cp = csv_col(t, "P0"), cv = csv_col(t, "v0");
+  int cp = csv_col(t, "P0"), cv = csv_col(t, "v0"), cn = csv_col(t, "n_seeds");
   if (cp < 0 || cv < 0) {
     fprintf(stderr, "afv paper: %s: no P0 or v0 column\n", path);
     return 0;
   }
+  if (!(P->seeds = calloc((size_t)(P->np * P->nv + 1), sizeof *P->seeds)))
+    return 0;
   for (q = 0; q < N_Q; q++) {
     char name[CELL_MAX + 8];
     int k;
@@ -200,12 +203,47 @@ static int plane_fill(plane *P, const csv *t, const char *path)
   for (r = 0; r < t->nrow; r++) {
     int ip = index_of(P->p0, P->np, csv_num(t, r, cp));
     int iv = index_of(P->v0, P->nv, csv_num(t, r, cv));
-    for (q = 0; q < N_Q && ip >= 0 && iv >= 0; q++) {
+    if (ip < 0 || iv < 0) continue;
+    for (q = 0; q < N_Q; q++) {
       P->mean[q][iv * P->np + ip] = csv_num(t, r, cq[q]);
       P->sem[q][iv * P->np + ip] = csv_num(t, r, cs[q]);
     }
+    /* a table without n_seeds (an older one) counts one run per row */
+    P->seeds[iv * P->np + ip] = cn < 0 ? 1 : csv_num(t, r, cn);
   }
   return P->np > 0 && P->nv > 0;
+}
+
+/* The most runs at one point: of points.csv's rows (the design), or of
+** the table's n_seeds when the table is all there is. */
+static int most_seeds(const plane *P, const csv *points)
+{
+  int ip, iv, r, most = 0;
+  int cp = csv_col(points, "P0"), cv = csv_col(points, "v0");
+  for (ip = 0; ip < P->np; ip++)
+    for (iv = 0; iv < P->nv; iv++) {
+      int n = 0;
+      for (r = 0; r < points->nrow; r++)
+        n += fabs(csv_num(points, r, cp) - P->p0[ip]) < 1e-9
+             && fabs(csv_num(points, r, cv) - P->v0[iv]) < 1e-9;
+      if (points->nrow == 0) n = seeds_at(P, ip, iv);
+      if (n > most) most = n;
+    }
+  return most;
+}
+
+int seeds_at(const plane *P, int ip, int iv)
+{
+  double n = P->seeds ? P->seeds[iv * P->np + ip] : 0;
+  return isfinite(n) && n > 0 ? (int)n : 0;
+}
+
+int runs_in(const plane *P)
+{
+  int ip, iv, n = 0;
+  for (ip = 0; ip < P->np; ip++)
+    for (iv = 0; iv < P->nv; iv++) n += seeds_at(P, ip, iv);
+  return n;
 }
 
 /* The design's P0 and v0 values: every row of t. */
@@ -234,21 +272,31 @@ int plane_read(const char *out, plane *P)
   plane_design(P, &P->points);
   snprintf(path, sizeof path, "%s/table.csv", P->dir);
   ok = plane_fill(P, &t, path);
+  if (ok) P->design_seeds = most_seeds(P, &P->points);
   csv_free(&t);
   return ok;
 }
 
 int plane_read_table(const char *path, plane *P)
 {
-  csv t;
+  return plane_read_table_over(path, NULL, P);
+}
+
+int plane_read_table_over(const char *path, const char *also, plane *P)
+{
+  csv t, d;
   int ok;
   memset(P, 0, sizeof *P);
   if (!csv_read(path, &t)) return 0;
+  if (also && !csv_read(also, &d)) { csv_free(&t); return 0; }
   plane_design(P, &t);
+  if (also) plane_design(P, &d);
   ok = t.nrow > 0 && plane_fill(P, &t, path);
+  if (ok) P->design_seeds = most_seeds(P, &P->points);
   if (t.nrow == 0)
     fprintf(stderr, "afv paper: %s: no state point, only a header\n", path);
   csv_free(&t);
+  if (also) csv_free(&d);
   return ok;
 }
 
@@ -354,6 +402,16 @@ static void read_version(const plane *P, char *buf, size_t len)
   fclose(fp);
 }
 
+/* A number of a job file as the sweep was asked for it: afv 0.4.0's job
+** files print every digit (cap 0.45000000000000001), so %g; not a number:
+** left as it is. */
+static void as_asked(char *v, size_t len)
+{
+  char *end;
+  double x = strtod(v, &end);
+  if (end != v) snprintf(v, len, "%g", x);
+}
+
 /* integration: the integrator of the grid's runs, from the first job's
 ** configuration (every job of a sweep shares it), and their afv version
 ** (read_version). */
@@ -375,6 +433,8 @@ void read_integration(const plane *P)
       else if (!strcmp(key, "max_move")) snprintf(mm, sizeof mm, "%s", val);
     }
   fclose(fp);
+  as_asked(dt, sizeof dt);
+  as_asked(cap, sizeof cap);
   if (!strcmp(integ, "substeps"))
     snprintf(how, sizeof how, "integrator substeps, dt %.20s, max_move %.20s",
              dt, mm);

@@ -328,38 +328,67 @@ static void map_colorbar(FILE *out, const afv_map *m, const map_frame *f)
   fputs("</text>\n", out);
 }
 
-int afv_svg_map(FILE *out, const afv_map *m)
+/* The frame of map m: its grid's extent, and the colour range over the
+** finite values of the n maps at all (one scale for maps drawn side by
+** side); 0 if m has no point. */
+static int map_frame_of(const afv_map *m, const afv_map *all, int n,
+                        map_frame *f)
 {
-  map_frame f;
-  int k, n = m->nx * m->ny, any = 0;
-  if (m->nx < 1 || m->ny < 1) return AFV_EINVAL;
-  f.x0 = cell_edge(m->x, m->nx, 0, 0);
-  f.x1 = cell_edge(m->x, m->nx, m->nx - 1, 1);
-  f.y0 = cell_edge(m->y, m->ny, 0, 0);
-  f.y1 = cell_edge(m->y, m->ny, m->ny - 1, 1);
-  f.zlo = HUGE_VAL;
-  f.zhi = -HUGE_VAL;
-  for (k = 0; k < n; k++) {
-    double z = shown(m, m->z[k]);
-    if (!isfinite(z)) continue;
-    any = 1;
-    if (z < f.zlo) f.zlo = z;
-    if (z > f.zhi) f.zhi = z;
-  }
-  if (!any) f.zlo = 0, f.zhi = 1;
-  if (f.zhi - f.zlo < AFV_PLOT_SPAN_TOL) { f.zlo -= 0.5; f.zhi += 0.5; }
-  fprintf(out, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\""
-          "http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" "
-          "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"%g\" "
-          "height=\"%g\" fill=\"white\"/>\n", MAP_W, MAP_H, MAP_W, MAP_H);
-  map_cells(out, m, &f);
-  map_contour(out, m, &f);
-  map_curve(out, m, &f);
+  int k, j, any = 0;
+  if (m->nx < 1 || m->ny < 1) return 0;
+  f->x0 = cell_edge(m->x, m->nx, 0, 0);
+  f->x1 = cell_edge(m->x, m->nx, m->nx - 1, 1);
+  f->y0 = cell_edge(m->y, m->ny, 0, 0);
+  f->y1 = cell_edge(m->y, m->ny, m->ny - 1, 1);
+  f->zlo = HUGE_VAL;
+  f->zhi = -HUGE_VAL;
+  for (j = 0; j < n; j++)
+    for (k = 0; k < all[j].nx * all[j].ny; k++) {
+      double z = shown(&all[j], all[j].z[k]);
+      if (!isfinite(z)) continue;
+      any = 1;
+      if (z < f->zlo) f->zlo = z;
+      if (z > f->zhi) f->zhi = z;
+    }
+  if (!any) f->zlo = 0, f->zhi = 1;
+  if (f->zhi - f->zlo < AFV_PLOT_SPAN_TOL) { f->zlo -= 0.5; f->zhi += 0.5; }
+  return 1;
+}
+
+static void map_panel(FILE *out, const afv_map *m, const map_frame *f)
+{
+  map_cells(out, m, f);
+  map_contour(out, m, f);
+  map_curve(out, m, f);
   fprintf(out, "<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" "
           "fill=\"none\" stroke=\"black\"/>\n", MAP_L, MAP_T,
           MAP_W - MAP_L - MAP_R, MAP_H - MAP_T - MAP_B);
-  map_axes(out, m, &f);
-  map_colorbar(out, m, &f);
+  map_axes(out, m, f);
+  map_colorbar(out, m, f);
+}
+
+int afv_svg_map(FILE *out, const afv_map *m)
+{
+  return afv_svg_maps(out, m, 1);
+}
+
+int afv_svg_maps(FILE *out, const afv_map *m, int n)
+{
+  map_frame f[AFV_MAPS_MAX];
+  int k;
+  if (n < 1 || n > AFV_MAPS_MAX) return AFV_EINVAL;
+  for (k = 0; k < n; k++)
+    if (!map_frame_of(&m[k], m, n, &f[k])) return AFV_EINVAL;
+  fprintf(out, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\""
+          "http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" "
+          "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"%g\" "
+          "height=\"%g\" fill=\"white\"/>\n", n * MAP_W, MAP_H, n * MAP_W,
+          MAP_H);
+  for (k = 0; k < n; k++) {
+    if (n > 1) fprintf(out, "<g transform=\"translate(%g 0)\">\n", k * MAP_W);
+    map_panel(out, &m[k], &f[k]);
+    if (n > 1) fputs("</g>\n", out);
+  }
   fputs("</svg>\n", out);
   return ferror(out) ? AFV_EIO : AFV_OK;
 }

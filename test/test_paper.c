@@ -276,6 +276,38 @@ static void paper_partial_grid_not_measured(void)
   test_sh("rm -rf %s", dir);
 }
 
+/* A study without a finite-size sweep (the capped model's grid):
+** afv paper OUT refuses it (exit 2, no claims), afv paper --grid-only OUT
+** writes the grid's claims and figures and no fss.csv. */
+static void paper_grid_only(void)
+{
+  char dir[128];
+  if (access("./afv", X_OK) != 0) { SKIP("./afv not built"); return; }
+  snprintf(dir, sizeof dir, "/tmp/afv_paper_test_gridonly.%ld",
+           (long)getpid());
+  test_sh("rm -rf %s && mkdir -p %s/grid/jobs", dir, dir);
+  put_file(dir, "grid/points.csv", "id,P0,v0,seed\n0001,4,0.4,1\n"
+           "0002,8,0.4,1\n");
+  put_file(dir, "grid/table.csv", "P0,v0,n_seeds,ngc_frac_mean,ngc_frac_sem\n"
+           "4,0.4,1,1,nan\n8,0.4,1,0.9,nan\n");
+  put_file(dir, "grid/jobs/0001.conf", "integrator euler\ndt 0.01\n"
+           "cap 0.45000000000000001\n");
+  CHECK(test_sh("./afv paper %s > /dev/null 2>&1", dir) == 2,
+        "no fss sweep: afv paper OUT did not refuse");
+  CHECK(test_sh("test -e %s/claims.csv", dir) != 0, "refused, yet claims "
+        "written");
+  CHECK(test_sh("./afv paper --grid-only %s > /dev/null 2>&1", dir) == 0,
+        "--grid-only failed");
+  CHECK(test_sh("test -s %s/claims.csv && test -s "
+                "%s/figures/fig2b_cluster_phase.svg && ! test -e %s/fss.csv",
+                dir, dir, dir) == 0, "--grid-only: claims or figures missing, "
+        "or fss.csv written");
+  /* the job file's cap as the sweep was asked (0.4.0 prints every digit) */
+  CHECK(test_sh("grep -q 'dt 0.01, cap 0.45]' %s/claims.csv", dir) == 0,
+        "the integration does not read 'dt 0.01, cap 0.45'");
+  test_sh("rm -rf %s", dir);
+}
+
 /* ---- the claim rules on made-up tables (afv paper --claims-from) --------- */
 /* A made-up grid_table.csv whose answers are known: N_GC/N = G((v0 - 1.85
 ** - shift(P0)) / P0^1.5) with G = 0.99 at -0.06 (so the dispersal line is
@@ -285,7 +317,7 @@ static void paper_partial_grid_not_measured(void)
 ** mutations each break one thing a rule must catch. */
 enum { TABLE_PAPER, TABLE_NOISY_BOUNDARY, TABLE_LABEL_IN_NOISE,
        TABLE_OMEGA_FAR, TABLE_UNCROSSED_PAIR, TABLE_OMEGA_NOISE,
-       TABLE_OMEGA_NEXT_GAP };
+       TABLE_OMEGA_NEXT_GAP, TABLE_PARTIAL, TABLE_NO_TOP_ROW };
 
 static double made_up_g(double s)
 {
@@ -308,7 +340,9 @@ static void made_up_table(const char *dir, int mutation)
           "msd_beta_sem\n");
   for (i = 0; i < 5; i++)
     for (k = 0; k <= 54; k++) {
-      double v0 = 0.05 * k, shift = 0, ngc, sem = 0.001, osem = 0.001;
+      double v0 = 0.05 * k, shift = 0, ngc, osem = 0.001;
+      const char *sem = "0.001";
+      int seeds = 2;
       if (mutation == TABLE_NOISY_BOUNDARY) shift = noisy[i];
       ngc = made_up_g((v0 - 1.85 - shift) / pow(p0[i], 1.5));
       if (mutation == TABLE_UNCROSSED_PAIR && i == 1)  /* 5 stays below 6 */
@@ -316,11 +350,18 @@ static void made_up_table(const char *dir, int mutation)
               : fmin(ngc, made_up_g((v0 - 1.85) / pow(6, 1.5)) - 0.01);
       if (mutation == TABLE_LABEL_IN_NOISE && i == 0 && k == 2) {
         ngc = 0.995;
-        sem = 0.01;
+        sem = "0.01";
       }
       if (mutation == TABLE_OMEGA_NOISE) osem = 50;
-      fprintf(fp, "%g,%g,2,%.9g,%g,%.9g,%g,%g,1e-10,%s,nan,%g,0.01\n", p0[i],
-              v0, ngc, sem, 0.5 * (1 - tanh((p0[i] - pc) / 0.3)), osem,
+      /* a partial grid: one seed in at (4, 0.1), no run at (8, 2.7) */
+      if (mutation == TABLE_PARTIAL && i == 4 && k == 54) continue;
+      if (mutation == TABLE_NO_TOP_ROW && k == 54) continue;
+      if (mutation == TABLE_PARTIAL && i == 0 && k == 2) {
+        seeds = 1;
+        sem = "nan";
+      }
+      fprintf(fp, "%g,%g,%d,%.9g,%s,%.9g,%g,%g,1e-10,%s,nan,%g,0.01\n", p0[i],
+              v0, seeds, ngc, sem, 0.5 * (1 - tanh((p0[i] - pc) / 0.3)), osem,
               p0[i] < 4.5 ? 1e-9 : 1e-3, p0[i] < 4.5 ? "inf" : "12",
               p0[i] < 4.5 ? 0.05 : 1.0);
     }
@@ -414,7 +455,84 @@ static void claim_rules_on_made_up_tables(void)
   claim_verdict(dir, "v0_star", v, sizeof v, note, sizeof note);
   CHECK(strstr(note, "9 of 10 pairs cross") && strstr(note, "crossing: 5/6"),
         "the pair that does not cross is not counted: %.400s", note);
+  /* one seed in at (4, 0.1), no run at (8, 2.7): the label there and every
+  ** claim drawn from the whole grid say missing, with the count; a label
+  ** at a whole point and the mean field are judged */
+  CHECK(made_up_claims(dir, TABLE_PARTIAL), "partial grid");
+  EXPECT_VERDICT(dir, "state_P0_4_v0_0.1_cluster", "missing");
+  EXPECT_VERDICT(dir, "v0_star", "missing");
+  EXPECT_VERDICT(dir, "collapse_alpha", "missing");
+  EXPECT_VERDICT(dir, "P0_omega_half_low_v0", "missing");
+  EXPECT_VERDICT(dir, "msd_beta_P0_4_v0_0.4", "yes");
+  EXPECT_VERDICT(dir, "meanfield_P0_star", "yes");
+  claim_verdict(dir, "v0_star", v, sizeof v, note, sizeof note);
+  CHECK(strstr(note, "missing: the grid is partial: 547 of 550 runs in"),
+        "the partial grid is not counted: %.600s", note);
+  claim_verdict(dir, "state_P0_4_v0_0.1_cluster", v, sizeof v, note,
+                sizeof note);
+  CHECK(strstr(note, "missing: 1 of 2 seeds in at (4, 0.1)"),
+        "the point's seeds are not counted: %.600s", note);
   test_sh("rm -rf %s", dir);
+}
+
+/* The colour bar's three labels (font-size 11) of panel `panel` of an
+** afv_svg_maps figure, as text; "" if not found. */
+static void colorbar_labels(const char *svg, int panel, char *out, size_t len)
+{
+  const char *p = svg;
+  size_t used = 0;
+  int k;
+  out[0] = 0;
+  for (k = 0; k < 3 * (panel + 1) && p; k++) {
+    p = strstr(p, "font-size=\"11\">");
+    if (!p) return;
+    p += 15;
+    if (k >= 3 * panel)
+      used += (size_t)snprintf(out + used, len - used, "%.*s ",
+                               (int)strcspn(p, "<"), p);
+  }
+}
+
+/* afv paper --compare: two records side by side on one colour scale (the
+** second lacks the top row, v0 2.7, where N_GC/N is lowest, so its own
+** range would be narrower), on one design: its missing row grey and
+** counted; a record without a table: exit 2, nothing written.  Fails with
+** the scale of each map its own (afv_svg_maps framing each panel by its
+** values alone), and with each panel on its own table's design (the
+** second's 270 of 270 points). */
+static void compare_on_one_scale(void)
+{
+  char a[128], b[128], path[192], text[1 << 17], l0[128], l1[128];
+  FILE *fp;
+  size_t m = 0;
+  if (access("./afv", X_OK) != 0) { SKIP("./afv not built"); return; }
+  snprintf(a, sizeof a, "/tmp/afv_compare_a.%ld", (long)getpid());
+  snprintf(b, sizeof b, "/tmp/afv_compare_b.%ld", (long)getpid());
+  test_sh("rm -rf %s %s && mkdir -p %s %s", a, b, a, b);
+  made_up_table(a, TABLE_PAPER);
+  made_up_table(b, TABLE_NO_TOP_ROW);
+  CHECK(test_sh("./afv paper --compare %s %s %s/out > /dev/null", a, b, b)
+        == 0, "afv paper --compare failed");
+  snprintf(path, sizeof path, "%s/out/figures/compare_fig2b_cluster_phase.svg",
+           b);
+  if ((fp = fopen(path, "r"))) {
+    m = fread(text, 1, sizeof text - 1, fp);
+    fclose(fp);
+  }
+  text[m] = 0;
+  colorbar_labels(text, 0, l0, sizeof l0);
+  colorbar_labels(text, 1, l1, sizeof l1);
+  CHECK(l0[0] && strcmp(l0, l1) == 0, "two colour scales: '%s' and '%s'",
+        l0, l1);
+  CHECK(strstr(text, "(275 of 275 points)") && strstr(text, "(270 of 275 "
+        "points)") && strstr(text, "#dddddd"), "the missing row is not "
+        "counted or not grey");
+  test_sh("rm %s/grid_table.csv", a);
+  CHECK(test_sh("./afv paper --compare %s %s %s/new 2> /dev/null", a, b, b)
+        == 2, "a record without its table: exit status not 2");
+  CHECK(test_sh("test -e %s/new", b) != 0, "a record without its table: "
+        "written");
+  test_sh("rm -rf %s %s", a, b);
 }
 
 /* --claims-from carries the cluster-size exponents (the runs' csd.csv are
@@ -746,10 +864,13 @@ void suite_paper(void)
   RUN(paper_refuses_missing_sweeps);
   RUN(paper_names_header_only_table);
   RUN(paper_partial_grid_not_measured);
+  RUN(paper_grid_only);
   RUN(claim_rules_on_made_up_tables);
   RUN(claims_from_carries_over);
   RUN(claims_against_dt);
   RUN(dt_verdicts_table);
   RUN(dt_table_refused);
+
+  RUN(compare_on_one_scale);
   RUN(deff_estimators_side_by_side);
 }

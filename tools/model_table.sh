@@ -16,8 +16,10 @@
 #                   afv paper --dt-verdicts (the claims table's rule,
 #                   cmd/dt_study.c), AFV the program (default ./afv)
 #   cap_table.csv   the same as dt_table.csv for the cap sweeps (cap column)
-#   fss_table.csv   the same for the finite-size sweeps (N column)
 #   progress.txt    how many runs of each sweep are in
+# then tools/model_cap.sh OUT DEST: the capped model's record (cap/), its
+# dt check and cap sequence (cap_dt_table.csv, cap_seq_table.csv), the
+# finite-size tables (fss_table.csv, fss_crossing.csv) and their figures.
 #
 # Observables: ngc_frac, n_clusters, omega (steady means), D_eff (the
 # summary's, lag 5000), msd_beta, beta_long, t1_rate (T1 events per cell
@@ -106,8 +108,6 @@ mean_table '^dt_' > "$DEST/dt_table.csv.tmp"
 mv "$DEST/dt_table.csv.tmp" "$DEST/dt_table.csv"
 mean_table '^cap_' > "$DEST/cap_table.csv.tmp"
 mv "$DEST/cap_table.csv.tmp" "$DEST/cap_table.csv"
-mean_table '^fss_' > "$DEST/fss_table.csv.tmp"
-mv "$DEST/fss_table.csv.tmp" "$DEST/fss_table.csv"
 
 # dt_verdicts.csv: the rule of the claims table, applied by the same code
 # (cmd/dt_study.c) to every state point and observable
@@ -127,6 +127,7 @@ if [ -x "$PLOT" ] && [ "$(wc -l < "$DEST/dt_table.csv")" -gt 1 ]; then
       "dispersal states: $o against dt (seed mean, markers +- sem)" || true
   done
 fi
+AFV="$AFV" sh "$HERE/tools/model_cap.sh" "$OUT" "$DEST"
 # progress.txt: how many runs of each sweep are in, and who ran them
 {
   for dir in "$OUT"/*/; do

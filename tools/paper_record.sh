@@ -14,7 +14,9 @@
 # paper's length as the record; DT_TABLE= leaves it out).
 # Trajectories and per-run files stay in OUT.  Safe while OUT's runners
 # are running (they never read what this writes); run it again as runs
-# finish.
+# finish.  An OUT without an fss sweep (the regularised model's grid,
+# tools/model_table.sh) gets the grid's record alone (afv paper --grid-only:
+# no fss.csv).
 set -e
 OUT=${1:?usage: tools/paper_record.sh OUT DEST AFV}
 DEST=${2:?usage: tools/paper_record.sh OUT DEST AFV}
@@ -22,19 +24,24 @@ AFV=${3:?usage: tools/paper_record.sh OUT DEST AFV}
 here=$(dirname "$0")
 DT_TABLE=${DT_TABLE-$here/../doc/reproduction/model/dt_table.csv}
 
+sweeps="grid fss" grid_only=
+[ -d "$OUT/fss" ] || { sweeps=grid; grid_only=--grid-only; }
 # collect: exit 1 means jobs are missing (a partial record), 2 an error
-for sweep in grid fss; do
+for sweep in $sweeps; do
   st=0; "$AFV" collect "$OUT/$sweep" > /dev/null 2> "$OUT/$sweep.collect.err" \
     || st=$?
   [ $st -le 1 ] || { cat "$OUT/$sweep.collect.err" >&2; exit $st; }
 done
-"$AFV" paper "$OUT" ${DT_TABLE:+--dt-table "$DT_TABLE"} 2> "$OUT/paper.err" \
+# shellcheck disable=SC2086
+"$AFV" paper $grid_only "$OUT" ${DT_TABLE:+--dt-table "$DT_TABLE"} \
+  2> "$OUT/paper.err" \
   || { cat "$OUT/paper.err" >&2; exit 2; }
 
 mkdir -p "$DEST/figures"
 rm -f "$DEST"/figures/*.svg
 cp "$OUT"/figures/*.svg "$DEST/figures/"
-cp "$OUT/claims.csv" "$OUT/fss.csv" "$DEST/"
+cp "$OUT/claims.csv" "$DEST/"
+[ -n "$grid_only" ] || cp "$OUT/fss.csv" "$DEST/"
 cp "$OUT/grid/table.csv" "$DEST/grid_table.csv"
 cp "$OUT/grid/fits.txt" "$DEST/grid_fits.txt"
 sh "$here/msd_plateau.sh" "$OUT/grid" > "$DEST/plateau.csv.tmp" 2> /dev/null
@@ -57,7 +64,7 @@ done | awk 'NR == 1 || NR % 2 == 0' > "$DEST/runs.csv.tmp"
 mv "$DEST/runs.csv.tmp" "$DEST/runs.csv"
 
 {
-  for sweep in grid fss; do
+  for sweep in $sweeps; do
     total=$(($(wc -l < "$OUT/$sweep/points.csv") - 1))
     done_=$(ls "$OUT/$sweep"/runs/*/analysis/summary.txt 2>/dev/null | wc -l)
     echo "$sweep: $done_ of $total runs finished and analysed"

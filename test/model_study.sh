@@ -1,0 +1,118 @@
+#!/bin/sh
+# test/model_study.sh [AFV] -- tools/model_table.sh on a mini model study:
+# the sweeps of tools/model_sweeps.sh that the capped model's record and
+# the finite-size tables read (cap_grid, cap_dt, cap_seq, dt_D3, fss_1600,
+# fss_6400; same names and keys), each with a few runs of N 40 - 160 and a
+# few hundred steps, only some of them run: a partial cap grid (one point
+# with both seeds, two with one, one with none), cap_dt, cap_seq and dt_D3
+# each with a point not run, fss_6400 not run at all.  Checks that every table has a
+# row per state point of the design, that what is not run is marked
+# (n_seeds 0, nan, missing; the capped claims say missing where a seed is
+# short; the side-by-side map counts the points in), and that OUT is not
+# written.  About 10 s; make test-model-study, .ci/run.
+#
+# Exit status 0 if every check passes; each failure is one line.
+set -e
+AFV=$(cd "$(dirname "${1:-./afv}")" && pwd)/$(basename "${1:-./afv}")
+HERE=$(cd "$(dirname "$0")/.." && pwd)
+WORK=$(mktemp -d "${TMPDIR:-/tmp}/model_study.XXXXXX")
+trap 'rm -rf "$WORK"' EXIT INT TERM
+OUT=$WORK/out DEST=$WORK/dest
+fails=0
+fail() { echo "test/model_study.sh: $*"; fails=$((fails + 1)); }
+
+# ---- the mini study ------------------------------------------------------
+COMMON="--integrator euler --svg_every 0 --quiet 1 --steady-from 1 --lag 1"
+at() { # DT STEPS: a frame every steps/40, a checkpoint every steps/4
+  echo "--dt $1 --steps $2 --frame_every $(($2 / 40)) --checkpoint_every $(($2 / 4))"
+}
+sweep() {
+  name=$1; shift
+  # shellcheck disable=SC2086
+  "$AFV" sweep --out "$OUT/$name" --afv "$AFV" $COMMON "$@" > /dev/null
+}
+job() { make -s -C "$OUT/$1" "runs/$2/analysis/summary.txt" > /dev/null 2>&1; }
+# shellcheck disable=SC2046
+{
+  sweep cap_grid --N 40 --P0 4,8 --v0 0.4,1.85 --seeds 2 --cap 0.45 $(at 0.01 400)
+  sweep cap_dt --N 40 --P0 4,8 --v0 0.4 --seeds 1 --cap 0.45 $(at 0.005 800)
+  sweep cap_seq --N 40 --P0 4,8 --v0 1.85 --seeds 1 --cap 0.2,0.1 $(at 0.0025 1600)
+  sweep dt_D3 --N 40 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at 0.0025 1600)
+  sweep fss_1600 --N 80 --P0 4,8 --v0 1.4,1.85 --seeds 1 --cap 0 $(at 0.01 400)
+  sweep fss_6400 --N 160 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at 0.01 400)
+}
+# cap_grid ids: 0001 (4,0.4,s1) 0002 (4,0.4,s2) 0003 (4,1.85,s1) 0005 (8,0.4,s1)
+for id in 0001 0002 0003 0005; do job cap_grid $id; done
+job cap_dt 0001                                  # (4, 0.4); (8, 0.4) not run
+for id in 0001 0002 0003; do job cap_seq $id; done   # (8, cap 0.1) not run
+job dt_D3 0001                                   # P0 4; P0 8 not run
+for id in 0001 0002 0003 0004; do job fss_1600 $id; done
+# fss_6400: nothing run
+touch "$WORK/before"
+sleep 1
+
+# ---- the command ------------------------------------------------------------
+AFV="$AFV" sh "$HERE/tools/model_table.sh" "$OUT" "$DEST" > "$WORK/log" 2>&1 \
+  || { cat "$WORK/log"; fail "tools/model_table.sh failed"; exit 1; }
+written=$(find "$OUT" -newer "$WORK/before" | head -3)
+[ -z "$written" ] || fail "OUT written: $written"
+
+# rows FILE AWK-CONDITION: how many rows of FILE (after its header) match
+rows() { awk -F, "NR > 1 && ($2)" "$1" | wc -l | tr -d ' '; }
+expect() { # WHAT GOT WANT
+  [ "$2" = "$3" ] || fail "$1: $2, want $3"
+}
+
+# the capped record: the grid table holds the points with a run
+C=$DEST/cap
+for f in grid_table.csv claims.csv progress.txt figures/fig2b_cluster_phase.svg \
+         figures/compare_fig2b_cluster_phase.svg figures/compare_fig4b_omega_map.svg \
+         figures/compare_fig7a_summary_phase.svg; do
+  [ -s "$C/$f" ] || fail "cap/$f not written"
+done
+expect "cap grid_table rows" "$(rows "$C/grid_table.csv" 1)" 3
+expect "cap grid_table (4, 0.4) seeds" "$(rows "$C/grid_table.csv" '$1 == 4 && $2 == 0.4 && $3 == 2')" 1
+verdict() { awk -F, -v c="$1" '$1 == c { print $5 }' "$C/claims.csv"; }
+expect "claim v0_star" "$(verdict v0_star)" "not measured"
+expect "claim P0_omega_half_low_v0 (a partial grid)" "$(verdict P0_omega_half_low_v0)" missing
+expect "claim msd_beta_P0_8_v0_0.4 (one seed)" "$(verdict msd_beta_P0_8_v0_0.4)" missing
+expect "claim state_P0_8.8_v0_2.6_cluster (no run)" "$(verdict state_P0_8.8_v0_2.6_cluster)" "not measured"
+v=$(verdict msd_beta_P0_4_v0_0.4)
+[ "$v" = yes ] || [ "$v" = no ] || [ "$v" = undetermined ] \
+  || fail "claim msd_beta_P0_4_v0_0.4 (both seeds in): '$v', want a verdict"
+grep -q 'missing: 1 of 2 seeds in at (8, 0.4)' "$C/claims.csv" \
+  || fail "claims: the seed count of (8, 0.4) is not given"
+# on the exact record's 8 x 9 design, which holds the mini grid's P0 and v0
+grep -q 'cap 0.45: N_GC/N.*(3 of 72 points)' "$C/figures/compare_fig2b_cluster_phase.svg" \
+  || fail "compare figure: the capped panel does not count 3 of 72 points"
+grep -q 'fill="#dddddd"' "$C/figures/compare_fig2b_cluster_phase.svg" \
+  || fail "compare figure: the point without a run is not grey"
+
+# cap_dt: 2 points x 8 observables; (4, 0.4) compared, (8, 0.4) missing
+T=$DEST/cap_dt_table.csv
+expect "cap_dt rows" "$(rows "$T" 1)" 16
+expect "cap_dt (8, 0.4) missing" "$(rows "$T" '$1 == 8 && $7 == 0 && $12 == "missing"')" 8
+expect "cap_dt (4, 0.4) one-run test" \
+  "$(rows "$T" '$1 == 4 && $4 == 2 && $7 == 1 && $12 == "missing" && ($14 == "yes" || $14 == "no")')" 7
+expect "cap_dt labels" "$(rows "$T" '$1 == 4 && $3 == "ngc_frac_mean" && $15 != "" && $16 != ""')" 1
+
+# cap_seq: P0 4, 8 x caps 0, 0.1, 0.2, 0.45; not run: n_seeds 0, nan
+T=$DEST/cap_seq_table.csv
+expect "cap_seq rows" "$(rows "$T" 1)" 8
+expect "cap_seq not run" "$(rows "$T" '$7 == 0 && $8 == 0 && $9 == "nan"')" 3
+expect "cap_seq exact at P0 4" "$(rows "$T" '$1 == 4 && $3 == 0 && $5 == "dt_D3" && $8 == 1')" 1
+expect "cap_seq cap 0.45 at dt 0.01" "$(rows "$T" '$1 == 4 && $3 == 0.45 && $4 == 0.01 && $8 == 1')" 1
+
+# finite size: N 80 (4), 160 (2, not run), 400 from the exact record
+T=$DEST/fss_table.csv
+expect "fss N 80 rows" "$(rows "$T" '$1 == 80')" 4
+expect "fss N 160 not run" "$(rows "$T" '$1 == 160 && $7 == 0 && $8 == "nan"')" 2
+expect "fss N 400 from the record" "$(rows "$T" '$1 == 400 && $4 == "exact record"')" 10
+expect "fss crossing N 160" "$(awk -F, '$1 == 160 { print $2 "," $3 }' "$DEST/fss_crossing.csv")" "missing,0"
+for f in cap_seq_ngc_frac_mean cap_seq_omega_mean fss_ngc_frac_mean fss_crossing; do
+  [ -s "$DEST/figures/$f.svg" ] || fail "figures/$f.svg not written"
+done
+
+[ $fails -eq 0 ] && echo "test/model_study.sh: every check passed" && exit 0
+echo "test/model_study.sh: $fails checks failed"
+exit 1
