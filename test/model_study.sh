@@ -80,6 +80,8 @@ expect "claim state_P0_8.8_v0_2.6_cluster (no run)" "$(verdict state_P0_8.8_v0_2
 v=$(verdict msd_beta_P0_4_v0_0.4)
 [ "$v" = yes ] || [ "$v" = no ] || [ "$v" = undetermined ] \
   || fail "claim msd_beta_P0_4_v0_0.4 (both seeds in): '$v', want a verdict"
+! grep -q -e "$HERE" -e "$WORK" "$C/claims.csv" \
+  || fail "claims.csv names this machine's paths"
 grep -q 'missing: 1 of 2 seeds in at (8, 0.4)' "$C/claims.csv" \
   || fail "claims: the seed count of (8, 0.4) is not given"
 # on the exact record's 8 x 9 design, which holds the mini grid's P0 and v0

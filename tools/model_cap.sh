@@ -229,7 +229,11 @@ if [ -f "$OUT/cap_grid/points.csv" ] \
     [ -f "$run/final.svg" ] && cp -p "$run/final.svg" "$g/runs/$id/"
     cp -pR "$run/analysis" "$g/runs/$id/"
   done
-  sh "$HERE/tools/paper_record.sh" "$WORK/record" "$DEST/cap" "$AFV" > /dev/null
+  # from the top folder, so that the claims' notes name the dt study by
+  # its path in the repository (not this machine's)
+  dest=$(cd "$DEST" && pwd) afv=$(cd "$(dirname "$AFV")" && pwd)/$(basename "$AFV")
+  (cd "$HERE" && DT_TABLE=doc/reproduction/model/dt_table.csv \
+     sh tools/paper_record.sh "$WORK/record" "$dest/cap" "$afv" > /dev/null)
   "$AFV" paper --compare "$EXACT" "$DEST/cap" "$DEST/cap" > /dev/null
   echo "tools/model_cap.sh: $DEST/cap: $(head -1 "$DEST/cap/progress.txt")"
 fi
