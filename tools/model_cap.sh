@@ -7,7 +7,8 @@
 #   cap/            the capped model's record, as the exact model's
 #                   (doc/reproduction/paper/): tools/paper_record.sh on a
 #                   copy of cap_grid's finished runs (afv collect, then afv
-#                   paper --grid-only): grid_table.csv, grid_fits.txt,
+#                   paper --grid-only; collected by the sweep's own afv,
+#                   which ran the runs): grid_table.csv, grid_fits.txt,
 #                   claims.csv (the same rules; a claim whose runs are not
 #                   all in says missing), figures/fig*.svg, runs.csv,
 #                   plateau.csv, progress.txt; and figures/compare_*.svg:
@@ -232,8 +233,15 @@ if [ -f "$OUT/cap_grid/points.csv" ] \
   # from the top folder, so that the claims' notes name the dt study by
   # its path in the repository (not this machine's)
   dest=$(cd "$DEST" && pwd) afv=$(cd "$(dirname "$AFV")" && pwd)/$(basename "$AFV")
+  # collected by the program that ran and analysed the runs (the sweep's
+  # copy: a later afv refuses an older one's summaries), drawn by AFV
+  # (the first word of its Makefile's run lines, a path from the sweep)
+  collect=$(awk '/ run --config / { print $1; exit }' "$OUT/cap_grid/Makefile")
+  case $collect in /*) ;; *) collect=$(cd "$OUT/cap_grid" && pwd)/$collect ;; esac
+  [ -x "$collect" ] || collect=$AFV
   (cd "$HERE" && DT_TABLE=doc/reproduction/model/dt_table.csv \
-     sh tools/paper_record.sh "$WORK/record" "$dest/cap" "$afv" > /dev/null)
+     COLLECT_AFV=$collect sh tools/paper_record.sh "$WORK/record" "$dest/cap" \
+     "$afv" > /dev/null)
   "$AFV" paper --compare "$EXACT" "$DEST/cap" "$DEST/cap" > /dev/null
   echo "tools/model_cap.sh: $DEST/cap: $(head -1 "$DEST/cap/progress.txt")"
 fi

@@ -21,6 +21,10 @@ set -e
 OUT=${1:?usage: tools/paper_record.sh OUT DEST AFV}
 DEST=${2:?usage: tools/paper_record.sh OUT DEST AFV}
 AFV=${3:?usage: tools/paper_record.sh OUT DEST AFV}
+# COLLECT_AFV: the afv that collects (default AFV): the runs' own version
+# where a later one refuses their summaries (afv 0.5.0 ties a summary to
+# its run by run_id and run_fingerprint, which 0.4.0 does not write)
+COLLECT_AFV=${COLLECT_AFV:-$AFV}
 here=$(dirname "$0")
 DT_TABLE=${DT_TABLE-$here/../doc/reproduction/model/dt_table.csv}
 
@@ -28,7 +32,8 @@ sweeps="grid fss" grid_only=
 [ -d "$OUT/fss" ] || { sweeps=grid; grid_only=--grid-only; }
 # collect: exit 1 means jobs are missing (a partial record), 2 an error
 for sweep in $sweeps; do
-  st=0; "$AFV" collect "$OUT/$sweep" > /dev/null 2> "$OUT/$sweep.collect.err" \
+  st=0; "$COLLECT_AFV" collect "$OUT/$sweep" > /dev/null \
+    2> "$OUT/$sweep.collect.err" \
     || st=$?
   [ $st -le 1 ] || { cat "$OUT/$sweep.collect.err" >&2; exit $st; }
 done
@@ -71,6 +76,12 @@ mv "$DEST/runs.csv.tmp" "$DEST/runs.csv"
   done
   first=$(ls "$OUT"/grid/runs/*/params.txt | head -1)
   echo "runs by: $(head -1 "$first" | grep -o 'afv [0-9][0-9.]*' | head -1)"
-  echo "collected and drawn by: $("$AFV" --version | grep -o 'afv [0-9][0-9.]*')"
+  drawn=$("$AFV" --version | grep -o 'afv [0-9][0-9.]*')
+  collected=$("$COLLECT_AFV" --version | grep -o 'afv [0-9][0-9.]*')
+  if [ "$collected" = "$drawn" ]; then
+    echo "collected and drawn by: $drawn"
+  else
+    echo "collected by: $collected (the runs' own); drawn by: $drawn"
+  fi
 } > "$DEST/progress.txt"
 cat "$DEST/progress.txt"
