@@ -90,6 +90,11 @@ grep -q 'cap 0.45: N_GC/N.*(3 of 72 points)' "$C/figures/compare_fig2b_cluster_p
 grep -q 'fill="#dddddd"' "$C/figures/compare_fig2b_cluster_phase.svg" \
   || fail "compare figure: the point without a run is not grey"
 
+# compare.csv: the exact record's 72 points, 3 with capped runs
+expect "cap/compare.csv rows" "$(rows "$C/compare.csv" 1)" 72
+expect "cap/compare.csv not in" "$(rows "$C/compare.csv" '$4 == 0 && $7 == "nan" && $14 == ""')" 69
+expect "cap/compare.csv (4, 0.4)" "$(rows "$C/compare.csv" '$1 == 4 && $2 == 0.4 && $4 == 2 && $14 != ""')" 1
+
 # cap_dt: 2 points x 8 observables; (4, 0.4) compared, (8, 0.4) missing
 T=$DEST/cap_dt_table.csv
 expect "cap_dt rows" "$(rows "$T" 1)" 16

@@ -13,7 +13,9 @@
 #                   all in says missing), figures/fig*.svg, runs.csv,
 #                   plateau.csv, progress.txt; and figures/compare_*.svg:
 #                   the exact record (EXACT) and the capped one side by
-#                   side on one colour scale (afv paper --compare)
+#                   side on one colour scale (afv paper --compare), and
+#                   compare.csv: both tables point by point (N_GC/N, Omega
+#                   and their labels; n_cap 0 where no capped run is in)
 #   cap_dt_table.csv  per point of cap_dt and observable: the capped model
 #                   at dt 0.01 (cap_grid) and 0.005 (cap_dt), converged by
 #                   the rule of README.md, and each phase label at both
@@ -243,5 +245,28 @@ if [ -f "$OUT/cap_grid/points.csv" ] \
      COLLECT_AFV=$collect sh tools/paper_record.sh "$WORK/record" "$dest/cap" \
      "$afv" > /dev/null)
   "$AFV" paper --compare "$EXACT" "$DEST/cap" "$DEST/cap" > /dev/null
+  # cap/compare.csv: the two tables side by side, point by point, on the
+  # exact record's grid (n_cap 0 and nan where the capped point is not in)
+  awk -F, '
+    FNR == 1 { for (k = 1; k <= NF; k++) col[FILENAME, $k] = k; next }
+    { key = $1 "," $2; row[FILENAME, key] = $0
+      if (FILENAME == exact) order[++n] = key }
+    function get(file, key, name,   f) {
+      if (!((file, key) in row)) return name == "n_seeds" ? 0 : "nan"
+      split(row[file, key], f, ","); return f[col[file, name]] }
+    function label(x, level, hi, lo) { return x == "nan" ? "" : x >= level ? hi : lo }
+    BEGIN { print "P0,v0,n_exact,n_cap,ngc_exact,ngc_exact_sem,ngc_cap,ngc_cap_sem,omega_exact,omega_exact_sem,omega_cap,omega_cap_sem,cluster_exact,cluster_cap,confluency_exact,confluency_cap" }
+    END {
+      for (i = 1; i <= n; i++) {
+        k = order[i]; ge = get(exact, k, "ngc_frac_mean"); gc = get(cap, k, "ngc_frac_mean")
+        oe = get(exact, k, "omega_mean"); oc = get(cap, k, "omega_mean")
+        print k "," get(exact, k, "n_seeds") "," get(cap, k, "n_seeds") "," ge "," \
+          get(exact, k, "ngc_frac_sem") "," gc "," get(cap, k, "ngc_frac_sem") "," oe "," \
+          get(exact, k, "omega_sem") "," oc "," get(cap, k, "omega_sem") "," \
+          label(ge, 0.99, "clustered", "dispersed") "," label(gc, 0.99, "clustered", "dispersed") "," \
+          label(oe, 0.5, "epithelial", "mesenchymal") "," label(oc, 0.5, "epithelial", "mesenchymal")
+      } }' exact="$EXACT/grid_table.csv" cap="$DEST/cap/grid_table.csv" \
+    "$EXACT/grid_table.csv" "$DEST/cap/grid_table.csv" > "$DEST/cap/compare.csv.tmp"
+  commit "$DEST/cap/compare.csv"
   echo "tools/model_cap.sh: $DEST/cap: $(head -1 "$DEST/cap/progress.txt")"
 fi
