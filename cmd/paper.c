@@ -31,13 +31,32 @@
 /* ---- figures ------------------------------------------------------------ */
 int figure_close(FILE *fp, const char *tmp, const char *path)
 {
-  /* a smoke figure gets a red line at its bottom left, before the "</svg>\n" that
-  ** ends every SVG afv writes */
-  if (paper_smoke && fseek(fp, -7L, SEEK_END) == 0)
-    fputs("<text x=\"4\" y=\"99%\" font-family=\"sans-serif\" "
-          "font-size=\"10\" fill=\"#d62728\">SMOKE RUN (make paper "
-          "SCALE=smoke): the numbers mean nothing</text>\n</svg>\n", fp);
+  /* a smoke figure, or one of a partial grid, gets a red line at its
+  ** bottom left, before the "</svg>\n" that ends every SVG afv writes */
+  if ((paper_smoke || paper_partial[0]) && fseek(fp, -7L, SEEK_END) == 0) {
+    if (paper_smoke)
+      fputs("<text x=\"4\" y=\"99%\" font-family=\"sans-serif\" "
+            "font-size=\"10\" fill=\"#d62728\">SMOKE RUN (make paper "
+            "SCALE=smoke): the numbers mean nothing</text>\n", fp);
+    if (paper_partial[0])
+      fprintf(fp, "<text x=\"4\" y=\"%s\" font-family=\"sans-serif\" "
+              "font-size=\"10\" fill=\"#d62728\">%s</text>\n",
+              paper_smoke ? "96%" : "99%", paper_partial);
+    fputs("</svg>\n", fp);
+  }
   return afv_atomic_commit(fp, tmp, path) == AFV_OK;
+}
+
+/* paper_partial: the line that marks every figure of a grid whose runs are
+** not all in (empty for a whole grid). */
+static void read_partial(const plane *P)
+{
+  int all = P->np * P->nv * P->design_seeds;
+  paper_partial[0] = 0;
+  if (runs_in(P) < all)
+    snprintf(paper_partial, sizeof paper_partial, "PARTIAL GRID: %d of %d "
+             "runs in (curves join the points that are in; grey: no run)",
+             runs_in(P), all);
 }
 
 /* Reads OUT/grid/scale into smoke. */
@@ -918,7 +937,8 @@ static const char *paper_usage =
 "integration; rewrites DIR/claims.csv.\n"
 "A claim whose runs are not all in (its point short of the design's\n"
 "seeds, or for a claim drawn from the whole grid any point) says\n"
-"'missing' (its value given, no verdict).\n"
+"'missing' (its value given, no verdict), and every figure of such a grid\n"
+"a red line 'PARTIAL GRID: k of n runs in'.\n"
 "--dt-table FILE: the dt study (tools/model_table.sh's dt_table.csv, e.g.\n"
 "doc/reproduction/model/dt_table.csv): each claim's dt_verdict is then\n"
 "property of the model, property of dt = 0.01, not converged, missing or\n"
@@ -973,6 +993,7 @@ static int paper_from_sweeps(const char *out, const dt_table *dt,
   read_scale(out);
   if (!plane_read(out, &P)) { plane_free(&P); return EXIT_BAD_INPUT; }
   read_integration(&P);
+  read_partial(&P);
   memset(&F, 0, sizeof F);
   if (with_fss && !fss_read(out, &F)) {
     plane_free(&P);

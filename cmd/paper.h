@@ -110,6 +110,9 @@ void read_integration(const plane *P);
 /* 1 when OUT's sweeps are make paper's smoke scale: every figure and claim
 ** is marked so. */
 extern int paper_smoke;
+/* Non-empty when the grid's runs are not all in: the line every figure of
+** afv paper OUT then carries ("PARTIAL GRID: 20 of 144 runs in ..."). */
+extern char paper_partial[160];
 
 /* ---- the dt study (dt_study.c) ------------------------------------------ */
 /* tools/model_table.sh's dt_table.csv: one row per state point (P0, v0)

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 int paper_smoke;
+char paper_partial[160];
 
 /* ---- CSV files ---------------------------------------------------------- */
 void csv_free(csv *t)

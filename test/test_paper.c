@@ -242,6 +242,10 @@ static void paper_partial_grid_not_measured(void)
   put_file(dir, "grid/runs/0102/params.txt", "# afv run parameters, written "
            "by afv 9.8.7 (commit 0)\n");
   test_sh("./afv paper %s > /dev/null 2>&1", dir);
+  /* every figure of the partial grid says how much is in */
+  CHECK(test_sh("grep -q 'PARTIAL GRID: 1 of 4 runs in' "
+                "%s/figures/fig2b_cluster_phase.svg", dir) == 0,
+        "the partial grid's map does not say 1 of 4 runs in");
   snprintf(path, sizeof path, "%s/claims.csv", dir);
   if ((fp = fopen(path, "r"))) {
     while (fgets(line, sizeof line, fp)) {
@@ -302,6 +306,8 @@ static void paper_grid_only(void)
                 "%s/figures/fig2b_cluster_phase.svg && ! test -e %s/fss.csv",
                 dir, dir, dir) == 0, "--grid-only: claims or figures missing, "
         "or fss.csv written");
+  CHECK(test_sh("grep -q 'PARTIAL GRID' %s/figures/fig2b_cluster_phase.svg",
+                dir) != 0, "a whole grid's figure is marked partial");
   /* the job file's cap as the sweep was asked (0.4.0 prints every digit) */
   CHECK(test_sh("grep -q 'dt 0.01, cap 0.45]' %s/claims.csv", dir) == 0,
         "the integration does not read 'dt 0.01, cap 0.45'");
