@@ -71,6 +71,15 @@ static int record_read(const char *dir, const char *other, record *R)
   return 1;
 }
 
+/* The state points of P with a run. */
+static int points_in(const plane *P)
+{
+  int ip, iv, in = 0;
+  for (ip = 0; ip < P->np; ip++)
+    for (iv = 0; iv < P->nv; iv++) in += seeds_at(P, ip, iv) > 0;
+  return in;
+}
+
 /* The two records' maps of one quantity side by side, on one colour scale;
 ** each title counts the state points with a value (grey: none). */
 static int compare_figure(const char *out, const record *R,
@@ -79,14 +88,12 @@ static int compare_figure(const char *out, const record *R,
   char path[FIGURE_PATH_LEN], tmp[FIGURE_TMP_LEN], title[2][480];
   afv_map m[2];
   FILE *fp;
-  int k, ip, iv;
+  int k;
   for (k = 0; k < 2; k++) {
     const plane *P = &R[k].P;
-    int in = 0, ngc = c->q == Q_NGC, omega = c->q == Q_OMEGA;
-    for (ip = 0; ip < P->np; ip++)
-      for (iv = 0; iv < P->nv; iv++) in += seeds_at(P, ip, iv) > 0;
+    int ngc = c->q == Q_NGC, omega = c->q == Q_OMEGA;
     snprintf(title[k], sizeof title[k], "%s: %s (%d of %d points)",
-             R[k].name, c->what, in, P->np * P->nv);
+             R[k].name, c->what, points_in(P), P->np * P->nv);
     map_of(P, c->q, title[k], c->zlabel, c->logz, c->level,
            ngc ? R[k].cx : omega ? R[k].mx : NULL,
            ngc ? R[k].cy : omega ? R[k].my : NULL,
@@ -107,6 +114,7 @@ static int compare_summary(const char *out, const record *R)
     {"#ff9896", "#aec7e8", "#98df8a", "#c5b0d5"}};
   static boundaries B[2];
   char path[FIGURE_PATH_LEN], tmp[FIGURE_TMP_LEN], lab[2][N_BOUNDARIES][400];
+  char title[160];
   afv_plot_series s[2 * N_BOUNDARIES];
   afv_plot pl;
   FILE *fp;
@@ -123,8 +131,11 @@ static int compare_summary(const char *out, const record *R)
       ns++;
     }
   }
+  snprintf(title, sizeof title, "Fig. 7(a)'s boundaries: %d of %d points "
+           "(solid), %d of %d (light)", points_in(&R[0].P),
+           R[0].P.np * R[0].P.nv, points_in(&R[1].P), R[1].P.np * R[1].P.nv);
   memset(&pl, 0, sizeof pl);
-  pl.title = "The boundaries of both records (Fig. 7(a)), light: the second";
+  pl.title = title;
   pl.xlabel = "P0 (l)";
   pl.ylabel = "v0 (l/time)";
   pl.ymin = R[0].P.v0[0];
