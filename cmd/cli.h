@@ -152,6 +152,9 @@ int run_params_read(const char *path, run_params_info *p, char *err,
 ** there is no file at path, -1 with the reason in err. */
 int run_fingerprint(const char *path, const char *id, char *out, size_t len,
                     char *err, size_t errlen);
+/* Unlinks every file of directory dir whose name named() accepts; nothing
+** else (cmd/run_dir.c).  A cleanup: a file it cannot remove stays. */
+void remove_named(const char *dir, int (*named)(const char *name));
 /* l of the run whose trajectory is at path, from params.txt beside it. */
 void run_l_beside(const char *path, double *l);
 /* The process id of the afv run writing in DIR (it holds the lock on

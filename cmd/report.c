@@ -229,15 +229,7 @@ static long stage_pid(const char *name)
 ** then dir itself if it is empty (a user's file in it keeps it). */
 static void stage_clear(const char *dir)
 {
-  char path[RUN_PATH_MAX + 600];
-  DIR *d = opendir(dir);
-  struct dirent *e;
-  while (d && (e = readdir(d)) != NULL)
-    if (staged_name(e->d_name)) {
-      snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-      unlink(path);
-    }
-  if (d) closedir(d);
+  remove_named(dir, staged_name);
   rmdir(dir);
 }
 

@@ -484,17 +484,22 @@ static int stale_temporary(const char *name)
   return p > 0 && kill((pid_t)p, 0) != 0 && errno == ESRCH;
 }
 
-/* Removes the temporaries a killed writer left in DIR (stale_temporary),
-** under the lock (no other afv process writes in DIR); nothing else. */
-void remove_stale_temporaries(const char *dir)
+void remove_named(const char *dir, int (*named)(const char *name))
 {
   char path[RUN_PATH_MAX + 300];
   DIR *d = opendir(dir);
   struct dirent *e;
   while (d && (e = readdir(d)) != NULL)
-    if (stale_temporary(e->d_name)) {
+    if (named(e->d_name)) {
       snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-      remove(path);
+      unlink(path);
     }
   if (d) closedir(d);
+}
+
+/* Removes the temporaries a killed writer left in DIR (stale_temporary),
+** under the lock (no other afv process writes in DIR); nothing else. */
+void remove_stale_temporaries(const char *dir)
+{
+  remove_named(dir, stale_temporary);
 }
