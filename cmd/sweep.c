@@ -866,39 +866,32 @@ static void remove_partial(const char *dir, long njobs)
   rmdir(dir);
 }
 
-/* 1 if name is one afv sweep writes in jobs/ or at the top of a sweep
-** folder (under == 1: DIGITS.conf; else a sweep_files name), or the
-** temporary of one (NAME.PID.RAND.tmp, afv_atomic_open). */
-static int sweep_name(const char *name, int under)
+/* 1 if name is NAME or its temporary NAME.PID.RAND.tmp (afv_atomic_open),
+** name and NAME differing from byte m on. */
+static int is_or_temporary_of(const char *name, size_t m)
 {
-  size_t m = under ? strspn(name, "0123456789") : 0;
+  return name[m] == 0 || (name[m] == '.' && strstr(name + m, ".tmp") != NULL);
+}
+
+/* 1 if name is one afv sweep writes in jobs/: DIGITS.conf or its temporary. */
+static int sweep_job_file(const char *name)
+{
+  size_t m = strspn(name, "0123456789");
+  return m > 0 && strncmp(name + m, ".conf", 5) == 0
+         && is_or_temporary_of(name, m + 5);
+}
+
+/* 1 if name is one afv sweep writes at the top of a sweep folder (a
+** sweep_files name) or its temporary. */
+static int sweep_top_file(const char *name)
+{
   int k;
-  if (under && m > 0 && strncmp(name + m, ".conf", 5) == 0)
-    return name[m + 5] == 0 || (name[m + 5] == '.'
-           && strstr(name + m + 5, ".tmp") != NULL);
-  for (k = 0; !under && k < N_OF(sweep_files); k++) {
-    m = strlen(sweep_files[k]);
-    if (strncmp(name, sweep_files[k], m) == 0
-        && (name[m] == 0 || (name[m] == '.' && strstr(name + m, ".tmp"))))
+  for (k = 0; k < N_OF(sweep_files); k++) {
+    size_t m = strlen(sweep_files[k]);
+    if (strncmp(name, sweep_files[k], m) == 0 && is_or_temporary_of(name, m))
       return 1;
   }
   return 0;
-}
-
-/* Removes the files of afv sweep's names in dir (sub: "jobs" or NULL). */
-static void remove_sweep_names(const char *dir, const char *sub)
-{
-  char path[PATH_MAX + 300], from[PATH_MAX + 16];
-  DIR *d;
-  struct dirent *e;
-  snprintf(from, sizeof from, "%s%s%s", dir, sub ? "/" : "", sub ? sub : "");
-  if (!(d = opendir(from))) return;
-  while ((e = readdir(d)) != NULL)
-    if (sweep_name(e->d_name, sub != NULL)) {
-      snprintf(path, sizeof path, "%s/%s", from, e->d_name);
-      unlink(path);
-    }
-  closedir(d);
 }
 
 /* A killed afv sweep (SIGKILL cannot be caught) leaves its DIR.writing-PID
@@ -908,7 +901,7 @@ static void remove_sweep_names(const char *dir, const char *sub)
 ** else (a user's file) stays. */
 static void remove_stale_writing(const char *dir)
 {
-  char parent[PATH_MAX], path[PATH_MAX + 300];
+  char parent[PATH_MAX], path[PATH_MAX + 300], sub[PATH_MAX + 320];
   const char *slash = strrchr(dir, '/'), *base = slash ? slash + 1 : dir;
   size_t m = strlen(base);
   DIR *d;
@@ -925,10 +918,10 @@ static void remove_stale_writing(const char *dir)
         || kill((pid_t)atol(pid), 0) == 0 || errno != ESRCH)
       continue;
     snprintf(path, sizeof path, "%s/%s", parent, e->d_name);
-    remove_sweep_names(path, "jobs");
-    remove_sweep_names(path, NULL);
+    snprintf(sub, sizeof sub, "%s/jobs", path);
+    remove_named(sub, sweep_job_file);
+    remove_named(path, sweep_top_file);
     for (k = 0; k < N_OF(sweep_dirs); k++) {
-      char sub[PATH_MAX + 320];
       snprintf(sub, sizeof sub, "%s/%s", path, sweep_dirs[k]);
       rmdir(sub);
     }
