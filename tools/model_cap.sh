@@ -22,7 +22,8 @@
 #   cap_seq_table.csv  N_GC/N, clusters, Omega, D_eff at cap_seq's points
 #                   against cap: cap 0 the exact model (dt_D3), 0.45 the
 #                   cap grid (and cap_dt where it has the point), the
-#                   others cap_seq; `finest` marks each cap's finest dt in
+#                   others cap_seq (cap 0.05 also at dt 0.00125:
+#                   cap_seq_dt); `finest` marks each cap's finest dt in
 #   fss_table.csv   N_GC/N, clusters, Omega against N: N 400 from the exact
 #                   record's grid_table.csv (EXACT), the others fss_*
 #   fss_crossing.csv  per N, where the lowest P0's N_GC/N curve falls
@@ -147,9 +148,9 @@ commit "$DEST/cap_dt_table.csv"
 
 # ---- cap_seq_table.csv and its figures -------------------------------------
 # Rows at cap_seq's points (P0, v0): the exact model (dt_D3, cap 0), the
-# cap grid and cap_dt (cap 0.45) and cap_seq; finest = 1 on the row of each
+# cap grid and cap_dt (cap 0.45), cap_seq and its dt check; finest = 1 on the row of each
 # (P0, v0, cap) with runs in at the smallest dt: the figures' points.
-design_means '^(dt_D3|cap_grid|cap_dt|cap_seq)$' > "$WORK/cap_seq_means.csv"
+design_means '^(dt_D3|cap_grid|cap_dt|cap_seq|cap_seq_dt)$' > "$WORK/cap_seq_means.csv"
 awk -F, '
   FILENAME ~ /design.csv$/ { if ($1 == "cap_seq") at[$3 "," $4] = 1; next }
   FNR == 1 { printf "P0,v0,cap,dt,source,n_design,n_seeds,finest"

@@ -11,6 +11,7 @@
 #                 dt 0.01) with PyAFV's contact cap 0.45
 #   cap_dt        its dt check: dt 0.005 at 8 of its points
 #   cap_seq       caps 0.2, 0.1, 0.05 at P0 4 and 8, v0 1.85, dt 0.0025
+#   cap_seq_dt    its dt check at the stiffest cap: 0.05 at dt 0.00125, seed 1
 #   fss_1600      N 1600, P0 4, 8 x v0 1.4, 1.85, 2.3, 2 seeds, 10^6 steps
 #   fss_6400      N 6400, P0 4, 8 x v0 1.85, 1 seed, 10^6 steps
 #
@@ -68,6 +69,9 @@ sweep cap_dt --N 400 --P0 4,8.8 --v0 0.4,1.4,1.85,2.6 --seeds 1 --cap 0.45 \
 sweep cap_seq --N 400 --P0 4,8 --v0 1.85 --seeds 2 --cap 0.2,0.1,0.05 \
   $(at_dt 0.0025)
 # shellcheck disable=SC2046
+sweep cap_seq_dt --N 400 --P0 4,8 --v0 1.85 --seeds 1 --cap 0.05 \
+  $(at_dt 0.00125)
+# shellcheck disable=SC2046
 sweep fss_1600 --N 1600 --P0 4,8 --v0 1.4,1.85,2.3 --seeds 2 --cap 0 $(at_dt 0.01)
 # shellcheck disable=SC2046
 sweep fss_6400 --N 6400 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at_dt 0.01)
@@ -77,7 +81,7 @@ sweep fss_6400 --N 6400 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at_dt 0.01)
 # dt_G3 is the same state at the three dt); the dispersal states at v0
 # 1.85 (v0*, the CSD exponents), both seeds; the cap grid's seed 1, a
 # coarse diagram first; the other dispersal states' seed 1; the cap grid's dt check; N 1600's seed 1; the cap
-# sequence's seed 1; then the second seeds and N 6400.
+# sequence's seed 1 and its dt check; then the second seeds and N 6400.
 dt_set() { # G|D SEED: each state of that seed at the three dt, point by point
   for id in $(jobs_of "dt_${1}1" "$2"); do
     for i in 1 2 3; do echo "dt_$1$i $id"; done
@@ -115,6 +119,7 @@ jobs_of() { # SWEEP SEED: the ids of SWEEP's jobs with that seed
   for id in $(jobs_of cap_dt 1); do echo "cap_dt $id"; done
   for id in $(jobs_of fss_1600 1); do echo "fss_1600 $id"; done
   for id in $(jobs_of cap_seq 1); do echo "cap_seq $id"; done
+  for id in $(jobs_of cap_seq_dt 1); do echo "cap_seq_dt $id"; done
   dt_set D 2
   for id in $(jobs_of fss_6400 1); do echo "fss_6400 $id"; done
   for id in $(jobs_of fss_1600 2); do echo "fss_1600 $id"; done
