@@ -80,8 +80,9 @@ sweep fss_6400 --N 6400 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at_dt 0.01)
 # table's glass states, both seeds (point by point: job k of dt_G1, dt_G2,
 # dt_G3 is the same state at the three dt); the dispersal states at v0
 # 1.85 (v0*, the CSD exponents), both seeds; the cap grid's seed 1, a
-# coarse diagram first; the other dispersal states' seed 1; the cap grid's dt check; N 1600's seed 1; the cap
-# sequence's seed 1 and its dt check; then the second seeds and N 6400.
+# coarse diagram first; the other dispersal states, both seeds (every
+# claim's dt verdict); the cap grid's dt check; the cap sequence's seed 1
+# and its dt check; N 1600's seed 1; then N 6400 and the second seeds.
 dt_set() { # G|D SEED: each state of that seed at the three dt, point by point
   for id in $(jobs_of "dt_${1}1" "$2"); do
     for i in 1 2 3; do echo "dt_$1$i $id"; done
@@ -116,11 +117,11 @@ jobs_of() { # SWEEP SEED: the ids of SWEEP's jobs with that seed
   dt_at_v0 D 1.85
   coarse_first cap_grid 1
   dt_set D 1
+  dt_set D 2
   for id in $(jobs_of cap_dt 1); do echo "cap_dt $id"; done
-  for id in $(jobs_of fss_1600 1); do echo "fss_1600 $id"; done
   for id in $(jobs_of cap_seq 1); do echo "cap_seq $id"; done
   for id in $(jobs_of cap_seq_dt 1); do echo "cap_seq_dt $id"; done
-  dt_set D 2
+  for id in $(jobs_of fss_1600 1); do echo "fss_1600 $id"; done
   for id in $(jobs_of fss_6400 1); do echo "fss_6400 $id"; done
   for id in $(jobs_of fss_1600 2); do echo "fss_1600 $id"; done
   for id in $(jobs_of cap_seq 2); do echo "cap_seq $id"; done
