@@ -876,7 +876,7 @@ static dt_verdict dt_at_state(const dt_table *T, const claim_rule *r,
                               char *text, size_t len)
 {
   dt_series s;
-  char state[300], why[200];
+  char state[300], why[400];
   dt_verdict v;
   if (!dt_series_at(T, r->p0, r->v0, r->dt_obs, &s))
     return dt_absent(T, r, text, len);

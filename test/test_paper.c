@@ -598,7 +598,9 @@ static void claims_from_carries_over(void)
 ** DT_CURVES_MOVE: every dispersal state two seeds, and at (8, 1.4)
 ** N_GC/N 0.9 | 0.8 | 0.9 (the same value at 0.01 and 0.0025, the finest
 ** two apart: not converged): the N_GC/N claims property of dt = 0.01 (it
-** ranks above not converged); and (4, 0.4) with one seed at 0.0025:
+** ranks above not converged); (8, 1.85) csd -1.7 | -1.5 | -1.74: yes
+** against -1.75 at 0.01 and 0.0025, the finest two apart: not converged,
+** its note whole (the longest); and (4, 0.4) with one seed at 0.0025:
 ** msd_beta_P0_4 missing.
 ** DT_COARSE_ONE_SEED: as DT_MADE_UP with (8, 1.4) not converged, but one
 ** seed at (4, 1.85), dt 0.01: neither N_GC/N's value there nor csd -1.3's
@@ -633,7 +635,8 @@ static void made_up_dt_table(const char *dir, int mutation)
                                         {0.01, 0.03, 0.05}};
   static const double stall[3] = {0.9, 0.8, 0.9};
   static const double moved[3] = {0.61, 0.77, 1.0}, csd4[3] = {-1.3, -1.48,
-                                  -1.5}, csd8[3] = {-1.7, -1.72, -1.74};
+                                  -1.5}, csd8[3] = {-1.7, -1.72, -1.74},
+                      csd8_apart[3] = {-1.7, -1.5, -1.74};
   char path[256];
   FILE *fp;
   int g, i, p, v;
@@ -662,7 +665,8 @@ static void made_up_dt_table(const char *dir, int mutation)
         double ngc = p == 4 && v == 1 && mutation != DT_ONE_MISSING
                      ? moved[i] : stalled ? stall[i] : 0.9;
         dt_row(fp, p, v0, i, one ? 1 : 2, ngc, 0.01, 0.9, 0.01,
-               v != 1 ? NAN : p == 4 ? csd4[i] : csd8[i], "0");
+               v != 1 ? NAN : p == 4 ? csd4[i] : mutation == DT_CURVES_MOVE
+               ? csd8_apart[i] : csd8[i], "0");
       }
   if (mutation == DT_NOT_NUMBER)
     fprintf(fp, "4,2.6,0.02,0,400,2,0.5,0.01,1,0,0.9,0.001,1e-06,1e-08,"
@@ -733,6 +737,13 @@ static void claims_against_dt(void)
   EXPECT_DT(dir, "v0_star", "property of dt = 0.01");
   EXPECT_DT(dir, "collapse_alpha", "property of dt = 0.01");
   EXPECT_DT(dir, "msd_beta_P0_4_v0_0.4", "missing");
+  EXPECT_DT(dir, "csd_exponent_P0_8", "not converged");
+  {
+    char v[64], note[4096];
+    claim_verdict(dir, "csd_exponent_P0_8", v, sizeof v, note, sizeof note);
+    CHECK(strstr(note, "differ by more than 2 sqrt(sem^2 + sem^2).") != NULL,
+          "csd_exponent_P0_8's dt note cut short: %.600s", note);
+  }
   /* no error at dt 0.01: the claim's judgement there is not drawn */
   CHECK(made_up_dt_claims(dir, DT_COARSE_ONE_SEED, euler) == 0, "one seed");
   EXPECT_DT(dir, "csd_exponent_P0_4", "missing");
