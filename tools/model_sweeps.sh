@@ -82,7 +82,8 @@ sweep fss_6400 --N 6400 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at_dt 0.01)
 # 1.85 (v0*, the CSD exponents), both seeds; the cap grid's seed 1, a
 # coarse diagram first; the other dispersal states, both seeds (every
 # claim's dt verdict); the cap grid's dt check; the cap sequence's seed 1
-# and its dt check; N 1600 (both seeds); then N 6400 and the second seeds.
+# and its dt check; N 1600 (both seeds); the cap sequence's seed 2; then
+# N 6400 and the cap grid's seed 2.
 dt_set() { # G|D SEED: each state of that seed at the three dt, point by point
   for id in $(jobs_of "dt_${1}1" "$2"); do
     for i in 1 2 3; do echo "dt_$1$i $id"; done
@@ -123,8 +124,8 @@ jobs_of() { # SWEEP SEED: the ids of SWEEP's jobs with that seed
   for id in $(jobs_of cap_seq_dt 1); do echo "cap_seq_dt $id"; done
   for id in $(jobs_of fss_1600 1); do echo "fss_1600 $id"; done
   for id in $(jobs_of fss_1600 2); do echo "fss_1600 $id"; done
-  for id in $(jobs_of fss_6400 1); do echo "fss_6400 $id"; done
   for id in $(jobs_of cap_seq 2); do echo "cap_seq $id"; done
+  for id in $(jobs_of fss_6400 1); do echo "fss_6400 $id"; done
   for id in $(jobs_of cap_grid 2); do echo "cap_grid $id"; done
 } | awk '!seen[$0]++' > "$OUT/queue.txt.tmp"   # each job once, at its first place
 mv "$OUT/queue.txt.tmp" "$OUT/queue.txt"
