@@ -844,28 +844,6 @@ static const char *sweep_files[] = {"points.csv", "jobs.txt", "analysis.txt",
 static const char *sweep_dirs[] = {"jobs", "runs", "logs"};
 #define N_OF(a) ((int)(sizeof a / sizeof a[0]))
 
-/* Removes what a sweep being written in dir holds, then dir. */
-static void remove_partial(const char *dir, long njobs)
-{
-  char path[PATH_MAX + 64], id[16];
-  long j;
-  int k;
-  for (j = 0; j < njobs; j++) {
-    job_id(id, j, njobs);
-    snprintf(path, sizeof path, "%s/jobs/%s.conf", dir, id);
-    unlink(path);
-  }
-  for (k = 0; k < N_OF(sweep_files); k++) {
-    snprintf(path, sizeof path, "%s/%s", dir, sweep_files[k]);
-    unlink(path);
-  }
-  for (k = 0; k < N_OF(sweep_dirs); k++) {
-    snprintf(path, sizeof path, "%s/%s", dir, sweep_dirs[k]);
-    rmdir(path);
-  }
-  rmdir(dir);
-}
-
 /* 1 if name is NAME or its temporary NAME.PID.RAND.tmp (afv_atomic_open),
 ** name and NAME differing from byte m on. */
 static int is_or_temporary_of(const char *name, size_t m)
@@ -894,19 +872,34 @@ static int sweep_top_file(const char *name)
   return 0;
 }
 
+/* Removes what a sweep being written in dir holds (afv sweep's file names
+** in dir and dir/jobs, and their temporaries), then its empty folders and
+** dir: a folder holding anything else (a user's file) stays. */
+static void remove_writing_folder(const char *dir)
+{
+  char sub[PATH_MAX + 320];
+  int k;
+  snprintf(sub, sizeof sub, "%s/jobs", dir);
+  remove_named(sub, sweep_job_file);
+  remove_named(dir, sweep_top_file);
+  for (k = 0; k < N_OF(sweep_dirs); k++) {
+    snprintf(sub, sizeof sub, "%s/%s", dir, sweep_dirs[k]);
+    rmdir(sub);
+  }
+  rmdir(dir);
+}
+
 /* A killed afv sweep (SIGKILL cannot be caught) leaves its DIR.writing-PID
 ** folder (46 MB for a large grid).  The next sweep to DIR removes every
-** such folder whose process is gone (kill(PID, 0): ESRCH): only files of
-** afv sweep's names, then the empty folders, so a folder holding anything
-** else (a user's file) stays. */
+** such folder whose process is gone (kill(PID, 0): ESRCH), as a sweep
+** that cannot be written whole removes its own (remove_writing_folder). */
 static void remove_stale_writing(const char *dir)
 {
-  char parent[PATH_MAX], path[PATH_MAX + 300], sub[PATH_MAX + 320];
+  char parent[PATH_MAX], path[PATH_MAX + 300];
   const char *slash = strrchr(dir, '/'), *base = slash ? slash + 1 : dir;
   size_t m = strlen(base);
   DIR *d;
   struct dirent *e;
-  int k;
   snprintf(parent, sizeof parent, "%.*s", slash ? (int)(slash - dir) + 1
            : 1, slash ? dir : ".");
   if (!(d = opendir(parent))) return;
@@ -918,14 +911,7 @@ static void remove_stale_writing(const char *dir)
         || kill((pid_t)atol(pid), 0) == 0 || errno != ESRCH)
       continue;
     snprintf(path, sizeof path, "%s/%s", parent, e->d_name);
-    snprintf(sub, sizeof sub, "%s/jobs", path);
-    remove_named(sub, sweep_job_file);
-    remove_named(path, sweep_top_file);
-    for (k = 0; k < N_OF(sweep_dirs); k++) {
-      snprintf(sub, sizeof sub, "%s/%s", path, sweep_dirs[k]);
-      rmdir(sub);
-    }
-    rmdir(path);
+    remove_writing_folder(path);
   }
   closedir(d);
 }
@@ -981,7 +967,7 @@ static int write_sweep(sweep_grid *g, const sweep_opts *o, const char *afv,
   if (ok && rename(tmp, dir) != 0)
     ok = !fprintf(stderr, "afv sweep: cannot rename %s to %s: %s\n", tmp, dir,
                   strerror(errno));
-  if (!ok) remove_partial(tmp, g->njobs);
+  if (!ok) remove_writing_folder(tmp);
   return ok;
 }
 
