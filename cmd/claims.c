@@ -677,7 +677,7 @@ static int runs_missing(const claim_ctx *X, const claim_rule *r, char *why,
                         size_t len)
 {
   const plane *P = X->P;
-  int design = P->design_seeds, all = P->np * P->nv * design;
+  int design = P->design_seeds, all = runs_designed(P);
   if (r->measure == m_meanfield) return 0;
   if (r->measure == m_label || r->measure == m_beta
       || r->measure == m_glassy_deff || r->measure == m_csd) {

@@ -51,7 +51,7 @@ int figure_close(FILE *fp, const char *tmp, const char *path)
 ** not all in (empty for a whole grid). */
 static void read_partial(const plane *P)
 {
-  int all = P->np * P->nv * P->design_seeds;
+  int all = runs_designed(P);
   paper_partial[0] = 0;
   if (runs_in(P) < all)
     snprintf(paper_partial, sizeof paper_partial, "PARTIAL GRID: %d of %d "

@@ -76,10 +76,11 @@ int table_read(const char *sweep_dir, csv *t);
 /* Adds v to the sorted set vals (n values, at most MAX_VALUES) if it is
 ** not there yet. */
 void add_value(double *vals, int *n, double v);
-/* Runs in at (ip, iv), and over the whole design (np nv design_seeds):
-** a point or a grid with fewer is partial. */
+/* Runs in at (ip, iv), over the whole plane, and by design (np nv
+** design_seeds): a point or a grid with fewer is partial. */
 int seeds_at(const plane *P, int ip, int iv);
 int runs_in(const plane *P);
+int runs_designed(const plane *P);
 /* Mean (sem = 0) or standard error (sem = 1) of quantity q at (ip, iv). */
 double at(const plane *P, int q, int ip, int iv, int sem);
 int index_of(const double *vals, int n, double v);

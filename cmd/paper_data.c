@@ -247,6 +247,11 @@ int runs_in(const plane *P)
   return n;
 }
 
+int runs_designed(const plane *P)
+{
+  return P->np * P->nv * P->design_seeds;
+}
+
 /* The design's P0 and v0 values: every row of t. */
 static void plane_design(plane *P, const csv *t)
 {
