@@ -328,23 +328,27 @@ static void map_colorbar(FILE *out, const afv_map *m, const map_frame *f)
   fputs("</text>\n", out);
 }
 
-/* The frame of map m: its grid's extent, and the colour range over the
-** finite values of the n maps at all (one scale for maps drawn side by
-** side); 0 if m has no point. */
-static int map_frame_of(const afv_map *m, const afv_map *all, int n,
-                        map_frame *f)
+/* The frame of map m: its grid's extent; 0 if m has no point. */
+static int map_extent(const afv_map *m, map_frame *f)
 {
-  int k, j, any = 0;
   if (m->nx < 1 || m->ny < 1) return 0;
   f->x0 = cell_edge(m->x, m->nx, 0, 0);
   f->x1 = cell_edge(m->x, m->nx, m->nx - 1, 1);
   f->y0 = cell_edge(m->y, m->ny, 0, 0);
   f->y1 = cell_edge(m->y, m->ny, m->ny - 1, 1);
+  return 1;
+}
+
+/* The colour range over the finite values of the n maps m (one scale for
+** maps drawn side by side) into f. */
+static void map_range(const afv_map *m, int n, map_frame *f)
+{
+  int k, j, any = 0;
   f->zlo = HUGE_VAL;
   f->zhi = -HUGE_VAL;
   for (j = 0; j < n; j++)
-    for (k = 0; k < all[j].nx * all[j].ny; k++) {
-      double z = shown(&all[j], all[j].z[k]);
+    for (k = 0; k < m[j].nx * m[j].ny; k++) {
+      double z = shown(&m[j], m[j].z[k]);
       if (!isfinite(z)) continue;
       any = 1;
       if (z < f->zlo) f->zlo = z;
@@ -352,7 +356,6 @@ static int map_frame_of(const afv_map *m, const afv_map *all, int n,
     }
   if (!any) f->zlo = 0, f->zhi = 1;
   if (f->zhi - f->zlo < AFV_PLOT_SPAN_TOL) { f->zlo -= 0.5; f->zhi += 0.5; }
-  return 1;
 }
 
 static void map_panel(FILE *out, const afv_map *m, const map_frame *f)
@@ -374,11 +377,13 @@ int afv_svg_map(FILE *out, const afv_map *m)
 
 int afv_svg_maps(FILE *out, const afv_map *m, int n)
 {
-  map_frame f[AFV_MAPS_MAX];
+  map_frame f[AFV_MAPS_MAX], range;
   int k;
   if (n < 1 || n > AFV_MAPS_MAX) return AFV_EINVAL;
   for (k = 0; k < n; k++)
-    if (!map_frame_of(&m[k], m, n, &f[k])) return AFV_EINVAL;
+    if (!map_extent(&m[k], &f[k])) return AFV_EINVAL;
+  map_range(m, n, &range);
+  for (k = 0; k < n; k++) { f[k].zlo = range.zlo; f[k].zhi = range.zhi; }
   fprintf(out, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\""
           "http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" "
           "font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"%g\" "
