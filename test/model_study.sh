@@ -1,8 +1,8 @@
 #!/bin/sh
 # test/model_study.sh [AFV] -- tools/model_table.sh on a mini model study:
 # the sweeps of tools/model_sweeps.sh that the capped model's record and
-# the finite-size tables read (cap_grid, cap_dt, cap_seq, cap_seq_dt, dt_D3, fss_1600,
-# fss_6400; same names and keys), each with a few runs of N 40 - 160 and a
+# the finite-size tables read (cap_grid, cap_dt and cap_dt--seed2, cap_seq,
+# cap_seq_dt, dt_D3, fss_1600, fss_6400; same names and keys), each with a few runs of N 40 - 160 and a
 # few hundred steps, only some of them run: a partial cap grid (one point
 # with both seeds, two with one, one with none), cap_dt, cap_seq and dt_D3
 # each with a point not run, fss_6400 not run at all.  Checks that every table has a
@@ -36,15 +36,20 @@ job() { make -s -C "$OUT/$1" "runs/$2/analysis/summary.txt" > /dev/null 2>&1; }
 {
   sweep cap_grid --N 40 --P0 4,8 --v0 0.4,1.85 --seeds 2 --cap 0.45 $(at 0.01 400)
   sweep cap_dt --N 40 --P0 4,8 --v0 0.4 --seeds 1 --cap 0.45 $(at 0.005 800)
+  # NAME--PART adds to NAME's design: seed 2 of (4, 0.4) and a point of its own
+  sweep cap_dt--seed2 --N 40 --P0 4 --v0 0.4,1.85 --seed 2 --cap 0.45 $(at 0.005 800)
   sweep cap_seq --N 40 --P0 4,8 --v0 1.85 --seeds 1 --cap 0.2,0.1 $(at 0.0025 1600)
   sweep cap_seq_dt --N 40 --P0 4 --v0 1.85 --seeds 1 --cap 0.1 $(at 0.00125 3200)
   sweep dt_D3 --N 40 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at 0.0025 1600)
   sweep fss_1600 --N 80 --P0 4,8 --v0 1.4,1.85 --seeds 1 --cap 0 $(at 0.01 400)
   sweep fss_6400 --N 160 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at 0.01 400)
 }
-# cap_grid ids: 0001 (4,0.4,s1) 0002 (4,0.4,s2) 0003 (4,1.85,s1) 0005 (8,0.4,s1)
-for id in 0001 0002 0003 0005; do job cap_grid $id; done
+# cap_grid ids: 0001 (4,0.4,s1) 0002 (4,0.4,s2) 0003 (4,1.85,s1)
+# 0004 (4,1.85,s2) 0005 (8,0.4,s1)
+for id in 0001 0002 0003 0004 0005; do job cap_grid $id; done
 job cap_dt 0001                                  # (4, 0.4); (8, 0.4) not run
+job cap_dt--seed2 0001                           # (4, 0.4) seed 2
+job cap_dt--seed2 0002                           # (4, 1.85) seed 2 only
 for id in 0001 0002 0003; do job cap_seq $id; done   # (8, cap 0.1) not run
 job cap_seq_dt 0001                              # (4, cap 0.1) at dt 0.00125
 job dt_D3 0001                                   # P0 4; P0 8 not run
@@ -97,23 +102,29 @@ expect "cap/compare.csv rows" "$(rows "$C/compare.csv" 1)" 72
 expect "cap/compare.csv not in" "$(rows "$C/compare.csv" '$4 == 0 && $7 == "nan" && $14 == ""')" 69
 expect "cap/compare.csv (4, 0.4)" "$(rows "$C/compare.csv" '$1 == 4 && $2 == 0.4 && $4 == 2 && $14 != ""')" 1
 
-# cap_dt: 2 points x 8 observables; (4, 0.4) compared, (8, 0.4) missing
+# cap_dt with cap_dt--seed2: 3 points x 8 observables; (4, 0.4) both
+# seeds at both dt, judged by the rule; (4, 1.85) one run at dt 0.005, the
+# one-run test; (8, 0.4) missing
 T=$DEST/cap_dt_table.csv
-expect "cap_dt rows" "$(rows "$T" 1)" 16
+expect "cap_dt rows" "$(rows "$T" 1)" 24
 expect "cap_dt (8, 0.4) missing" "$(rows "$T" '$1 == 8 && $7 == 0 && $12 == "missing"')" 8
-expect "cap_dt (4, 0.4) one-run test" \
-  "$(rows "$T" '$1 == 4 && $4 == 2 && $7 == 1 && $12 == "missing" && ($14 == "yes" || $14 == "no")')" 7
-expect "cap_dt labels" "$(rows "$T" '$1 == 4 && $3 == "ngc_frac_mean" && $15 != "" && $16 != ""')" 1
+expect "cap_dt (4, 0.4) seed 2 from cap_dt--seed2" \
+  "$(rows "$T" '$1 == 4 && $2 == 0.4 && $4 == 2 && $7 == 2 && ($12 == "yes" || $12 == "no")')" 7
+expect "cap_dt (4, 1.85) one-run test" \
+  "$(rows "$T" '$1 == 4 && $2 == 1.85 && $4 == 2 && $7 == 1 && $12 == "missing" && ($14 == "yes" || $14 == "no")')" 7
+expect "cap_dt labels" "$(rows "$T" '$1 == 4 && $3 == "ngc_frac_mean" && $15 != "" && $16 != ""')" 2
 
 # cap_seq: P0 4, 8 x caps 0, 0.1, 0.2, 0.45 and its dt check (4, cap 0.1,
-# dt 0.00125), the finest of that cap; not run: n_seeds 0, nan
+# dt 0.00125), the finest of that cap; cap 0.45 at (4, 1.85) also at dt
+# 0.005 (cap_dt--seed2); not run: n_seeds 0, nan
 T=$DEST/cap_seq_table.csv
-expect "cap_seq rows" "$(rows "$T" 1)" 9
+expect "cap_seq rows" "$(rows "$T" 1)" 10
 expect "cap_seq dt check finest" "$(rows "$T" '$1 == 4 && $3 == 0.1 && $4 == 0.00125 && $5 == "cap_seq_dt" && $8 == 1')" 1
 expect "cap_seq dt check's coarser row" "$(rows "$T" '$1 == 4 && $3 == 0.1 && $4 == 0.0025 && $8 == 0')" 1
 expect "cap_seq not run" "$(rows "$T" '$7 == 0 && $8 == 0 && $9 == "nan"')" 3
 expect "cap_seq exact at P0 4" "$(rows "$T" '$1 == 4 && $3 == 0 && $5 == "dt_D3" && $8 == 1')" 1
-expect "cap_seq cap 0.45 at dt 0.01" "$(rows "$T" '$1 == 4 && $3 == 0.45 && $4 == 0.01 && $8 == 1')" 1
+expect "cap_seq cap 0.45 at dt 0.005 finest" "$(rows "$T" '$1 == 4 && $3 == 0.45 && $4 == 0.005 && $5 == "cap_dt" && $8 == 1')" 1
+expect "cap_seq cap 0.45 at dt 0.01 not finest" "$(rows "$T" '$1 == 4 && $3 == 0.45 && $4 == 0.01 && $5 == "cap_grid" && $7 == 2 && $8 == 0')" 1
 
 # finite size: N 80 (4), 160 (2, not run), 400 from the exact record
 T=$DEST/fss_table.csv

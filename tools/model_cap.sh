@@ -54,10 +54,11 @@ commit() { mv "$1.tmp" "$1"; }
 sort_below_header() { read -r head; echo "$head"; sort -t, "$@"; }
 
 # $WORK/design.csv: every job of every sweep (its keys from jobs/ID.conf):
-# sweep,id,P0,v0,seed,dt,cap,N
+# sweep,id,P0,v0,seed,dt,cap,N.  A sweep NAME--PART adds runs (another
+# seed, other caps) to NAME's design: its jobs are listed as NAME's.
 for dir in "$OUT"/*/; do
   [ -f "$dir/points.csv" ] || continue
-  s=$(basename "$dir")
+  s=$(basename "$dir"); s=${s%%--*}
   for conf in "$dir"jobs/*.conf; do
     [ -f "$conf" ] || continue
     awk -v s="$s" -v id="$(basename "$conf" .conf)" '
@@ -68,7 +69,7 @@ for dir in "$OUT"/*/; do
 done > "$WORK/design.csv"
 
 # design_means SWEEPS: per state point (sweep, P0, v0, dt, cap, N) of the
-# sweeps named (an awk regular expression), n_design (its jobs), n_seeds
+# sweeps named (an awk regular expression; NAME--PART counts as NAME), n_design (its jobs), n_seeds
 # (its runs in runs.csv) and each observable's mean and standard error over
 # those runs (sem empty with one run; nan and empty with none).
 design_means() {
@@ -79,7 +80,8 @@ design_means() {
       if (!(key in nd)) order[++nk] = key
       nd[key]++; next }
     FNR == 1 { nobs = NF - 8; for (k = 9; k <= NF; k++) name[k - 8] = $k; next }
-    { key = $1 "," $3 "," $4 "," $6 "," $7 "," $8
+    { sweep = $1; sub(/--.*$/, "", sweep)      # NAME--PART: NAME
+      key = sweep "," $3 "," $4 "," $6 "," $7 "," $8
       if (!(key in nd)) next
       n[key]++
       for (k = 1; k <= nobs; k++) {
@@ -106,10 +108,11 @@ design_means() {
 
 # ---- cap_dt_table.csv ------------------------------------------------------
 # The rule of README.md: converged when the seed means differ by at most
-# 2 sqrt(sem_1^2 + sem_2^2), missing without two seeds at both dt.  cap_dt
-# has one seed by design, so beside the rule: within_one_run, the same test
-# with the dt 0.005 run's error taken as one run's scatter at dt 0.01
-# (sem_0.01 sqrt(n)) -- weaker, stated as such.  Labels at the paper's
+# 2 sqrt(sem_1^2 + sem_2^2), missing without two seeds at both dt.  Where
+# dt 0.005 has one seed (cap_dt; its seed 2 is cap_dt--seed2), beside the
+# rule: within_one_run, the same test with the dt 0.005 run's error taken
+# as one run's scatter at dt 0.01 (sem_0.01 sqrt(n)) -- weaker, stated as
+# such.  Labels at the paper's
 # thresholds where the observable has one.
 design_means '^cap_(grid|dt)$' > "$WORK/cap_dt_means.csv"
 awk -F, '

@@ -12,6 +12,9 @@
 #   cap_dt        its dt check: dt 0.005 at 8 of its points
 #   cap_seq       caps 0.2, 0.1, 0.05 at P0 4 and 8, v0 1.85, dt 0.0025
 #   cap_seq_dt    its dt check at the stiffest cap: 0.05 at dt 0.00125, seed 1
+#   cap_dt--seed2     cap_dt's seed 2 (a sweep NAME--PART adds runs to
+#   cap_seq_dt--caps  NAME's design: tools/model_cap.sh tables them as one);
+#                     the cap sequence's dt check at caps 0.2 and 0.1
 #   fss_1600      N 1600, P0 4, 8 x v0 1.4, 1.85, 2.3, 2 seeds, 10^6 steps
 #   fss_6400      N 6400, P0 4, 8 x v0 1.85, 1 seed, 10^6 steps
 #
@@ -72,6 +75,12 @@ sweep cap_seq --N 400 --P0 4,8 --v0 1.85 --seeds 2 --cap 0.2,0.1,0.05 \
 sweep cap_seq_dt --N 400 --P0 4,8 --v0 1.85 --seeds 1 --cap 0.05 \
   $(at_dt 0.00125)
 # shellcheck disable=SC2046
+sweep cap_dt--seed2 --N 400 --P0 4,8.8 --v0 0.4,1.4,1.85,2.6 --seed 2 \
+  --cap 0.45 $(at_dt 0.005)
+# shellcheck disable=SC2046
+sweep cap_seq_dt--caps --N 400 --P0 4,8 --v0 1.85 --seeds 1 --cap 0.2,0.1 \
+  $(at_dt 0.00125)
+# shellcheck disable=SC2046
 sweep fss_1600 --N 1600 --P0 4,8 --v0 1.4,1.85,2.3 --seeds 2 --cap 0 $(at_dt 0.01)
 # shellcheck disable=SC2046
 sweep fss_6400 --N 6400 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at_dt 0.01)
@@ -83,7 +92,8 @@ sweep fss_6400 --N 6400 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at_dt 0.01)
 # coarse diagram first; the other dispersal states, both seeds (every
 # claim's dt verdict); the cap grid's dt check; the cap sequence's seed 1
 # and its dt check; N 1600 (both seeds); the cap sequence's seed 2; then
-# N 6400 and the cap grid's seed 2.
+# N 6400 and the cap grid's seed 2; then cap_dt's seed 2 and the cap
+# sequence's dt check at caps 0.2 and 0.1.
 dt_set() { # G|D SEED: each state of that seed at the three dt, point by point
   for id in $(jobs_of "dt_${1}1" "$2"); do
     for i in 1 2 3; do echo "dt_$1$i $id"; done
@@ -127,6 +137,8 @@ jobs_of() { # SWEEP SEED: the ids of SWEEP's jobs with that seed
   for id in $(jobs_of cap_seq 2); do echo "cap_seq $id"; done
   for id in $(jobs_of fss_6400 1); do echo "fss_6400 $id"; done
   for id in $(jobs_of cap_grid 2); do echo "cap_grid $id"; done
+  for id in $(jobs_of cap_dt--seed2 2); do echo "cap_dt--seed2 $id"; done
+  for id in $(jobs_of cap_seq_dt--caps 1); do echo "cap_seq_dt--caps $id"; done
 } | awk '!seen[$0]++' > "$OUT/queue.txt.tmp"   # each job once, at its first place
 mv "$OUT/queue.txt.tmp" "$OUT/queue.txt"
 [ "${QUEUE_ONLY:-0}" = 1 ] && exit 0
