@@ -991,6 +991,99 @@ static void test_reproduction_names_versions(void)
   free(text);
 }
 
+/* ---- the record's status line counts what its claims.csv says ------------ */
+/* doc/reproduction/paper/README.md opens with a hand-written "How much is
+** in" line: how many claims agree, are undetermined, do not (before
+** "Against dt") and how many have each dt verdict (after it).  A
+** regenerated claims.csv leaves it behind unless it is rewritten: every
+** "N WORDS" of a verdict in that line must be claims.csv's count, and a
+** verdict claims.csv gives must be counted there. */
+
+/* The count of claims.csv rows whose column (5: agrees, 6: dt_verdict) is
+** value: the first six columns hold no comma (the note, quoted, is last). */
+static int claims_with(const char *csv, int column, const char *value)
+{
+  const char *line = strchr(csv, '\n');
+  int n = 0;
+  while (line && *++line) {
+    const char *f = line;
+    int c;
+    size_t len = strlen(value);
+    for (c = 1; c < column && f; c++)
+      if ((f = strchr(f, ','))) f++;
+    if (f && strncmp(f, value, len) == 0 && (f[len] == ',' || f[len] == '\n'))
+      n++;
+    line = strchr(line, '\n');
+  }
+  return n;
+}
+
+/* In text[0..len): every "N words" names count, and it is there if count > 0. */
+static void check_status_count(const char *doc, const char *text, size_t len,
+                               const char *words, int count)
+{
+  const char *p = text;
+  int found = 0;
+  size_t w = strlen(words);
+  while ((p = strstr(p, words)) && (size_t)(p - text) + w <= len) {
+    const char *q = p - 1;
+    if (q > text && *q == ' ' && isdigit((unsigned char)q[-1])) {
+      int n;
+      for (q--; q > text && isdigit((unsigned char)q[-1]); q--) {}
+      n = atoi(q);
+      found = 1;
+      if (n != count)
+        printf("    %s: \"%d %s\", claims.csv has %d\n", doc, n, words, count);
+      CHECK(n == count, "the status line's count is claims.csv's");
+    }
+    p += w;
+  }
+  if (count > 0 && !found)
+    printf("    %s: claims.csv has %d \"%s\", the status line none\n", doc,
+           count, words);
+  CHECK(count == 0 || found, "the status line counts every verdict given");
+}
+
+static void test_record_status_counts_claims(void)
+{
+  static const char *const agrees[] = {"agree", "are undetermined", "do not",
+                                       "missing"};
+  static const char *const agrees_value[] = {"yes", "undetermined", "no",
+                                             "missing"};
+  static const char *const dt[] = {"are a property of dt = 0.01",
+                                   "are a property of the model",
+                                   "not converged", "not measured", "missing",
+                                   "none"};
+  static const char *const dt_value[] = {"property of dt = 0.01",
+                                         "property of the model",
+                                         "not converged", "not measured",
+                                         "missing", "none"};
+  const char *doc = "doc/reproduction/paper/README.md";
+  char *readme = malloc(TEXT_MAX), *csv = malloc(TEXT_MAX);
+  const char *start, *end, *split;
+  size_t k;
+  if (!readme || !csv) { free(readme); free(csv); return; }
+  read_text(doc, readme, TEXT_MAX);
+  read_text("doc/reproduction/paper/claims.csv", csv, TEXT_MAX);
+  start = strstr(readme, "**How much is in");
+  CHECK(start != NULL && *csv, "the record's README has a status line");
+  if (start && *csv) {
+    end = strstr(start + 2, "**");
+    split = strstr(start, "Against dt");
+    CHECK(end && split && split < end, "the status line has its dt part");
+    if (end && split && split < end) {
+      for (k = 0; k < sizeof agrees / sizeof *agrees; k++)
+        check_status_count(doc, start, (size_t)(split - start), agrees[k],
+                           claims_with(csv, 5, agrees_value[k]));
+      for (k = 0; k < sizeof dt / sizeof *dt; k++)
+        check_status_count(doc, split, (size_t)(end - split), dt[k],
+                           claims_with(csv, 6, dt_value[k]));
+    }
+  }
+  free(readme);
+  free(csv);
+}
+
 /* ---- the docs name this version and real make targets --------------------- */
 /* README.md, the .md files of doc/ (not doc/reproduction, whose runs were
 ** made by earlier versions) and the program's help name the shared
@@ -1117,6 +1210,7 @@ void suite_docs(void)
   RUN(test_parameter_change_needs_refresh);
   RUN(test_doc_names_exist);
   RUN(test_reproduction_names_versions);
+  RUN(test_record_status_counts_claims);
   RUN(test_docs_name_version_and_targets);
   RUN(test_paper_states_prints_without_running);
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);   /* mkdtemp's own dir */

@@ -323,7 +323,8 @@ static void paper_grid_only(void)
 ** mutations each break one thing a rule must catch. */
 enum { TABLE_PAPER, TABLE_NOISY_BOUNDARY, TABLE_LABEL_IN_NOISE,
        TABLE_OMEGA_FAR, TABLE_UNCROSSED_PAIR, TABLE_OMEGA_NOISE,
-       TABLE_OMEGA_NEXT_GAP, TABLE_PARTIAL, TABLE_NO_TOP_ROW };
+       TABLE_OMEGA_NEXT_GAP, TABLE_PARTIAL, TABLE_NO_TOP_ROW, TABLE_SHIFTED,
+       TABLE_LABELS_FLIPPED, TABLE_SAME_CURVES };
 
 static double made_up_g(double s)
 {
@@ -349,8 +350,19 @@ static void made_up_table(const char *dir, int mutation)
       double v0 = 0.05 * k, shift = 0, ngc, osem = 0.001;
       const char *sem = "0.001";
       int seeds = 2;
+      double beta = p0[i] < 4.5 ? 0.05 : 1.0, deff = p0[i] < 4.5 ? 1e-9 : 1e-3;
+      const char *tau = p0[i] < 4.5 ? "inf" : "12";
       if (mutation == TABLE_NOISY_BOUNDARY) shift = noisy[i];
+      if (mutation == TABLE_SHIFTED) shift = 0.6;      /* crossing at 2.45 */
       ngc = made_up_g((v0 - 1.85 - shift) / pow(p0[i], 1.5));
+      if (mutation == TABLE_SAME_CURVES)     /* every P0 the curve of P0 6 */
+        ngc = made_up_g((v0 - 1.85) / pow(6, 1.5));
+      if (mutation == TABLE_LABELS_FLIPPED) {  /* each label the other side */
+        beta = p0[i] < 4.5 ? 1.0 : 0.05;
+        deff = 1e-3;
+        tau = p0[i] < 7.5 ? "inf" : "12";    /* bracket 7 - 8, not 4 - 5 */
+        if (i == 0 && k == 2) ngc = 0.5;     /* dispersed at (4, 0.1) */
+      }
       if (mutation == TABLE_UNCROSSED_PAIR && i == 1)  /* 5 stays below 6 */
         ngc = k == 14 ? made_up_g((v0 - 1.85) / pow(6, 1.5)) + 1e-5
               : fmin(ngc, made_up_g((v0 - 1.85) / pow(6, 1.5)) - 0.01);
@@ -368,8 +380,7 @@ static void made_up_table(const char *dir, int mutation)
       }
       fprintf(fp, "%g,%g,%d,%.9g,%s,%.9g,%g,%g,1e-10,%s,nan,%g,0.01\n", p0[i],
               v0, seeds, ngc, sem, 0.5 * (1 - tanh((p0[i] - pc) / 0.3)), osem,
-              p0[i] < 4.5 ? 1e-9 : 1e-3, p0[i] < 4.5 ? "inf" : "12",
-              p0[i] < 4.5 ? 0.05 : 1.0);
+              deff, tau, beta);
     }
   fclose(fp);
 }
@@ -478,6 +489,33 @@ static void claim_rules_on_made_up_tables(void)
                 sizeof note);
   CHECK(strstr(note, "missing: 1 of 2 seeds in at (4, 0.1)"),
         "the point's seeds are not counted: %.600s", note);
+  /* every curve 0.6 later in v0: each figure of the crossing says no, the
+  ** shape's (c and alpha, which a shift keeps) still yes */
+  CHECK(made_up_claims(dir, TABLE_SHIFTED), "shifted");
+  EXPECT_VERDICT(dir, "v0_star", "no");
+  EXPECT_VERDICT(dir, "vs_v0_star", "no");
+  EXPECT_VERDICT(dir, "collapse_v0_star", "no");
+  EXPECT_VERDICT(dir, "vs_c", "yes");
+  EXPECT_VERDICT(dir, "collapse_alpha", "yes");
+  /* each label on the other side of its threshold: no, label by label */
+  CHECK(made_up_claims(dir, TABLE_LABELS_FLIPPED), "labels flipped");
+  EXPECT_VERDICT(dir, "msd_beta_P0_4_v0_0.4", "no");
+  EXPECT_VERDICT(dir, "msd_beta_P0_7.2_v0_0.4", "no");
+  EXPECT_VERDICT(dir, "msd_beta_P0_8.8_v0_0.4", "no");
+  EXPECT_VERDICT(dir, "glassy_P0_4_v0_0.4_D_eff", "no");
+  EXPECT_VERDICT(dir, "state_P0_4_v0_0.1_cluster", "no");
+  EXPECT_VERDICT(dir, "tau_ngc_infinite_below_P0", "no");  /* bracket 7 - 8 */
+  /* every P0 on one curve: no pair crosses (v0* not measured), and the
+  ** collapse's alpha is 0 +- 0: an error as large as the value is
+  ** undetermined, never yes or no */
+  CHECK(made_up_claims(dir, TABLE_SAME_CURVES), "same curves");
+  EXPECT_VERDICT(dir, "v0_star", "not measured");
+  claim_verdict(dir, "v0_star", v, sizeof v, note, sizeof note);
+  CHECK(strstr(note, "0 of 10 pairs cross"), "pairs: %.300s", note);
+  EXPECT_VERDICT(dir, "collapse_alpha", "undetermined");
+  claim_verdict(dir, "collapse_alpha", v, sizeof v, note, sizeof note);
+  CHECK(strstr(note, "its error 0 is at least its value 0"),
+        "the reason is not given: %.400s", note);
   test_sh("rm -rf %s", dir);
 }
 
