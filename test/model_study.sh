@@ -1,8 +1,9 @@
 #!/bin/sh
 # test/model_study.sh [AFV] -- tools/model_table.sh on a mini model study:
-# the sweeps of tools/model_sweeps.sh that the capped model's record and
-# the finite-size tables read (cap_grid, cap_dt and cap_dt--seed2, cap_seq,
-# cap_seq_dt, dt_D3, fss_1600, fss_6400; same names and keys), each with a few runs of N 40 - 160 and a
+# the sweeps of tools/model_sweeps.sh that the capped model's record, the
+# D_eff estimators and the finite-size tables read (cap_grid, cap_dt and
+# cap_dt--seed2, cap_seq, cap_seq_dt, dt_D3, dt_G1, fss_1600, fss_6400;
+# same names and keys), each with a few runs of N 40 - 160 and a
 # few hundred steps, only some of them run: a partial cap grid (one point
 # with both seeds, two with one, one with none), cap_dt, cap_seq and dt_D3
 # each with a point not run, fss_6400 not run at all.  Checks that every table has a
@@ -41,6 +42,7 @@ job() { make -s -C "$OUT/$1" "runs/$2/analysis/summary.txt" > /dev/null 2>&1; }
   sweep cap_seq --N 40 --P0 4,8 --v0 1.85 --seeds 1 --cap 0.2,0.1 $(at 0.0025 1600)
   sweep cap_seq_dt --N 40 --P0 4 --v0 1.85 --seeds 1 --cap 0.1 $(at 0.00125 3200)
   sweep dt_D3 --N 40 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at 0.0025 1600)
+  sweep dt_G1 --N 40 --P0 4,8 --v0 0.4 --seeds 1 --cap 0 $(at 0.01 400)
   sweep fss_1600 --N 80 --P0 4,8 --v0 1.4,1.85 --seeds 1 --cap 0 $(at 0.01 400)
   sweep fss_6400 --N 160 --P0 4,8 --v0 1.85 --seeds 1 --cap 0 $(at 0.01 400)
 }
@@ -53,6 +55,7 @@ job cap_dt--seed2 0002                           # (4, 1.85) seed 2 only
 for id in 0001 0002 0003; do job cap_seq $id; done   # (8, cap 0.1) not run
 job cap_seq_dt 0001                              # (4, cap 0.1) at dt 0.00125
 job dt_D3 0001                                   # P0 4; P0 8 not run
+job dt_G1 0002                                   # P0 8; P0 4 not run
 for id in 0001 0002 0003 0004; do job fss_1600 $id; done
 # fss_6400: nothing run
 touch "$WORK/before"
@@ -125,6 +128,16 @@ expect "cap_seq not run" "$(rows "$T" '$7 == 0 && $8 == 0 && $9 == "nan"')" 3
 expect "cap_seq exact at P0 4" "$(rows "$T" '$1 == 4 && $3 == 0 && $5 == "dt_D3" && $8 == 1')" 1
 expect "cap_seq cap 0.45 at dt 0.005 finest" "$(rows "$T" '$1 == 4 && $3 == 0.45 && $4 == 0.005 && $5 == "cap_dt" && $8 == 1')" 1
 expect "cap_seq cap 0.45 at dt 0.01 not finest" "$(rows "$T" '$1 == 4 && $3 == 0.45 && $4 == 0.01 && $5 == "cap_grid" && $7 == 2 && $8 == 0')" 1
+
+# the D_eff estimators: the glass sweep's one finished run, named by its
+# sweep, with MSD_rel's error; its single-lag D_eff is the summary's
+T=$DEST/deff_estimators.csv
+expect "deff_estimators rows" "$(rows "$T" 1)" 1
+expect "deff_estimators run" "$(awk -F, 'NR == 2 { print $1 "," $2 }' "$T")" "dt_G1/runs/0002,8"
+expect "deff_estimators msd_rel_se" "$(rows "$T" '$9 > 0')" 1
+expect "deff_estimators single = D_eff" \
+  "$(awk -F, 'NR == 2 { printf "%.6g", $10 }' "$T")" \
+  "$(awk '$1 == "D_eff" { printf "%.6g", $2 }' "$OUT/dt_G1/runs/0002/analysis/summary.txt")"
 
 # finite size: N 80 (4), 160 (2, not run), 400 from the exact record
 T=$DEST/fss_table.csv

@@ -16,6 +16,14 @@
 #                   afv paper --dt-verdicts (the claims table's rule,
 #                   cmd/dt_study.c), AFV the program (default ./afv)
 #   cap_table.csv   the same as dt_table.csv for the cap sweeps (cap column)
+#   deff_estimators.csv  the D_eff estimators side by side (single lag,
+#                   slope, fit, the per-step reading) for every finished
+#                   run of the glass states (dt_G*: v0 0.4, three dt, two
+#                   seeds), by tools/deff_estimators.sh on a copy of each
+#                   run analysed again by AFV with the sweep's analysis
+#                   options (so that MSD_rel's standard error is given
+#                   for runs analysed before afv 0.5.0; the other figures
+#                   are the same bits); run names the sweep and id
 #   progress.txt    how many runs of each sweep are in
 # then tools/model_cap.sh OUT DEST: the capped model's record (cap/), its
 # dt check and cap sequence (cap_dt_table.csv, cap_seq_table.csv), the
@@ -108,6 +116,30 @@ mean_table '^dt_' > "$DEST/dt_table.csv.tmp"
 mv "$DEST/dt_table.csv.tmp" "$DEST/dt_table.csv"
 mean_table '^cap_' > "$DEST/cap_table.csv.tmp"
 mv "$DEST/cap_table.csv.tmp" "$DEST/cap_table.csv"
+
+# deff_estimators.csv: the glass states' finished runs, each copied to
+# COPY/SWEEP/runs/ID (what afv analyze reads) and analysed there by AFV
+COPY=$(mktemp -d "${TMPDIR:-/tmp}/model_table.XXXXXX")
+trap 'rm -rf "$COPY"' EXIT INT TERM
+set --
+for run in "$OUT"/dt_G*/runs/*/; do
+  [ -f "$run/analysis/summary.txt" ] || continue
+  run=${run%/} sweep=$(basename "$(dirname "$(dirname "$run")")")
+  copy=$COPY/$sweep/runs/$(basename "$run")
+  mkdir -p "$copy"
+  cp "$run/params.txt" "$run/checkpoint.txt" "$run/final.svg" \
+     "$run/trajectory.dat" "$copy/"
+  # shellcheck disable=SC2046
+  "$AFV" analyze "$copy" $(cat "$OUT/$sweep/analysis.txt") > /dev/null
+  rm "$copy/trajectory.dat"
+  set -- "$@" "$copy"
+done
+if [ $# -gt 0 ]; then
+  sh "$HERE/tools/deff_estimators.sh" "$@" \
+    | awk -F, -v OFS=, -v copy="$COPY/" 'NR > 1 && index($1, copy) == 1 { $1 = substr($1, length(copy) + 1) } { print }' \
+    > "$DEST/deff_estimators.csv.tmp"
+  mv "$DEST/deff_estimators.csv.tmp" "$DEST/deff_estimators.csv"
+fi
 
 # dt_verdicts.csv: the rule of the claims table, applied by the same code
 # (cmd/dt_study.c) to every state point and observable
