@@ -475,18 +475,18 @@ static void log_relax(run_state *R, const afv_relax_report *rep)
             "kept, relax_tol NOT reached, the run goes on" : "NOT reached "
             "within relax_max_steps; the lowest-energy state kept, the run "
             "goes on");
-    return;
-  }
-  run_log(R, "relaxation at v0 = 0 (Euler steps of dt = %g): %ld steps "
-          "(t = %.6g; %lld moved a cell more than %g l), energy %.10g -> "
-          "%.10g, max |F| %.3e\n", afv_sim_dyn(R->sim)->dt, rep->iterations,
-          rep->time, rep->jumps, AFV_MAX_STEP_DISP, rep->energy0,
-          rep->energy, rep->max_force);
+  } else
+    run_log(R, "relaxation at v0 = 0 (Euler steps of dt = %g): %ld steps "
+            "(t = %.6g; %lld moved a cell more than %g l), energy %.10g -> "
+            "%.10g, max |F| %.3e\n", afv_sim_dyn(R->sim)->dt,
+            rep->iterations, rep->time, rep->jumps, AFV_MAX_STEP_DISP,
+            rep->energy0, rep->energy, rep->max_force);
   if (R->cfg.cap > 0)
     run_log(R, "relaxation: with cap %g the force is regularised near "
             "detachment (PyAFV's contact truncation), so it is not -grad E: "
             "the relaxation follows that force, and E may rise in a step\n",
             R->cfg.cap);
+  if (strcmp(R->cfg.relax, "fire") == 0) return;
   if (rep->converged)
     run_log(R, "relaxation: converged, max |F| %.3e <= relax_tol %g\n",
             rep->max_force, R->cfg.relax_tol);
