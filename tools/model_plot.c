@@ -280,7 +280,9 @@ static int draw(int argc, char **argv)
   return fclose(fp) == 0 ? 0 : 2;
 }
 
-/* --crossing: per N, the two curves on the v0 where both are in. */
+/* --crossing: per N, the two curves on the v0 where both are in:
+** `missing` with fewer than two such v0 while the design has two (runs
+** not in), `not measured` when the design itself has fewer. */
 static int crossing(char **argv)
 {
   static table t;
@@ -300,17 +302,20 @@ static int crossing(char **argv)
   printf("N,v0_cross,points\n");
   for (j = 0; j < nn; j++) {
     double v[MAX_ROWS], a[MAX_ROWS], b[MAX_ROWS], xc;
-    int m = 0, i;
+    int m = 0, designed = 0, i;
     for (k = 0; k < t.nrow; k++)       /* rows with curve LO, then HI's */
-      if (t.rows[k].key[0] == ns[j] && t.rows[k].key[1] == lo
-          && isfinite(t.rows[k].mean))
+      if (t.rows[k].key[0] == ns[j] && t.rows[k].key[1] == lo)
         for (i = 0; i < t.nrow; i++)
           if (t.rows[i].key[0] == ns[j] && t.rows[i].key[1] == hi
-              && t.rows[i].x == t.rows[k].x && isfinite(t.rows[i].mean)) {
-            v[m] = t.rows[k].x; a[m] = t.rows[k].mean; b[m++] = t.rows[i].mean;
+              && t.rows[i].x == t.rows[k].x) {
+            designed++;
+            if (isfinite(t.rows[k].mean) && isfinite(t.rows[i].mean)) {
+              v[m] = t.rows[k].x; a[m] = t.rows[k].mean; b[m++] = t.rows[i].mean;
+            }
             break;
           }
-    if (m < 2) printf("%g,missing,%d\n", ns[j], m);
+    if (designed < 2) printf("%g,not measured,%d\n", ns[j], m);
+    else if (m < 2) printf("%g,missing,%d\n", ns[j], m);
     else if (afv_curves_cross(m, v, a, b, &xc)) printf("%g,%.4g,%d\n", ns[j], xc, m);
     else printf("%g,none,%d\n", ns[j], m);
   }
