@@ -710,7 +710,7 @@ static const char *judge(const claim_rule *r, const claim *c, char *why,
     return "undetermined";
   }
   if (r->rule == BY_NUMBER || r->rule == BY_BRACKET) {
-    if (e >= fabs(c->afv)) {
+    if (e > 0 && e >= fabs(c->afv)) {     /* 0 +- 0 can still fail */
       snprintf(why, len, "its error %.3g is at least its value %.3g", e,
                c->afv);
       return "undetermined";

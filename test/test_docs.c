@@ -1047,9 +1047,9 @@ static void check_status_count(const char *doc, const char *text, size_t len,
 static void test_record_status_counts_claims(void)
 {
   static const char *const agrees[] = {"agree", "are undetermined", "do not",
-                                       "missing"};
+                                       "missing", "not measured"};
   static const char *const agrees_value[] = {"yes", "undetermined", "no",
-                                             "missing"};
+                                             "missing", "not measured"};
   static const char *const dt[] = {"are a property of dt = 0.01",
                                    "are a property of the model",
                                    "not converged", "not measured", "missing",
@@ -1072,9 +1072,24 @@ static void test_record_status_counts_claims(void)
     split = strstr(start, "Against dt");
     CHECK(end && split && split < end, "the status line has its dt part");
     if (end && split && split < end) {
-      for (k = 0; k < sizeof agrees / sizeof *agrees; k++)
-        check_status_count(doc, start, (size_t)(split - start), agrees[k],
-                           claims_with(csv, 5, agrees_value[k]));
+      int rows = -1, counted = 0, measured = -1, all = -1;
+      const char *c;
+      for (c = csv; (c = strchr(c, '\n')); c++) rows++;  /* after the header */
+      for (k = 0; k < sizeof agrees / sizeof *agrees; k++) {
+        int n = claims_with(csv, 5, agrees_value[k]);
+        counted += n;
+        check_status_count(doc, start, (size_t)(split - start), agrees[k], n);
+      }
+      CHECK(counted == rows, "claims.csv: %d rows, %d with a known agrees",
+            rows, counted);
+      if ((c = strstr(start, " of the ")) && c < split) {  /* "N of the M" */
+        while (c > start && isdigit((unsigned char)c[-1])) c--;
+        sscanf(c, "%d of the %d claims measured", &measured, &all);
+      }
+      CHECK(measured == rows - claims_with(csv, 5, "not measured")
+            && all == rows, "\"%d of the %d claims measured\": claims.csv "
+            "has %d rows, %d measured", measured, all, rows,
+            rows - claims_with(csv, 5, "not measured"));
       for (k = 0; k < sizeof dt / sizeof *dt; k++)
         check_status_count(doc, split, (size_t)(end - split), dt[k],
                            claims_with(csv, 6, dt_value[k]));

@@ -47,7 +47,7 @@ TIME=/usr/bin/time
 [ -x "$TIME" ] || { echo "diagram_budget.sh: needs GNU time at $TIME" >&2; exit 2; }
 [ -d "$SWEEP/runs" ] || { echo "diagram_budget.sh: $SWEEP: not an afv sweep (no runs/)" >&2; exit 2; }
 TMP=$(mktemp -d /tmp/afv_budget.XXXXXX)
-trap 'rm -rf "$TMP"' EXIT INT TERM
+trap 'rm -rf "$TMP"' EXIT; trap 'exit 130' INT; trap 'exit 143' TERM
 
 # key VALUE of params.txt ($1) for key $2
 key() { awk -v k="$2" '$1 == k { print $2; exit }' "$1"; }

@@ -22,8 +22,9 @@
 #   cap_seq_table.csv  N_GC/N, clusters, Omega, D_eff at cap_seq's points
 #                   against cap: cap 0 the exact model (dt_D3), 0.45 the
 #                   cap grid (and cap_dt where it has the point), the
-#                   others cap_seq (cap 0.05 also at dt 0.00125:
-#                   cap_seq_dt); `finest` marks each cap's finest dt in
+#                   others cap_seq (each also at dt 0.00125: cap_seq_dt
+#                   and cap_seq_dt--caps); `finest` marks each cap's
+#                   finest dt in
 #   fss_table.csv   N_GC/N, clusters, Omega against N: N 400 from the exact
 #                   record's grid_table.csv (EXACT), the others fss_*
 #   fss_crossing.csv  per N, where the lowest P0's N_GC/N curve falls
@@ -45,7 +46,7 @@ PLOT=$HERE/tools/model_plot
 RUNS=$DEST/runs.csv
 [ -f "$RUNS" ] || { echo "tools/model_cap.sh: no $RUNS (run tools/model_table.sh)" >&2; exit 2; }
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/model_cap.XXXXXX")
-trap 'rm -rf "$WORK"' EXIT INT TERM
+trap 'rm -rf "$WORK"' EXIT; trap 'exit 130' INT; trap 'exit 143' TERM
 mkdir -p "$DEST/figures"
 
 # commit FILE: FILE.tmp replaces FILE (every table is written whole, then moved)

@@ -12,18 +12,20 @@
 #   cap_dt        its dt check: dt 0.005 at 8 of its points
 #   cap_seq       caps 0.2, 0.1, 0.05 at P0 4 and 8, v0 1.85, dt 0.0025
 #   cap_seq_dt    its dt check at the stiffest cap: 0.05 at dt 0.00125, seed 1
-#   cap_dt--seed2     cap_dt's seed 2 (a sweep NAME--PART adds runs to
-#   cap_seq_dt--caps  NAME's design: tools/model_cap.sh tables them as one);
-#                     the cap sequence's dt check at caps 0.2 and 0.1
+#   cap_dt--seed2     cap_dt's seed 2
+#   cap_seq_dt--caps  cap_seq_dt at caps 0.2 and 0.1
 #   fss_1600      N 1600, P0 4, 8 x v0 1.4, 1.85, 2.3, 2 seeds, 10^6 steps
 #   fss_6400      N 6400, P0 4, 8 x v0 1.85, 1 seed, 10^6 steps
+#
+# A sweep NAME--PART adds runs (another seed, other caps) to NAME's design:
+# tools/model_cap.sh tables them as NAME's.
 #
 # Every run: the authors' start (init cluster), relaxed at v0 = 0, then
 # Euler steps; steady window t >= 1000, D_s at lag 5000 (as the record).
 # The sweeps are written once (kept if they exist: their runs resume);
 # the jobs then run one at a time (JOBS=K runs K queues) in the order of
-# their use: the dt table first (every dt of a point before the next
-# point), then the cap grid, then finite size.  Stop it at any moment;
+# their use (the comment above the queue below; every dt of a point
+# before the next point).  Stop it at any moment;
 # run it again and it goes on where it stopped.  QUEUE_ONLY=1 writes the
 # sweeps and OUT/queue.txt and runs nothing.  About 15 CPU hours in all.
 set -e

@@ -120,7 +120,7 @@ mv "$DEST/cap_table.csv.tmp" "$DEST/cap_table.csv"
 # deff_estimators.csv: the glass states' finished runs, each copied to
 # COPY/SWEEP/runs/ID (what afv analyze reads) and analysed there by AFV
 COPY=$(mktemp -d "${TMPDIR:-/tmp}/model_table.XXXXXX")
-trap 'rm -rf "$COPY"' EXIT INT TERM
+trap 'rm -rf "$COPY"' EXIT; trap 'exit 130' INT; trap 'exit 143' TERM
 set --
 for run in "$OUT"/dt_G*/runs/*/; do
   [ -f "$run/analysis/summary.txt" ] || continue
@@ -138,8 +138,11 @@ if [ $# -gt 0 ]; then
   sh "$HERE/tools/deff_estimators.sh" "$@" \
     | awk -F, -v OFS=, -v copy="$COPY/" 'NR > 1 && index($1, copy) == 1 { $1 = substr($1, length(copy) + 1) } { print }' \
     > "$DEST/deff_estimators.csv.tmp"
-  mv "$DEST/deff_estimators.csv.tmp" "$DEST/deff_estimators.csv"
+else   # no glass run in yet: the header alone, no earlier table kept
+  echo "run,P0,v0,seed,dt,lag,D_0,msd_rel,msd_rel_se,single,slope,fit,single_per_step,slope_from,fit_from" \
+    > "$DEST/deff_estimators.csv.tmp"
 fi
+mv "$DEST/deff_estimators.csv.tmp" "$DEST/deff_estimators.csv"
 
 # dt_verdicts.csv: the rule of the claims table, applied by the same code
 # (cmd/dt_study.c) to every state point and observable
