@@ -155,7 +155,8 @@ crossing() { awk -F, -v n="$1" '$1 == n { print $2 "," $3 }' "$DEST/fss_crossing
 expect "fss crossing N 80" "$(crossing 80)" "missing,1"
 expect "fss crossing N 160" "$(crossing 160)" "not measured,0"
 expect "fss crossing N 400" "$(crossing 400 | cut -d, -f2)" 5
-for f in cap_seq_ngc_frac_mean cap_seq_omega_mean fss_ngc_frac_mean fss_crossing; do
+for f in cap_seq_ngc_frac_mean cap_seq_omega_mean fss_ngc_frac_mean fss_ngc_frac_mean_vs_N \
+         fss_crossing; do
   [ -s "$DEST/figures/$f.svg" ] || fail "figures/$f.svg not written"
 done
 

@@ -29,7 +29,8 @@
 #                   record's grid_table.csv (EXACT), the others fss_*
 #   fss_crossing.csv  per N, where the lowest P0's N_GC/N curve falls
 #                   below the highest's (tools/model_plot --crossing)
-#   figures/cap_seq_*.svg, figures/fss_*.svg
+#   figures/cap_seq_*.svg, figures/fss_*.svg (against v0, and at v0 1.85
+#                   against N: fss_*_vs_N.svg)
 #
 # Every state point of a sweep's design is in the tables, with n_seeds 0
 # (and nan) where no run has finished: nothing is left out silently.
@@ -212,6 +213,11 @@ if [ -x "$PLOT" ] && [ -n "$lo" ] && [ "$lo" != "$hi" ]; then
     "$PLOT" "$DEST/fss_table.csv" v0 "$o" all "$DEST/figures/fss_$o.svg" \
       "Finite size: $o against v0 (N 400: the exact record)" \
       N,P0 || true
+  done
+  for o in ngc_frac_mean n_clusters_mean; do
+    "$PLOT" "$DEST/fss_table.csv" N "$o" v0=1.85 "$DEST/figures/fss_${o}_vs_N.svg" \
+      "Finite size: $o against N at v0 1.85 (N 400: the exact record)" \
+      P0 || true
   done
   "$PLOT" "$DEST/fss_crossing.csv" N v0_cross all "$DEST/figures/fss_crossing.svg" \
     "Where N_GC/N at P0 $lo falls below P0 $hi, against N" \
