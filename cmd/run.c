@@ -462,7 +462,8 @@ static void monitor_relax(void *ctx, long iter, double E, double fmax)
 ** criterion: afv.h, afv_relax). */
 static void log_relax(run_state *R, const afv_relax_report *rep)
 {
-  if (strcmp(R->cfg.relax, "fire") == 0) {      /* relax_fire.c, STOPS */
+  int fire = strcmp(R->cfg.relax, "fire") == 0;
+  if (fire) {                                   /* relax_fire.c, STOPS */
     run_log(R, "relaxation by FIRE 2.0 (relax fire; a cell moves at most "
             "0.1 l a step): %ld steps (FIRE time %.6g), energy %.10g -> "
             "%.10g, max |F| %.3e: %s\n", rep->iterations, rep->time,
@@ -486,7 +487,7 @@ static void log_relax(run_state *R, const afv_relax_report *rep)
             "detachment (PyAFV's contact truncation), so it is not -grad E: "
             "the relaxation follows that force, and E may rise in a step\n",
             R->cfg.cap);
-  if (strcmp(R->cfg.relax, "fire") == 0) return;
+  if (fire) return;                   /* FIRE's stop is in its line above */
   if (rep->converged)
     run_log(R, "relaxation: converged, max |F| %.3e <= relax_tol %g\n",
             rep->max_force, R->cfg.relax_tol);

@@ -127,11 +127,11 @@ for run in "$OUT"/dt_G*/runs/*/; do
   run=${run%/} sweep=$(basename "$(dirname "$(dirname "$run")")")
   copy=$COPY/$sweep/runs/$(basename "$run")
   mkdir -p "$copy"
-  cp "$run/params.txt" "$run/checkpoint.txt" "$run/final.svg" \
-     "$run/trajectory.dat" "$copy/"
+  cp "$run/params.txt" "$run/checkpoint.txt" "$run/final.svg" "$copy/"
+  # the trajectory is only read: linked, not copied (8 MB or more a run)
+  ln -s "$(cd "$run" && pwd)/trajectory.dat" "$copy/trajectory.dat"
   # shellcheck disable=SC2046
   "$AFV" analyze "$copy" $(cat "$OUT/$sweep/analysis.txt") > /dev/null
-  rm "$copy/trajectory.dat"
   set -- "$@" "$copy"
 done
 if [ $# -gt 0 ]; then
