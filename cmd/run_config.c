@@ -411,7 +411,9 @@ static int steps_meaningful(const run_cfg *c, const int *set,
 /* svg_every not given: at least steps / RUN_SNAPSHOTS (RUN_SNAPSHOTS). */
 static void bound_snapshots(run_cfg *c, const int *set)
 {
-  long long every = (c->steps + RUN_SNAPSHOTS - 1) / RUN_SNAPSHOTS;
+  /* the ceiling of steps / RUN_SNAPSHOTS, without steps + RUN_SNAPSHOTS - 1,
+  ** which overflows for steps near LLONG_MAX */
+  long long every = c->steps / RUN_SNAPSHOTS + (c->steps % RUN_SNAPSHOTS != 0);
   if (!set[find_key("svg_every") - run_keys] && c->svg_every > 0
       && every > c->svg_every)
     c->svg_every = every;

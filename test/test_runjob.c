@@ -613,6 +613,12 @@ static void test_uncomputable_parameters_refused(void)
   write_column("p0.txt", "P0", 30, 2, "0", "4.5");
   for (c = 0; c < sizeof cases / sizeof cases[0]; c++)
     check_refused_up_front(30, cases[c][0], cases[c][1]);
+  /* the largest steps reaches the snapshot bound before v0 is refused
+  ** (the bound computed steps + 19: signed overflow, which the sanitizer
+  ** build reports and stops on) */
+  CHECK(test_sh("./afv run --N 30 --steps 9223372036854775807 --v0 1e6 "
+                "--quiet --out %s/bad 2> %s/err.txt", root, root) == 2
+        && !exists("bad"), "steps 9223372036854775807: not refused by v0");
   /* just inside: the paper's values scaled far up still run; the model
   ** needs no positive target without its modulus */
   CHECK(test_sh("./afv run --N 30 --steps 0 --KA 1e100 --quiet --out %s/big "
