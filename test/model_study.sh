@@ -137,6 +137,11 @@ expect "cap_seq cap 0.45 at dt 0.01 not finest" "$(rows "$T" '$1 == 4 && $3 == 0
 # sweep, with MSD_rel's error; its single-lag D_eff is the summary's
 T=$DEST/deff_estimators.csv
 expect "deff_estimators rows" "$(rows "$T" 1)" 1
+# with no run in at all: the same header, alone
+mkdir "$WORK/empty"
+AFV="$AFV" sh "$HERE/tools/model_table.sh" "$WORK/empty" "$WORK/dest0" > /dev/null 2>&1 \
+  || fail "tools/model_table.sh failed on a study with no run"
+expect "deff_estimators with no run" "$(cat "$WORK/dest0/deff_estimators.csv")" "$(head -1 "$T")"
 expect "deff_estimators run" "$(awk -F, 'NR == 2 { print $1 "," $2 }' "$T")" "dt_G1/runs/0002,8"
 expect "deff_estimators msd_rel_se" "$(rows "$T" '$9 > 0')" 1
 expect "deff_estimators single = D_eff" \

@@ -26,14 +26,17 @@
 # exponent of MSD_rel over lags 1%..10% of the window), which does not
 # depend on the run length (doc/reproduction/paper/README.md).
 # Exit status 2 (nothing written) if a RUN lacks one of its files.
+# tools/deff_estimators.sh --header prints the header line alone.
 set -e
-[ $# -ge 1 ] || { echo "usage: tools/deff_estimators.sh RUN_DIR..." >&2; exit 2; }
+HEADER="run,P0,v0,seed,dt,lag,D_0,msd_rel,msd_rel_se,single,slope,fit,single_per_step,slope_from,fit_from"
+[ "${1-}" = --header ] && { echo "$HEADER"; exit 0; }
+[ $# -ge 1 ] || { echo "usage: tools/deff_estimators.sh [--header] RUN_DIR..." >&2; exit 2; }
 for run in "$@"; do
   for f in params.txt analysis/summary.txt analysis/msd.csv; do
     [ -f "$run/$f" ] || { echo "tools/deff_estimators.sh: $run/$f: no such file" >&2; exit 2; }
   done
 done
-echo "run,P0,v0,seed,dt,lag,D_0,msd_rel,msd_rel_se,single,slope,fit,single_per_step,slope_from,fit_from"
+echo "$HEADER"
 for run in "$@"; do
   awk -v run="$run" '
     FILENAME ~ /params.txt$/ && NF >= 2 { p[$1] = $2 }

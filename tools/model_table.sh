@@ -139,8 +139,7 @@ if [ $# -gt 0 ]; then
     | awk -F, -v OFS=, -v copy="$COPY/" 'NR > 1 && index($1, copy) == 1 { $1 = substr($1, length(copy) + 1) } { print }' \
     > "$DEST/deff_estimators.csv.tmp"
 else   # no glass run in yet: the header alone, no earlier table kept
-  echo "run,P0,v0,seed,dt,lag,D_0,msd_rel,msd_rel_se,single,slope,fit,single_per_step,slope_from,fit_from" \
-    > "$DEST/deff_estimators.csv.tmp"
+  sh "$HERE/tools/deff_estimators.sh" --header > "$DEST/deff_estimators.csv.tmp"
 fi
 mv "$DEST/deff_estimators.csv.tmp" "$DEST/deff_estimators.csv"
 
